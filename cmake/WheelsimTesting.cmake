@@ -1,0 +1,16 @@
+# Helpers shared by the tests' CMakeLists (included from tests/CMakeLists.txt).
+#
+# WHEELSIM_MPI_TEST_ENV: environment for any test that calls mpirun. CI and the developer machines
+#   run as root on 2 cores; OpenMPI refuses root and more ranks than free cores without these.
+# wheelsim_mpirun(<out-var> <np>): the launcher prefix as a list, e.g.
+#   /usr/bin/mpiexec -n 2 — append the executable and its arguments.
+# WHEELSIM_LIGGGHTS_WHEEL: path of the liggghts-wheel executable (generator expression).
+
+set(WHEELSIM_MPI_TEST_ENV
+    "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1;OMPI_MCA_btl_vader_single_copy_mechanism=none")
+
+function(wheelsim_mpirun out np)
+  set(${out} ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${np} ${MPIEXEC_PREFLAGS} PARENT_SCOPE)
+endfunction()
+
+set(WHEELSIM_LIGGGHTS_WHEEL "$<TARGET_FILE:liggghts-wheel>")
