@@ -5,6 +5,7 @@
 # wheelsim_mpirun(<out-var> <np>): the launcher prefix as a list, e.g.
 #   /usr/bin/mpiexec -n 2 — append the executable and its arguments.
 # WHEELSIM_LIGGGHTS_WHEEL: path of the liggghts-wheel executable (generator expression).
+# Tests that start N MPI ranks set the property PROCESSORS N, so `ctest -j` counts their cores.
 
 set(WHEELSIM_MPI_TEST_ENV
     "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1;OMPI_MCA_btl_vader_single_copy_mechanism=none")
@@ -13,4 +14,6 @@ function(wheelsim_mpirun out np)
   set(${out} ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${np} ${MPIEXEC_PREFLAGS} PARENT_SCOPE)
 endfunction()
 
-set(WHEELSIM_LIGGGHTS_WHEEL "$<TARGET_FILE:liggghts-wheel>")
+if(WHEELSIM_WITH_LIGGGHTS)
+  set(WHEELSIM_LIGGGHTS_WHEEL "$<TARGET_FILE:liggghts-wheel>")
+endif()
