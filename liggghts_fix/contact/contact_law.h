@@ -1,0 +1,173 @@
+// The sphere–rigid-surface contact law of fix wheel/cosim.
+//
+// One call per particle–wheel contact and time step: given the two materials (reduced once to
+// PairConstants), the contact state (overlap, normal, relative velocity, particle spin) and the
+// contact's history, it returns the force and torque on the particle and updates the history.
+//
+// It reproduces LIGGGHTS 3.8's wall contact (`fix wall/gran ... mesh` with `pair_style gran`)
+//   model hertz | edinburgh,  tangential history,  cohesion off | sjkr,  rolling_friction off | epsd2
+// term by term and in the same order (surface model -> normal -> cohesion -> tangential ->
+// rolling), so that the fix and LIGGGHTS give the same forces on identical states.
+// docs/contact-law.md lists every constant with its formula and the LIGGGHTS file it matches.
+//
+// Units: SI throughout (LIGGGHTS `units si`, where force->nktv2p = 1).
+// Frames: every vector is in the world frame.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <type_traits>
+
+namespace wheelsim::contact {
+
+/// Normal force law (LIGGGHTS `model ...`).
+enum class NormalModel {
+  Hertz, ///< `model hertz`: Hertz–Mindlin with viscous damping from the restitution coefficient.
+  Eepa,  ///< `model edinburgh`: elasto-plastic adhesive (EEPA, Thakur et al. 2014).
+};
+
+/// Cohesion added along the normal (LIGGGHTS `cohesion ...`).
+enum class CohesionModel {
+  Off,  ///< none
+  Sjkr, ///< `cohesion sjkr`: energy density times contact area.
+};
+
+/// Rolling resistance (LIGGGHTS `rolling_friction ...`).
+enum class RollingModel {
+  Off,   ///< none
+  Epsd2, ///< `rolling_friction epsd2`: elastic-plastic spring, torque capped at μr R |Fn|.
+};
+
+/// An on/off model setting whose LIGGGHTS default depends on the normal model.
+enum class Switch { ModelDefault, On, Off };
+
+/// One side of the contact (LIGGGHTS `fix property/global ... peratomtype`).
+struct Material {
+  double youngsModulus = 0.0; ///< E [Pa], > 0
+  double poissonsRatio = 0.0; ///< ν [-], 0 <= ν <= 0.5
+};
+
+/// Properties of the particle-type/wheel-type pair (LIGGGHTS `peratomtypepair` and `scalar`
+/// properties, named as in the deck).
+struct PairMaterial {
+  double coefficientRestitution = 0.5;     ///< e [-], 0.05 < e <= 1 (LIGGGHTS' sanity range)
+  double coefficientFriction = 0.5;        ///< μ [-], sliding friction, >= 0
+  double coefficientRollingFriction = 0.0; ///< μr [-], epsd2 only, >= 0
+  double cohesionEnergyDensity = 0.0;      ///< k_coh [J/m³ = Pa], sjkr only, >= 0
+  // --- model edinburgh (EEPA) ---
+  double UnloadingStiffness = 1.0;           ///< k2/k1 [-]: unloading / loading stiffness, > 1
+  double coefficientAdhesionStiffness = 0.0; ///< kc/k1 [-]: adhesive stiffness ratio (fixKc)
+  double pullOffForce = 0.0;                 ///< f0 [N]: constant pull-off force (usually <= 0)
+  double surfaceEnergy = 0.0;                ///< Δγ [J/m²] (no effect on a wall: see docs)
+  double overlapExponent = 1.5;              ///< n [-]: loading curve F = k1 δ^n, >= 1
+  double adhesionExponent = 1.5;             ///< X [-]: adhesive branch F = -kc δ^X, > 0
+};
+
+/// Model choice and LIGGGHTS' `contact_model ... <setting> on|off` switches.
+struct ContactSettings {
+  NormalModel normal = NormalModel::Hertz;
+  CohesionModel cohesion = CohesionModel::Off;
+  RollingModel rolling = RollingModel::Off;
+  /// `tangential_damping` (default on for both normal models).
+  bool tangentialDamping = true;
+  /// `limitForce`: clamp a net attractive normal force to 0. LIGGGHTS' default is off for hertz
+  /// and ON for edinburgh (where it acts only when no adhesion is active, see docs).
+  Switch limitForce = Switch::ModelDefault;
+  /// edinburgh `fixKc`: adhesive stiffness = coefficientAdhesionStiffness * k1 (default off: the
+  /// stiffness then follows from surfaceEnergy, which for a wall gives zero).
+  bool fixKc = false;
+  /// sjkr `tangential_reduce`: include the cohesion force in the Fn of the Coulomb/rolling caps.
+  bool tangentialReduce = false;
+  /// epsd2 `torsionTorque`: keep the normal (twisting) part of the spin in the rolling spring.
+  bool torsionTorque = false;
+};
+
+/// Effective pair constants, computed once per material pair by makePairConstants().
+struct PairConstants {
+  ContactSettings settings;
+  double Yeff = 0.0;      ///< 1/((1-ν1²)/E1 + (1-ν2²)/E2) [Pa]
+  double Geff = 0.0;      ///< 1/(2(2-ν1)(1+ν1)/E1 + 2(2-ν2)(1+ν2)/E2) [Pa]
+  double logE = 0.0;      ///< ln e [-] (LIGGGHTS CoeffRestLog)
+  double betaeff = 0.0;   ///< ln e / sqrt(ln²e + π²) [-] (LIGGGHTS betaeff), <= 0
+  double mu = 0.0;        ///< μ [-]
+  double muRoll = 0.0;    ///< μr [-]
+  double kCoh = 0.0;      ///< k_coh [Pa]
+  double kn2k1 = 1.0;     ///< k2/k1 [-]
+  double kn2kc = 0.0;     ///< kc/k1 [-]
+  double f0 = 0.0;        ///< pull-off force [N]
+  double gammaSurf = 0.0; ///< surface energy [J/m²]
+  double dex = 1.5;       ///< overlap exponent [-]
+  double cex = 1.5;       ///< adhesion exponent [-]
+  bool limitForce = false; ///< the resolved `limitForce` switch
+};
+
+/// Reduces the two materials and the pair properties to the constants used per contact.
+/// Throws std::invalid_argument naming the offending property, its value and the valid range.
+PairConstants makePairConstants(const Material &particle, const Material &wheel,
+                                const PairMaterial &pair, const ContactSettings &settings);
+
+/// Per-contact history: a trivially copyable block of kSize doubles, zero when a contact starts
+/// (value-initialise it, or call reset()). The fix stores 2–4 of these per particle.
+struct ContactHistory {
+  static constexpr int kSize = 10;
+  double shear[3];      ///< tangential spring displacement [m] (LIGGGHTS shearx/y/z)
+  double deltaMax;      ///< EEPA remembered maximum plastic overlap δp,max [m] ("deltaMax")
+  double oldDelta;      ///< EEPA overlap at the previous evaluation [m] ("old_delta")
+  double kc;            ///< EEPA last adhesive stiffness [N/m^X], diagnostic ("kc")
+  double fo;            ///< EEPA pull-off force applied [N], diagnostic ("fo")
+  double rollTorque[3]; ///< epsd2 rolling spring torque [N·m] ("r_torquex_old" ...)
+
+  void reset() { *this = ContactHistory{}; }
+  double *data() { return shear; }
+  const double *data() const { return shear; }
+};
+static_assert(std::is_trivially_copyable_v<ContactHistory> &&
+                  std::is_standard_layout_v<ContactHistory> &&
+                  sizeof(ContactHistory) == ContactHistory::kSize * sizeof(double),
+              "ContactHistory must stay a flat block of doubles (it is packed per atom)");
+
+/// The contact at one step.
+struct ContactState {
+  double radius = 0.0;  ///< particle radius R [m] (LIGGGHTS reff = R for a wall)
+  double mass = 0.0;    ///< m [kg] (LIGGGHTS meff = m for a wall; see docs for clumps)
+  double overlap = 0.0; ///< δn > 0 [m]
+  /// unit contact normal, from the wheel surface towards the particle centre
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  /// v_rel: velocity of the particle's contact point minus that of the wheel surface point [m/s]
+  /// (see relativeContactVelocity for the lever arm LIGGGHTS uses)
+  Eigen::Vector3d vRel = Eigen::Vector3d::Zero();
+  /// ω: particle angular velocity [rad/s] (rolling resistance only)
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();
+};
+
+/// What one evaluation returns.
+struct ContactResult {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  ///< on the particle [N]
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero(); ///< on the particle about its centre [N·m]:
+                                                    ///< tangential force lever + rolling torque
+  double normalForce = 0.0;   ///< Fn used by the caps (elastic + damping [+ cohesion]) [N]
+  double cohesionForce = 0.0; ///< sjkr normal cohesion (negative = attractive) [N]
+  bool sliding = false;       ///< the tangential force sits on the Coulomb cap
+};
+
+/// The relative contact-point velocity as LIGGGHTS' default surface model forms it for a wall:
+///   v_rel = v_p - v_w - c_r ω × n,   c_r = R - δ/2,
+/// i.e. the particle spin acts on the lever arm c_r (not R - δ), and v_w is the wheel's velocity
+/// at the closest surface point (LIGGGHTS interpolates the mesh node velocities there).
+/// @param vParticle particle centre velocity [m/s]; @param omega particle spin [rad/s];
+/// @param vWall wheel surface velocity at the contact point [m/s]; @param n unit normal (wheel to
+/// particle); @param radius R [m]; @param overlap δ [m].
+Eigen::Vector3d relativeContactVelocity(const Eigen::Vector3d &vParticle,
+                                        const Eigen::Vector3d &omega,
+                                        const Eigen::Vector3d &vWall, const Eigen::Vector3d &n,
+                                        double radius, double overlap);
+
+/// Evaluates one contact. `updateHistory` is LIGGGHTS' `computeflag && shearupdate`: false in
+/// `setup()` (forces without advancing the history). Like LIGGGHTS, the EEPA overlap memory is
+/// written even when it is false. No allocation, no virtual call.
+/// Preconditions (checked only in debug builds): overlap > 0, radius > overlap, mass > 0.
+ContactResult evaluate(const PairConstants &pc, const ContactState &state, double dt,
+                       bool updateHistory, ContactHistory &history);
+
+} // namespace wheelsim::contact
