@@ -1,0 +1,101 @@
+#include "wheel_spec.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace wheelsim::meshes {
+namespace {
+
+[[noreturn]] void fail(const std::string &option, double value, const char *unit,
+                       const std::string &expected) {
+  std::ostringstream os;
+  os << option << " " << value << (unit[0] ? " " : "") << unit << ": " << expected;
+  throw WheelSpecError(os.str());
+}
+
+} // namespace
+
+const char *to_string(LugType type) {
+  switch (type) {
+  case LugType::straight:
+    return "straight";
+  case LugType::combined:
+    return "combined";
+  case LugType::nondirectional:
+    return "nondirectional";
+  }
+  return "?";
+}
+
+LugType parse_lug_type(const std::string &name) {
+  if (name == "straight") return LugType::straight;
+  if (name == "combined") return LugType::combined;
+  if (name == "nondirectional") return LugType::nondirectional;
+  throw WheelSpecError("--type '" + name + "': expected straight, combined or nondirectional");
+}
+
+void validate(const WheelSpec &s) {
+  if (!(s.diameter_m > 0.0) || !std::isfinite(s.diameter_m)) {
+    fail("--diameter", s.diameter_m, "m", "the outer diameter must be > 0 m");
+  }
+  if (!(s.width_m > 0.0) || !std::isfinite(s.width_m)) {
+    fail("--width", s.width_m, "m", "the width must be > 0 m");
+  }
+  const Resolution &r = s.resolution;
+  if (!(r.max_arc_m > 0.0)) fail("--max-arc", r.max_arc_m, "m", "must be > 0 m");
+  if (!(r.max_angle_deg > 0.0 && r.max_angle_deg <= 45.0)) {
+    fail("--max-angle", r.max_angle_deg, "deg", "must be in (0, 45] deg");
+  }
+  if (!(r.max_width_edge_m > 0.0)) {
+    fail("--max-width-edge", r.max_width_edge_m, "m", "must be > 0 m");
+  }
+  if (s.smooth) {
+    if (s.lug_count != 0) {
+      fail("--lugs", s.lug_count, "", "a smooth wheel has no lugs: drop --lugs or --smooth");
+    }
+    return;
+  }
+  if (s.lug_count < 1) {
+    std::ostringstream os;
+    os << "--lugs " << s.lug_count << " with --type " << to_string(s.type)
+       << ": a lugged wheel needs at least 1 lug (use --smooth for a smooth cylinder)";
+    throw WheelSpecError(os.str());
+  }
+  if (s.lug_count > 1000) fail("--lugs", s.lug_count, "", "at most 1000 lugs");
+  if (!(s.lug_height_m > 0.0)) {
+    fail("--lug-height", s.lug_height_m, "m", "must be > 0 m (use --smooth for no lugs)");
+  }
+  if (!(s.lug_height_m < 0.5 * s.diameter_m)) {
+    std::ostringstream os;
+    os << "must be less than the outer radius D0/2 = " << 0.5 * s.diameter_m
+       << " m (the rim radius D0/2 - lh must stay > 0)";
+    fail("--lug-height", s.lug_height_m, "m", os.str());
+  }
+  if (!(s.lug_width_m > 0.0)) fail("--lug-width", s.lug_width_m, "m", "must be > 0 m");
+  if (!(s.lug_angle_deg >= 0.0 && s.lug_angle_deg <= 70.0)) {
+    fail("--lug-angle", s.lug_angle_deg, "deg", "must be in [0, 70] deg (angle to the axle)");
+  }
+  if (s.type != LugType::straight) {
+    if (!(s.centre_length_m >= 0.0 && s.centre_length_m < s.width_m)) {
+      std::ostringstream os;
+      os << "the centre length must be in [0, w) = [0, " << s.width_m << ") m for "
+         << to_string(s.type) << " lugs";
+      fail("--centre-length", s.centre_length_m, "m", os.str());
+    }
+  }
+}
+
+std::string describe(const WheelSpec &s) {
+  std::ostringstream os;
+  os << "D0 " << s.diameter_m << " m, w " << s.width_m << " m, ";
+  if (s.smooth) {
+    os << "smooth";
+  } else {
+    os << s.lug_count << " " << to_string(s.type) << " lugs, lh " << s.lug_height_m
+       << " m, lug width " << s.lug_width_m << " m, angle " << s.lug_angle_deg << " deg";
+    if (s.type != LugType::straight) os << ", h " << s.centre_length_m << " m";
+  }
+  return os.str();
+}
+
+} // namespace wheelsim::meshes
