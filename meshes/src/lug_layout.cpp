@@ -69,16 +69,15 @@ std::vector<LugFootprint> lug_layout(const WheelSpec &spec) {
                       -1.0,
                       s_k});
       break;
-    case LugType::nondirectional: {
-      // Left half-lug over y in [-w/2, h/2], centreline s = (y - y_m) tan(delta) through its
-      // middle y_m; the right half-lug is its point reflection (s, y) -> (-s, -y) (a rotation by
-      // 180 deg about the radial axis at the tread centre), shifted by half a pitch.
-      const double y_m = 0.5 * (-half_w + half_h);
-      lugs.push_back({-half_w, half_h, {make_line(-y_m * tan_d, tan_d, t)}, +1.0, s_k});
-      lugs.push_back(
-          {-half_h, half_w, {make_line(y_m * tan_d, tan_d, t)}, +1.0, s_k + 0.5 * pitch_m});
+    case LugType::nondirectional:
+      // Left half-lug over y in [-w/2, h/2] and right half-lug over [-h/2, w/2], both on the
+      // line s = y tan(delta) through the tread centre; the right one is shifted by half a pitch.
+      // The right half-lug is the point reflection (s, y) -> (-s, -y) of the left one (a 180 deg
+      // rotation about the radial axis at the tread centre), so the tread is unchanged by turning
+      // the wheel around: it works the same in both rotation directions.
+      lugs.push_back({-half_w, half_h, {make_line(0.0, tan_d, t)}, +1.0, s_k});
+      lugs.push_back({-half_h, half_w, {make_line(0.0, tan_d, t)}, +1.0, s_k + 0.5 * pitch_m});
       break;
-    }
     }
   }
   return lugs;
