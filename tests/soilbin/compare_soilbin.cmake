@@ -1,0 +1,23 @@
+# Compare two result.txt files written by run_soilbin.cmake:
+#   cmake -DLOW=<dir>/result.txt -DHIGH=<dir>/result.txt -DKEY=bulk_density -P compare_soilbin.cmake
+# Fails unless KEY in HIGH is strictly greater than KEY in LOW.
+cmake_minimum_required(VERSION 3.16)
+foreach(v LOW HIGH KEY)
+  if(NOT DEFINED ${v})
+    message(FATAL_ERROR "compare_soilbin.cmake: -D${v}=... is required")
+  endif()
+endforeach()
+foreach(f LOW HIGH)
+  if(NOT EXISTS "${${f}}")
+    message(FATAL_ERROR "${${f}} does not exist (did the run it comes from fail?)")
+  endif()
+  file(STRINGS "${${f}}" l REGEX "^soilbin: ${KEY} = ")
+  string(REGEX REPLACE "^soilbin: ${KEY} = " "" v_${f} "${l}")
+  if(NOT v_${f} MATCHES "^-?[0-9.]+([eE][-+]?[0-9]+)?$")
+    message(FATAL_ERROR "no numeric ${KEY} in ${${f}}")
+  endif()
+endforeach()
+if(NOT v_HIGH GREATER v_LOW)
+  message(FATAL_ERROR "${KEY}: ${v_HIGH} (${HIGH}) is not greater than ${v_LOW} (${LOW})")
+endif()
+message(STATUS "${KEY}: ${v_HIGH} > ${v_LOW}")
