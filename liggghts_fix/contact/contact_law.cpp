@@ -45,8 +45,9 @@ NormalPart hertzNormal(const PairConstants &pc, double R, double m, double delta
   const double St = 8.0 * pc.Geff * sqrtRd; // tangential (Mindlin) stiffness [N/m]
   const double kn = 4.0 / 3.0 * pc.Yeff * sqrtRd;
   const double gamman = -2.0 * kSqrtFiveOverSix * pc.betaeff * std::sqrt(Sn * m);
-  const double gammat =
-      pc.settings.tangentialDamping ? -2.0 * kSqrtFiveOverSix * pc.betaeff * std::sqrt(St * m) : 0.0;
+  const double gammat = pc.settings.tangentialDamping
+                            ? -2.0 * kSqrtFiveOverSix * pc.betaeff * std::sqrt(St * m)
+                            : 0.0;
   double Fn = kn * delta - gamman * vn;
   if (pc.limitForce && Fn < 0.0)
     Fn = 0.0;
@@ -182,8 +183,8 @@ PairConstants makePairConstants(const Material &particle, const Material &wheel,
       require(pair.UnloadingStiffness > 1.0, "UnloadingStiffness (k2/k1)", pair.UnloadingStiffness,
               "> 1 with fixKc");
     else
-      require(pair.UnloadingStiffness >= 1.0, "UnloadingStiffness (k2/k1)",
-              pair.UnloadingStiffness, ">= 1");
+      require(pair.UnloadingStiffness >= 1.0, "UnloadingStiffness (k2/k1)", pair.UnloadingStiffness,
+              ">= 1");
     require(pair.coefficientAdhesionStiffness >= 0.0, "coefficientAdhesionStiffness",
             pair.coefficientAdhesionStiffness, ">= 0");
     require(pair.surfaceEnergy >= 0.0, "surfaceEnergy [J/m^2]", pair.surfaceEnergy, ">= 0");
@@ -225,9 +226,8 @@ PairConstants makePairConstants(const Material &particle, const Material &wheel,
 }
 
 Eigen::Vector3d relativeContactVelocity(const Eigen::Vector3d &vParticle,
-                                        const Eigen::Vector3d &omega,
-                                        const Eigen::Vector3d &vWall, const Eigen::Vector3d &n,
-                                        double radius, double overlap) {
+                                        const Eigen::Vector3d &omega, const Eigen::Vector3d &vWall,
+                                        const Eigen::Vector3d &n, double radius, double overlap) {
   // surface_model_default.h (wall branch): the spin acts on c_r = R - δ/2.
   const double cr = radius - 0.5 * overlap;
   return vParticle - vWall - cr * omega.cross(n);

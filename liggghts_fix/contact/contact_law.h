@@ -5,7 +5,8 @@
 // contact's history, it returns the force and torque on the particle and updates the history.
 //
 // It reproduces LIGGGHTS 3.8's wall contact (`fix wall/gran ... mesh` with `pair_style gran`)
-//   model hertz | edinburgh,  tangential history,  cohesion off | sjkr,  rolling_friction off | epsd2
+//   model hertz | edinburgh,  tangential history,  cohesion off | sjkr,  rolling_friction off |
+//   epsd2
 // term by term and in the same order (surface model -> normal -> cohesion -> tangential ->
 // rolling), so that the fix and LIGGGHTS give the same forces on identical states.
 // docs/contact-law.md lists every constant with its formula and the LIGGGHTS file it matches.
@@ -86,19 +87,19 @@ struct ContactSettings {
 /// Effective pair constants, computed once per material pair by makePairConstants().
 struct PairConstants {
   ContactSettings settings;
-  double Yeff = 0.0;      ///< 1/((1-ν1²)/E1 + (1-ν2²)/E2) [Pa]
-  double Geff = 0.0;      ///< 1/(2(2-ν1)(1+ν1)/E1 + 2(2-ν2)(1+ν2)/E2) [Pa]
-  double logE = 0.0;      ///< ln e [-] (LIGGGHTS CoeffRestLog)
-  double betaeff = 0.0;   ///< ln e / sqrt(ln²e + π²) [-] (LIGGGHTS betaeff), <= 0
-  double mu = 0.0;        ///< μ [-]
-  double muRoll = 0.0;    ///< μr [-]
-  double kCoh = 0.0;      ///< k_coh [Pa]
-  double kn2k1 = 1.0;     ///< k2/k1 [-]
-  double kn2kc = 0.0;     ///< kc/k1 [-]
-  double f0 = 0.0;        ///< pull-off force [N]
-  double gammaSurf = 0.0; ///< surface energy [J/m²]
-  double dex = 1.5;       ///< overlap exponent [-]
-  double cex = 1.5;       ///< adhesion exponent [-]
+  double Yeff = 0.0;       ///< 1/((1-ν1²)/E1 + (1-ν2²)/E2) [Pa]
+  double Geff = 0.0;       ///< 1/(2(2-ν1)(1+ν1)/E1 + 2(2-ν2)(1+ν2)/E2) [Pa]
+  double logE = 0.0;       ///< ln e [-] (LIGGGHTS CoeffRestLog)
+  double betaeff = 0.0;    ///< ln e / sqrt(ln²e + π²) [-] (LIGGGHTS betaeff), <= 0
+  double mu = 0.0;         ///< μ [-]
+  double muRoll = 0.0;     ///< μr [-]
+  double kCoh = 0.0;       ///< k_coh [Pa]
+  double kn2k1 = 1.0;      ///< k2/k1 [-]
+  double kn2kc = 0.0;      ///< kc/k1 [-]
+  double f0 = 0.0;         ///< pull-off force [N]
+  double gammaSurf = 0.0;  ///< surface energy [J/m²]
+  double dex = 1.5;        ///< overlap exponent [-]
+  double cex = 1.5;        ///< adhesion exponent [-]
   bool limitForce = false; ///< the resolved `limitForce` switch
 };
 
@@ -159,9 +160,8 @@ struct ContactResult {
 /// @param vWall wheel surface velocity at the contact point [m/s]; @param n unit normal (wheel to
 /// particle); @param radius R [m]; @param overlap δ [m].
 Eigen::Vector3d relativeContactVelocity(const Eigen::Vector3d &vParticle,
-                                        const Eigen::Vector3d &omega,
-                                        const Eigen::Vector3d &vWall, const Eigen::Vector3d &n,
-                                        double radius, double overlap);
+                                        const Eigen::Vector3d &omega, const Eigen::Vector3d &vWall,
+                                        const Eigen::Vector3d &n, double radius, double overlap);
 
 /// Evaluates one contact. `updateHistory` is LIGGGHTS' `computeflag && shearupdate`: false in
 /// `setup()` (forces without advancing the history). Like LIGGGHTS, the EEPA overlap memory is

@@ -52,9 +52,9 @@ TEST(PairConstants, EffectiveModuliAndBetaFollowLiggghts) {
   const double geff = 1.0 / (2 * 1.7 * 1.3 / 5.0e7 + 2 * 1.7 * 1.3 / 2.0e11);
   EXPECT_NEAR(relErr(pc.Yeff, yeff), 0.0, 1e-14);
   EXPECT_NEAR(relErr(pc.Geff, geff), 0.0, 1e-14);
-  EXPECT_NEAR(relErr(pc.betaeff, std::log(0.5) / std::sqrt(std::log(0.5) * std::log(0.5) +
-                                                            kPi * kPi)),
-              0.0, 1e-14);
+  EXPECT_NEAR(
+      relErr(pc.betaeff, std::log(0.5) / std::sqrt(std::log(0.5) * std::log(0.5) + kPi * kPi)), 0.0,
+      1e-14);
   EXPECT_FALSE(pc.limitForce); // hertz default
   wc::ContactSettings eepa;
   eepa.normal = wc::NormalModel::Eepa;
@@ -291,8 +291,8 @@ TEST(RollingEpsd2, TorqueIsCappedAndOpposesTheRotation) {
 // ---------------------------------------------------------------------------------------------
 // EEPA (model edinburgh), linear (n = X = 1) so that the branches are straight lines in δ.
 struct EepaLinear : ::testing::Test {
-  static constexpr double kRatio = 5.0;   // k2/k1
-  static constexpr double kcRatio = 0.5;  // kc/k1
+  static constexpr double kRatio = 5.0;  // k2/k1
+  static constexpr double kcRatio = 0.5; // kc/k1
   static constexpr double kF0 = -2.0e-3; // pull-off force [N]
   wc::PairConstants pc;
   double k1 = 0, k2 = 0, kc = 0;
