@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include <Eigen/LU>
+
 #include "wheelsim/geometry/mesh_error.h"
 
 namespace wheelsim::geometry {
@@ -31,7 +33,7 @@ MassProperties mass_properties(const TriangleMesh &mesh, double density_kg_m3) {
 
   double volume = 0.0;
   Eigen::Vector3d first_moment = Eigen::Vector3d::Zero(); // integral of r dV about o
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // integral of r r^T dV about o
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();   // integral of r r^T dV about o
   for (const auto &t : mesh.triangles) {
     Eigen::Matrix3d a; // columns: the triangle's vertices relative to o
     a.col(0) = mesh.vertices_m[t[0]] - o;
@@ -56,9 +58,9 @@ MassProperties mass_properties(const TriangleMesh &mesh, double density_kg_m3) {
   const Eigen::Vector3d c_rel = first_moment / volume;
   p.centroid_m = o + c_rel;
   // Shift the covariance to the centroid, then I = tr(C) E - C.
-  const Eigen::Matrix3d c_centroid = density_kg_m3 * (covariance - volume * c_rel * c_rel.transpose());
-  p.inertia_about_centroid_kg_m2 =
-      c_centroid.trace() * Eigen::Matrix3d::Identity() - c_centroid;
+  const Eigen::Matrix3d c_centroid =
+      density_kg_m3 * (covariance - volume * c_rel * c_rel.transpose());
+  p.inertia_about_centroid_kg_m2 = c_centroid.trace() * Eigen::Matrix3d::Identity() - c_centroid;
   return p;
 }
 

@@ -29,8 +29,8 @@ std::string scale_hint(double diagonal_m) {
     double scale;
     const char *name;
   };
-  static const Unit units[] = {{1e-3, "millimetres"}, {1e-2, "centimetres"}, {1e-6, "micrometres"},
-                               {1e3, "kilometres"}};
+  static const Unit units[] = {
+      {1e-3, "millimetres"}, {1e-2, "centimetres"}, {1e-6, "micrometres"}, {1e3, "kilometres"}};
   for (const Unit &u : units) {
     const double d = diagonal_m * u.scale;
     if (d >= 0.05 && d <= kMaxPlausibleDiagonal_m) {
@@ -106,8 +106,7 @@ MeshReport check_mesh(const TriangleMesh &mesh) {
       continue;
     }
     const Eigen::Vector3d &a = mesh.vertices_m[t[0]];
-    const double twice_area =
-        (mesh.vertices_m[t[1]] - a).cross(mesh.vertices_m[t[2]] - a).norm();
+    const double twice_area = (mesh.vertices_m[t[1]] - a).cross(mesh.vertices_m[t[2]] - a).norm();
     if (twice_area <= 2.0 * area_eps) {
       r.degenerate_triangles.push_back(i);
     }
@@ -134,28 +133,31 @@ MeshReport check_mesh(const TriangleMesh &mesh) {
     const int n = use.forward + use.backward;
     if (n == 1) {
       r.boundary_edges++;
-      if (first_boundary < 0 || v < first_boundary) first_boundary = v;
+      if (first_boundary < 0 || v < first_boundary)
+        first_boundary = v;
     } else if (n > 2) {
       r.nonmanifold_edges++;
-      if (first_nonmanifold < 0 || v < first_nonmanifold) first_nonmanifold = v;
+      if (first_nonmanifold < 0 || v < first_nonmanifold)
+        first_nonmanifold = v;
     } else if (use.forward != 1) {
       r.inconsistent_edges++;
-      if (first_inconsistent < 0 || v < first_inconsistent) first_inconsistent = v;
+      if (first_inconsistent < 0 || v < first_inconsistent)
+        first_inconsistent = v;
     }
   }
-  auto at_vertex = [&](int v) { return "(first at vertex " + format_point(mesh.vertices_m[v]) + " m)"; };
+  auto at_vertex = [&](int v) {
+    return "(first at vertex " + format_point(mesh.vertices_m[v]) + " m)";
+  };
   if (r.boundary_edges > 0) {
     r.errors.push_back("mesh is not closed: " + plural(r.boundary_edges, "boundary edge") + " " +
                        at_vertex(first_boundary));
   }
   if (r.nonmanifold_edges > 0) {
-    r.errors.push_back("mesh is not manifold: " +
-                       plural(r.nonmanifold_edges, "edge") + " shared by more than two triangles " +
-                       at_vertex(first_nonmanifold));
+    r.errors.push_back("mesh is not manifold: " + plural(r.nonmanifold_edges, "edge") +
+                       " shared by more than two triangles " + at_vertex(first_nonmanifold));
   }
   if (r.inconsistent_edges > 0) {
-    r.errors.push_back("mesh is inconsistently oriented: " +
-                       plural(r.inconsistent_edges, "edge") +
+    r.errors.push_back("mesh is inconsistently oriented: " + plural(r.inconsistent_edges, "edge") +
                        " traversed in the same direction by both its triangles (a flipped "
                        "triangle) " +
                        at_vertex(first_inconsistent));
@@ -171,16 +173,16 @@ MeshReport check_mesh(const TriangleMesh &mesh) {
   if (r.bbox_diagonal_m < kMinPlausibleDiagonal_m || r.bbox_diagonal_m > kMaxPlausibleDiagonal_m) {
     std::ostringstream os;
     os << "implausible size for metres: bounding-box diagonal " << r.bbox_diagonal_m
-       << " m is outside [" << kMinPlausibleDiagonal_m << ", " << kMaxPlausibleDiagonal_m
-       << "] m; " << scale_hint(r.bbox_diagonal_m);
+       << " m is outside [" << kMinPlausibleDiagonal_m << ", " << kMaxPlausibleDiagonal_m << "] m; "
+       << scale_hint(r.bbox_diagonal_m);
     r.errors.push_back(os.str());
   }
   if (!r.degenerate_triangles.empty()) {
     const auto &t = mesh.triangles[r.degenerate_triangles.front()];
-    r.warnings.push_back(plural(static_cast<int>(r.degenerate_triangles.size()),
-                                "degenerate triangle") +
-                         " (zero area or repeated vertex; first at vertex " +
-                         format_point(mesh.vertices_m[t[0]]) + " m)");
+    r.warnings.push_back(
+        plural(static_cast<int>(r.degenerate_triangles.size()), "degenerate triangle") +
+        " (zero area or repeated vertex; first at vertex " + format_point(mesh.vertices_m[t[0]]) +
+        " m)");
   }
   return r;
 }

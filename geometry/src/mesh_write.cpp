@@ -112,9 +112,11 @@ void write_ply(const TriangleMesh &mesh, const std::string &path) {
 void write_mesh(const TriangleMesh &mesh, const std::string &path) {
   auto ends_with = [&](const char *ext) {
     const std::size_t n = std::strlen(ext);
-    if (path.size() < n) return false;
+    if (path.size() < n)
+      return false;
     for (std::size_t i = 0; i < n; ++i) {
-      if (std::tolower(static_cast<unsigned char>(path[path.size() - n + i])) != ext[i]) return false;
+      if (std::tolower(static_cast<unsigned char>(path[path.size() - n + i])) != ext[i])
+        return false;
     }
     return true;
   };

@@ -26,7 +26,15 @@ constexpr double kSameNormalCosine = 1.0 - 1e-6;
 /// Upper bound on grid cells (memory: 4 bytes per cell plus the registrations).
 constexpr long kMaxCells = 8'000'000;
 
-enum Region { kFace = 0, kEdgeAB = 1, kEdgeBC = 2, kEdgeCA = 3, kVertA = 4, kVertB = 5, kVertC = 6 };
+enum Region {
+  kFace = 0,
+  kEdgeAB = 1,
+  kEdgeBC = 2,
+  kEdgeCA = 3,
+  kVertA = 4,
+  kVertB = 5,
+  kVertC = 6
+};
 
 /// Closest point of triangle (a, b, c) to p and the Voronoi region it lies in. Points on a
 /// triangle's boundary are classified as edge or vertex, never as face.
@@ -182,8 +190,7 @@ void SphereContactIndex::build_grid(double cell_size_m) {
           const Eigen::Vector3d centre =
               grid_origin_m_ + cell_size_m * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5);
           int region;
-          if ((closest_point_on_triangle(centre, a, b, c, region) - centre).norm() <=
-              half_diagonal)
+          if ((closest_point_on_triangle(centre, a, b, c, region) - centre).norm() <= half_diagonal)
             registrations.emplace_back((static_cast<long>(k) * dims_[1] + j) * dims_[0] + i, t);
         }
   }
@@ -233,8 +240,7 @@ bool SphereContactIndex::edge_cone_contains(int edge, const Eigen::Vector3d &dir
   return true;
 }
 
-bool SphereContactIndex::vertex_cone_contains(int vertex,
-                                              const Eigen::Vector3d &direction) const {
+bool SphereContactIndex::vertex_cone_contains(int vertex, const Eigen::Vector3d &direction) const {
   const Eigen::Vector3d &v = mesh_.vertices_m[vertex];
   const double tolerance = kConeTolerance * direction.norm();
   for (int i = vertex_edge_offsets_[vertex]; i < vertex_edge_offsets_[vertex + 1]; ++i) {
@@ -310,8 +316,8 @@ int SphereContactIndex::find_contacts(const Eigen::Vector3d &centre_m, double ra
     const Eigen::Vector3d &n = normals_[h.triangle];
     if ((centre_m - h.point).dot(n) < 0.0 || duplicates_kept(h.point, n))
       continue; // centre behind the face (inside the solid), or found twice
-    contacts.push_back({h.point, n, radius_m - h.distance, SurfaceFeature::Face, h.triangle,
-                        h.triangle});
+    contacts.push_back(
+        {h.point, n, radius_m - h.distance, SurfaceFeature::Face, h.triangle, h.triangle});
   }
   // 2. Edges: convex-edge normal cone, no face contact on either triangle, reported once.
   for (const RawHit &h : hits_) {

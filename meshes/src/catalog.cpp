@@ -8,7 +8,8 @@ namespace wheelsim::meshes {
 namespace {
 
 double number(const toml::node &node, const std::string &where) {
-  if (auto v = node.value<double>()) return *v;
+  if (auto v = node.value<double>())
+    return *v;
   throw WheelSpecError(where + ": expected a number");
 }
 
@@ -18,22 +19,29 @@ void apply(CatalogEntry &e, const std::string &key, const toml::node &node,
   const std::string at = where + ": key '" + key + "'";
   WheelSpec &s = e.spec;
   if (key == "name") {
-    if (auto v = node.value<std::string>()) e.name = *v;
-    else throw WheelSpecError(at + ": expected a string");
+    if (auto v = node.value<std::string>())
+      e.name = *v;
+    else
+      throw WheelSpecError(at + ": expected a string");
   } else if (key == "comment") {
-    if (auto v = node.value<std::string>()) e.comment = *v;
-    else throw WheelSpecError(at + ": expected a string");
+    if (auto v = node.value<std::string>())
+      e.comment = *v;
+    else
+      throw WheelSpecError(at + ": expected a string");
   } else if (key == "type") {
     auto v = node.value<std::string>();
-    if (!v) throw WheelSpecError(at + ": expected a string");
+    if (!v)
+      throw WheelSpecError(at + ": expected a string");
     s.type = parse_lug_type(*v);
   } else if (key == "smooth") {
     auto v = node.value<bool>();
-    if (!v) throw WheelSpecError(at + ": expected true or false");
+    if (!v)
+      throw WheelSpecError(at + ": expected true or false");
     s.smooth = *v;
   } else if (key == "lugs") {
     auto v = node.value<int64_t>();
-    if (!v) throw WheelSpecError(at + ": expected an integer");
+    if (!v)
+      throw WheelSpecError(at + ": expected an integer");
     s.lug_count = static_cast<int>(*v);
   } else if (key == "diameter") {
     s.diameter_m = number(node, at);
@@ -94,14 +102,19 @@ std::vector<CatalogEntry> read_catalog(const std::string &path) {
   for (const toml::node &w : *wheels) {
     ++index;
     const toml::table *t = w.as_table();
-    if (t == nullptr) throw WheelSpecError(path + ": [[wheel]] " + std::to_string(index) + " is not a table");
+    if (t == nullptr)
+      throw WheelSpecError(path + ": [[wheel]] " + std::to_string(index) + " is not a table");
     CatalogEntry e = defaults;
     e.name.clear();
     std::string where = path + ": [[wheel]] " + std::to_string(index);
-    if (auto n = (*t)["name"].value<std::string>()) where += " (" + *n + ")";
-    for (const auto &[key, node] : *t) apply(e, std::string(key.str()), node, where);
-    if (e.name.empty()) throw WheelSpecError(where + ": missing key 'name'");
-    if (!names.insert(e.name).second) throw WheelSpecError(where + ": duplicate name '" + e.name + "'");
+    if (auto n = (*t)["name"].value<std::string>())
+      where += " (" + *n + ")";
+    for (const auto &[key, node] : *t)
+      apply(e, std::string(key.str()), node, where);
+    if (e.name.empty())
+      throw WheelSpecError(where + ": missing key 'name'");
+    if (!names.insert(e.name).second)
+      throw WheelSpecError(where + ": duplicate name '" + e.name + "'");
     try {
       validate(e.spec);
     } catch (const WheelSpecError &err) {

@@ -32,11 +32,13 @@ std::vector<double> LugFootprint::kinks() const {
   std::vector<double> ys;
   for (std::size_t i = 0; i + 1 < lines.size(); ++i) {
     const LugLine &p = lines[i], &q = lines[i + 1];
-    if (q.b == p.b) continue;
+    if (q.b == p.b)
+      continue;
     for (double side : {-1.0, +1.0}) {
       // a_p + b_p y + side d_p = a_q + b_q y + side d_q
       const double y = (p.a_m - q.a_m + side * (p.d_m - q.d_m)) / (q.b - p.b);
-      if (y > y0_m && y < y1_m) ys.push_back(y);
+      if (y > y0_m && y < y1_m)
+        ys.push_back(y);
     }
   }
   return ys;
@@ -44,7 +46,8 @@ std::vector<double> LugFootprint::kinks() const {
 
 std::vector<LugFootprint> lug_layout(const WheelSpec &spec) {
   std::vector<LugFootprint> lugs;
-  if (spec.smooth) return lugs;
+  if (spec.smooth)
+    return lugs;
   const double pi = std::acos(-1.0);
   const double tan_d = std::tan(spec.lug_angle_deg * pi / 180.0);
   const double half_w = 0.5 * spec.width_m;

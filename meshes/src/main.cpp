@@ -25,11 +25,15 @@ void run_one(const std::string &name, const wm::WheelSpec &spec, double density,
   const auto t0 = std::chrono::steady_clock::now();
   const wm::GeneratedWheel wheel = wm::generate_wheel(spec, density);
   std::vector<std::string> files;
-  if (!prefix.empty()) files = wm::write_wheel(wheel.mesh, prefix, formats);
-  if (!props_path.empty()) wm::write_properties(props_path, name, spec, wheel, files);
+  if (!prefix.empty())
+    files = wm::write_wheel(wheel.mesh, prefix, formats);
+  if (!props_path.empty())
+    wm::write_properties(props_path, name, spec, wheel, files);
   std::cout << wm::format_properties(name, spec, wheel);
-  for (const auto &f : files) std::cout << "  wrote " << f << "\n";
-  if (!props_path.empty()) std::cout << "  wrote " << props_path << "\n";
+  for (const auto &f : files)
+    std::cout << "  wrote " << f << "\n";
+  if (!props_path.empty())
+    std::cout << "  wrote " << props_path << "\n";
   // Timing goes to stdout only, never into result files.
   std::cout << "  generated in " << seconds_since(t0) << " s\n";
 }
@@ -37,9 +41,10 @@ void run_one(const std::string &name, const wm::WheelSpec &spec, double density,
 } // namespace
 
 int main(int argc, char **argv) {
-  CLI::App app{"wheel-mesh: closed, outward-oriented triangle mesh of a rigid lugged wheel in metres "
-               "(wheel frame: centre at the origin, axle +y, x forward, z up). See "
-               "docs/wheel-mesh.md."};
+  CLI::App app{
+      "wheel-mesh: closed, outward-oriented triangle mesh of a rigid lugged wheel in metres "
+      "(wheel frame: centre at the origin, axle +y, x forward, z up). See "
+      "docs/wheel-mesh.md."};
   wm::WheelSpec spec;
   std::optional<std::string> type_name;
   double density = 7850.0;
@@ -76,9 +81,8 @@ int main(int argc, char **argv) {
       ->capture_default_str();
   app.add_option("--props", props_path,
                  "write the mass properties to this file (.toml or .json by extension)");
-  auto *catalog_opt =
-      app.add_option("--catalog", catalog_path,
-                     "generate every [[wheel]] of this TOML catalogue into --out-dir");
+  auto *catalog_opt = app.add_option(
+      "--catalog", catalog_path, "generate every [[wheel]] of this TOML catalogue into --out-dir");
   app.add_option("--out-dir", out_dir, "output directory for --catalog")->needs(catalog_opt);
 
   try {
@@ -95,7 +99,8 @@ int main(int argc, char **argv) {
                                    " cannot be combined with --catalog (set it in the catalogue)");
         }
       }
-      if (out_dir.empty()) throw wm::WheelSpecError("--catalog needs --out-dir");
+      if (out_dir.empty())
+        throw wm::WheelSpecError("--catalog needs --out-dir");
       const auto entries = wm::read_catalog(catalog_path);
       std::filesystem::create_directories(out_dir);
       const auto t0 = std::chrono::steady_clock::now();
@@ -106,8 +111,10 @@ int main(int argc, char **argv) {
       std::cout << entries.size() << " wheels generated in " << seconds_since(t0) << " s\n";
       return 0;
     }
-    if (app.count("--diameter") == 0) throw wm::WheelSpecError("--diameter is required [m]");
-    if (app.count("--width") == 0) throw wm::WheelSpecError("--width is required [m]");
+    if (app.count("--diameter") == 0)
+      throw wm::WheelSpecError("--diameter is required [m]");
+    if (app.count("--width") == 0)
+      throw wm::WheelSpecError("--width is required [m]");
     if (!spec.smooth) {
       if (app.count("--lugs") == 0) {
         throw wm::WheelSpecError("--lugs is required (or --smooth for a smooth cylinder)");
@@ -115,7 +122,8 @@ int main(int argc, char **argv) {
       if (spec.lug_count == 0 && !type_name) {
         spec.smooth = true; // --lugs 0 without a lug type: smooth cylinder
       } else {
-        if (!type_name) throw wm::WheelSpecError("--type is required for a lugged wheel");
+        if (!type_name)
+          throw wm::WheelSpecError("--type is required for a lugged wheel");
         spec.type = wm::parse_lug_type(*type_name);
         if (app.count("--lug-height") == 0 && spec.lug_count > 0) {
           throw wm::WheelSpecError("--lug-height is required for a lugged wheel [m]");

@@ -26,8 +26,8 @@
 namespace wheelsim::meshes {
 namespace {
 
-using geometry::TriangleMesh;
 using Eigen::Vector3d;
+using geometry::TriangleMesh;
 
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 constexpr double kAngleTol = 1e-10; // [rad] angles closer than this are the same point
@@ -37,23 +37,27 @@ enum class Region { none, gap, lug };
 
 double wrap_angle(double theta) {
   double t = std::fmod(theta, kTwoPi);
-  if (t < 0.0) t += kTwoPi;
-  if (t >= kTwoPi - kAngleTol) t = 0.0;
+  if (t < 0.0)
+    t += kTwoPi;
+  if (t >= kTwoPi - kAngleTol)
+    t = 0.0;
   return t;
 }
 
 // Wraps to (-pi, pi].
 double wrap_difference(double d) {
   d = std::fmod(d, kTwoPi);
-  if (d > 0.5 * kTwoPi) d -= kTwoPi;
-  if (d <= -0.5 * kTwoPi) d += kTwoPi;
+  if (d > 0.5 * kTwoPi)
+    d -= kTwoPi;
+  if (d <= -0.5 * kTwoPi)
+    d += kTwoPi;
   return d;
 }
 
 struct Boundary {
-  double theta_lo;      // at the lower level, wrapped to [0, 2 pi)
-  double theta_hi;      // at the upper level, unwrapped near theta_lo
-  bool leading;         // true: the lug is at larger theta (a lug starts here)
+  double theta_lo;       // at the lower level, wrapped to [0, 2 pi)
+  double theta_hi;       // at the upper level, unwrapped near theta_lo
+  bool leading;          // true: the lug is at larger theta (a lug starts here)
   double s_lo_m, s_hi_m; // unwrapped arc positions on the lug top, for the wall normal
 };
 
@@ -107,20 +111,25 @@ private:
     for (const auto &l : lugs_) {
       critical.push_back(l.y0_m);
       critical.push_back(l.y1_m);
-      for (double y : l.kinks()) critical.push_back(y);
+      for (double y : l.kinks())
+        critical.push_back(y);
     }
     std::sort(critical.begin(), critical.end());
     std::vector<double> unique;
     for (double y : critical) {
-      if (y < -half_w - kYTol || y > half_w + kYTol) continue;
-      if (unique.empty() || y - unique.back() > kYTol) unique.push_back(y);
+      if (y < -half_w - kYTol || y > half_w + kYTol)
+        continue;
+      if (unique.empty() || y - unique.back() > kYTol)
+        unique.push_back(y);
     }
     unique.front() = -half_w;
     unique.back() = half_w;
     for (std::size_t i = 0; i + 1 < unique.size(); ++i) {
       const double dy = unique[i + 1] - unique[i];
-      const int n = std::max(1, static_cast<int>(std::ceil(dy / spec_.resolution.max_width_edge_m - 1e-9)));
-      for (int k = 0; k < n; ++k) levels_.push_back(unique[i] + dy * k / n);
+      const int n =
+          std::max(1, static_cast<int>(std::ceil(dy / spec_.resolution.max_width_edge_m - 1e-9)));
+      for (int k = 0; k < n; ++k)
+        levels_.push_back(unique[i] + dy * k / n);
     }
     levels_.push_back(half_w);
   }
@@ -128,17 +137,21 @@ private:
   // Lugs present at a level must be separated by at least kMinLugClearance_m on the lug top.
   // Boundaries are linear between levels, so checking every level checks everywhere.
   void check_clearance() const {
-    if (lugs_.empty()) return;
+    if (lugs_.empty())
+      return;
     const double circumference = kTwoPi * r_out_;
     for (double y : levels_) {
       std::vector<std::pair<double, double>> spans; // (leading, trailing) [m], leading wrapped
       for (const auto &l : lugs_) {
-        if (!lug_at_level(l, y)) continue;
+        if (!lug_at_level(l, y))
+          continue;
         const double lead = l.leading(y), trail = l.trailing(y);
-        const double lead_w = std::fmod(std::fmod(lead, circumference) + circumference, circumference);
+        const double lead_w =
+            std::fmod(std::fmod(lead, circumference) + circumference, circumference);
         spans.push_back({lead_w, lead_w + (trail - lead)});
       }
-      if (spans.empty()) continue;
+      if (spans.empty())
+        continue;
       std::sort(spans.begin(), spans.end());
       double total = 0.0;
       for (std::size_t i = 0; i < spans.size(); ++i) {
@@ -168,7 +181,8 @@ private:
   std::vector<double> boundary_angles(double y) const {
     std::vector<double> angles;
     for (const auto &l : lugs_) {
-      if (!lug_at_level(l, y)) continue;
+      if (!lug_at_level(l, y))
+        continue;
       angles.push_back(wrap_angle(theta_of(l.leading(y))));
       angles.push_back(wrap_angle(theta_of(l.trailing(y))));
     }
@@ -184,14 +198,16 @@ private:
       std::sort(fixed.begin(), fixed.end());
       std::vector<double> unique;
       for (double t : fixed) {
-        if (unique.empty() || t - unique.back() > kAngleTol) unique.push_back(t);
+        if (unique.empty() || t - unique.back() > kAngleTol)
+          unique.push_back(t);
       }
       std::vector<double> pts;
       for (std::size_t i = 0; i < unique.size(); ++i) {
         const double a = unique[i];
         const double b = i + 1 < unique.size() ? unique[i + 1] : unique.front() + kTwoPi;
         const int n = std::max(1, static_cast<int>(std::ceil((b - a) / max_step - 1e-9)));
-        for (int k = 0; k < n; ++k) pts.push_back(a + (b - a) * k / n);
+        for (int k = 0; k < n; ++k)
+          pts.push_back(a + (b - a) * k / n);
       }
       points_.push_back(std::move(pts));
     }
@@ -204,20 +220,24 @@ private:
     auto it = std::lower_bound(p.begin(), p.end(), t);
     int best = -1;
     double best_d = HUGE_VAL;
-    for (int cand : {static_cast<int>(it - p.begin()) - 1, static_cast<int>(it - p.begin()),
-                     0, static_cast<int>(p.size()) - 1}) {
-      if (cand < 0 || cand >= static_cast<int>(p.size())) continue;
+    for (int cand : {static_cast<int>(it - p.begin()) - 1, static_cast<int>(it - p.begin()), 0,
+                     static_cast<int>(p.size()) - 1}) {
+      if (cand < 0 || cand >= static_cast<int>(p.size()))
+        continue;
       const double d = std::abs(wrap_difference(p[cand] - t));
-      if (d < best_d) best_d = d, best = cand;
+      if (d < best_d)
+        best_d = d, best = cand;
     }
-    if (best_d > 1e-9) throw std::logic_error("wheel_builder: boundary angle not among level points");
+    if (best_d > 1e-9)
+      throw std::logic_error("wheel_builder: boundary angle not among level points");
     return best;
   }
 
   int vertex(std::size_t j, int i, bool outer) {
     const auto key = std::make_tuple(static_cast<int>(j), i, outer ? 1 : 0);
     auto it = vertex_ids_.find(key);
-    if (it != vertex_ids_.end()) return it->second;
+    if (it != vertex_ids_.end())
+      return it->second;
     const double r = outer ? r_out_ : r_rim_;
     const double th = points_[j][i];
     mesh_.vertices_m.emplace_back(r * std::sin(th), levels_[j], r * std::cos(th));
@@ -234,7 +254,8 @@ private:
   void triangle(int a, int b, int c, const Vector3d &outward) {
     const auto &v = mesh_.vertices_m;
     const Vector3d n = (v[b] - v[a]).cross(v[c] - v[a]);
-    if (n.dot(outward) < 0.0) std::swap(b, c);
+    if (n.dot(outward) < 0.0)
+      std::swap(b, c);
     mesh_.triangles.push_back({a, b, c});
   }
 
@@ -280,8 +301,10 @@ private:
     for (int step = 0; step <= n; ++step) {
       const int i = (s + step) % n;
       double off = p[i] - p[s] + (s + step >= n ? kTwoPi : 0.0);
-      if (step == n) off = kTwoPi;
-      if (off > span + 1e-9) break;
+      if (step == n)
+        off = kTwoPi;
+      if (off > span + 1e-9)
+        break;
       idx.push_back(i);
       offset.push_back(off);
     }
@@ -291,7 +314,8 @@ private:
     const double ya = levels_[j], yb = levels_[j + 1];
     std::vector<Boundary> bounds;
     for (const auto &l : lugs_) {
-      if (!lug_in_band(l, ya, yb)) continue;
+      if (!lug_in_band(l, ya, yb))
+        continue;
       for (bool leading : {true, false}) {
         const double sa = leading ? l.leading(ya) : l.trailing(ya);
         const double sb = leading ? l.leading(yb) : l.trailing(yb);
@@ -335,12 +359,14 @@ private:
       for (std::size_t k = 0; k < ilo.size(); ++k) {
         vlo.push_back(vertex(j, ilo[k], outer));
         tlo.push_back(span_lo > 0 ? olo[k] / span_lo : 0.0);
-        if (k + 1 < ilo.size()) state_lo[ilo[k]] = region;
+        if (k + 1 < ilo.size())
+          state_lo[ilo[k]] = region;
       }
       for (std::size_t k = 0; k < ihi.size(); ++k) {
         vhi.push_back(vertex(j + 1, ihi[k], outer));
         thi.push_back(span_hi > 0 ? ohi[k] / span_hi : 0.0);
-        if (k + 1 < ihi.size()) state_hi[ihi[k]] = region;
+        if (k + 1 < ihi.size())
+          state_hi[ihi[k]] = region;
       }
       zipper(vlo, tlo, vhi, thi, [this](int a, int b, int c) { return radial_hint(a, b, c); });
     }
@@ -350,7 +376,8 @@ private:
 
     // Radial walls along the lug boundaries.
     for (const Boundary &b : bounds) {
-      if (lugs_.empty()) break;
+      if (lugs_.empty())
+        break;
       const int ia = point_index(j, b.theta_lo), ib = point_index(j + 1, b.theta_hi);
       // Outward in the unrolled (s, y) plane: towards -s on a leading boundary, +s on a trailing.
       const double ds = b.s_hi_m - b.s_lo_m, dy = yb - ya;
@@ -365,11 +392,13 @@ private:
 
   // Planar walls in the plane y = levels_[j] where the radius profile steps between R_rim and
   // R_out (lug ends; the lug part of the side planes).
-  void end_walls(std::size_t j, const std::vector<Region> &below, const std::vector<Region> &above) {
+  void end_walls(std::size_t j, const std::vector<Region> &below,
+                 const std::vector<Region> &above) {
     const int n = static_cast<int>(points_[j].size());
     for (int i = 0; i < n; ++i) {
       const bool lug_below = below[i] == Region::lug, lug_above = above[i] == Region::lug;
-      if (lug_below == lug_above) continue;
+      if (lug_below == lug_above)
+        continue;
       const int i1 = (i + 1) % n;
       const Vector3d hint = lug_above ? Vector3d(-Vector3d::UnitY()) : Vector3d(Vector3d::UnitY());
       quad(vertex(j, i, false), vertex(j, i1, false), vertex(j, i1, true), vertex(j, i, true),

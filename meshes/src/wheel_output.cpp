@@ -18,12 +18,14 @@ toml::array vector_array(const Eigen::Vector3d &v) { return toml::array{v.x(), v
 
 toml::array matrix_array(const Eigen::Matrix3d &m) {
   toml::array rows;
-  for (int i = 0; i < 3; ++i) rows.push_back(toml::array{m(i, 0), m(i, 1), m(i, 2)});
+  for (int i = 0; i < 3; ++i)
+    rows.push_back(toml::array{m(i, 0), m(i, 1), m(i, 2)});
   return rows;
 }
 
 bool ends_with(const std::string &s, const std::string &suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 } // namespace
@@ -34,7 +36,8 @@ GeneratedWheel generate_wheel(const WheelSpec &spec, double density_kg_m3) {
   const geometry::MeshReport report = geometry::check_mesh(w.mesh);
   if (!report.ok()) {
     std::string message = "generated mesh is invalid (" + describe(spec) + "): ";
-    for (const auto &e : report.errors) message += e + "; ";
+    for (const auto &e : report.errors)
+      message += e + "; ";
     throw WheelSpecError(message);
   }
   w.warnings = report.warnings;
@@ -74,10 +77,12 @@ void write_properties(const std::string &path, const std::string &name, const Wh
     wheel.insert("lug_height_m", spec.lug_height_m);
     wheel.insert("lug_width_m", spec.lug_width_m);
     wheel.insert("lug_angle_deg", spec.lug_angle_deg);
-    if (spec.type != LugType::straight) wheel.insert("centre_length_m", spec.centre_length_m);
+    if (spec.type != LugType::straight)
+      wheel.insert("centre_length_m", spec.centre_length_m);
   }
   toml::array files;
-  for (const auto &f : mesh_files) files.push_back(std::filesystem::path(f).filename().string());
+  for (const auto &f : mesh_files)
+    files.push_back(std::filesystem::path(f).filename().string());
   toml::table mesh{{"files", files},
                    {"vertex_count", static_cast<int64_t>(w.mesh.vertices_m.size())},
                    {"triangle_count", static_cast<int64_t>(w.mesh.triangles.size())}};
@@ -91,13 +96,15 @@ void write_properties(const std::string &path, const std::string &name, const Wh
                     matrix_array(geometry::inertia_about_point(p, Eigen::Vector3d::Zero()))}};
   toml::table root{{"wheel", wheel}, {"mesh", mesh}, {"mass_properties", mass}};
   std::ofstream out(path);
-  if (!out) throw WheelSpecError(path + ": cannot open for writing");
+  if (!out)
+    throw WheelSpecError(path + ": cannot open for writing");
   if (ends_with(path, ".json")) {
     out << toml::json_formatter{root} << "\n";
   } else {
     out << "# written by wheel-mesh; units in the key names\n" << root << "\n";
   }
-  if (!out) throw WheelSpecError(path + ": write failed");
+  if (!out)
+    throw WheelSpecError(path + ": write failed");
 }
 
 std::string format_properties(const std::string &name, const WheelSpec &spec,
@@ -116,7 +123,8 @@ std::string format_properties(const std::string &name, const WheelSpec &spec,
      << "  inertia about centroid [kg m^2]: [[" << I(0, 0) << ", " << I(0, 1) << ", " << I(0, 2)
      << "], [" << I(1, 0) << ", " << I(1, 1) << ", " << I(1, 2) << "], [" << I(2, 0) << ", "
      << I(2, 1) << ", " << I(2, 2) << "]]\n";
-  for (const auto &warning : w.warnings) os << "  warning: " << warning << "\n";
+  for (const auto &warning : w.warnings)
+    os << "  warning: " << warning << "\n";
   return os.str();
 }
 

@@ -28,9 +28,12 @@ const char *to_string(LugType type) {
 }
 
 LugType parse_lug_type(const std::string &name) {
-  if (name == "straight") return LugType::straight;
-  if (name == "combined") return LugType::combined;
-  if (name == "nondirectional") return LugType::nondirectional;
+  if (name == "straight")
+    return LugType::straight;
+  if (name == "combined")
+    return LugType::combined;
+  if (name == "nondirectional")
+    return LugType::nondirectional;
   throw WheelSpecError("--type '" + name + "': expected straight, combined or nondirectional");
 }
 
@@ -42,7 +45,8 @@ void validate(const WheelSpec &s) {
     fail("--width", s.width_m, "m", "the width must be > 0 m");
   }
   const Resolution &r = s.resolution;
-  if (!(r.max_arc_m > 0.0)) fail("--max-arc", r.max_arc_m, "m", "must be > 0 m");
+  if (!(r.max_arc_m > 0.0))
+    fail("--max-arc", r.max_arc_m, "m", "must be > 0 m");
   if (!(r.max_angle_deg > 0.0 && r.max_angle_deg <= 45.0)) {
     fail("--max-angle", r.max_angle_deg, "deg", "must be in (0, 45] deg");
   }
@@ -61,7 +65,8 @@ void validate(const WheelSpec &s) {
        << ": a lugged wheel needs at least 1 lug (use --smooth for a smooth cylinder)";
     throw WheelSpecError(os.str());
   }
-  if (s.lug_count > 1000) fail("--lugs", s.lug_count, "", "at most 1000 lugs");
+  if (s.lug_count > 1000)
+    fail("--lugs", s.lug_count, "", "at most 1000 lugs");
   if (!(s.lug_height_m > 0.0)) {
     fail("--lug-height", s.lug_height_m, "m", "must be > 0 m (use --smooth for no lugs)");
   }
@@ -71,7 +76,8 @@ void validate(const WheelSpec &s) {
        << " m (the rim radius D0/2 - lh must stay > 0)";
     fail("--lug-height", s.lug_height_m, "m", os.str());
   }
-  if (!(s.lug_width_m > 0.0)) fail("--lug-width", s.lug_width_m, "m", "must be > 0 m");
+  if (!(s.lug_width_m > 0.0))
+    fail("--lug-width", s.lug_width_m, "m", "must be > 0 m");
   if (!(s.lug_angle_deg >= 0.0 && s.lug_angle_deg <= 70.0)) {
     fail("--lug-angle", s.lug_angle_deg, "deg", "must be in [0, 70] deg (angle to the axle)");
   }
@@ -93,7 +99,8 @@ std::string describe(const WheelSpec &s) {
   } else {
     os << s.lug_count << " " << to_string(s.type) << " lugs, lh " << s.lug_height_m
        << " m, lug width " << s.lug_width_m << " m, angle " << s.lug_angle_deg << " deg";
-    if (s.type != LugType::straight) os << ", h " << s.centre_length_m << " m";
+    if (s.type != LugType::straight)
+      os << ", h " << s.centre_length_m << " m";
   }
   return os.str();
 }

@@ -54,7 +54,9 @@ struct WheelSpec {
   Resolution resolution;
 
   double outer_radius_m() const { return 0.5 * diameter_m; }
-  double rim_radius_m() const { return smooth ? 0.5 * diameter_m : 0.5 * diameter_m - lug_height_m; }
+  double rim_radius_m() const {
+    return smooth ? 0.5 * diameter_m : 0.5 * diameter_m - lug_height_m;
+  }
 };
 
 /// Smallest allowed clearance between neighbouring lugs on the lug top [m]: lugs closer than

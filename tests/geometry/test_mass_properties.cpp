@@ -20,10 +20,9 @@ TEST(MassProperties, UnitCube) {
 
 TEST(MassProperties, OffsetRotatedBox) {
   const double a = 0.3, b = 0.5, c = 1.2, rho = 7850.0;
-  const Eigen::Matrix3d R =
-      (Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()) *
-       Eigen::AngleAxisd(-1.1, Eigen::Vector3d::UnitY()))
-          .toRotationMatrix();
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()) *
+                             Eigen::AngleAxisd(-1.1, Eigen::Vector3d::UnitY()))
+                                .toRotationMatrix();
   const Eigen::Vector3d t(5.0, -3.0, 12.0);
   const MassProperties p = mass_properties(transformed(box(a, b, c), R, t), rho);
   const double m = rho * a * b * c;
@@ -58,6 +57,7 @@ TEST(MassProperties, ParallelAxis) {
 TEST(MassProperties, RejectsInsideOutMeshAndBadDensity) {
   TriangleMesh m = box(1, 1, 1);
   EXPECT_THROW(mass_properties(m, 0.0), MeshError);
-  for (auto &t : m.triangles) std::swap(t[1], t[2]);
+  for (auto &t : m.triangles)
+    std::swap(t[1], t[2]);
   EXPECT_THROW(mass_properties(m, 1.0), MeshError);
 }

@@ -38,7 +38,8 @@ TEST(CheckMesh, FlippedTriangleIsInconsistent) {
 
 TEST(CheckMesh, InsideOutIsAnError) {
   TriangleMesh m = box(1, 1, 1);
-  for (auto &t : m.triangles) std::swap(t[1], t[2]);
+  for (auto &t : m.triangles)
+    std::swap(t[1], t[2]);
   const MeshReport r = check_mesh(m);
   EXPECT_TRUE(r.closed());
   EXPECT_TRUE(r.consistently_oriented());

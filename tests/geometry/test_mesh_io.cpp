@@ -124,7 +124,8 @@ TEST(MeshIo, FlippedTriangle) {
 TEST(MeshIo, InsideOut) {
   const fs::path dir = test_meshes::temp_dir("io_inside_out");
   TriangleMesh wheel = small_wheel();
-  for (auto &t : wheel.triangles) std::swap(t[1], t[2]);
+  for (auto &t : wheel.triangles)
+    std::swap(t[1], t[2]);
   write_ply(wheel, (dir / "inverted.ply").string());
   expect_load_error(dir / "inverted.ply", "mesh is inside out");
 }
@@ -138,7 +139,8 @@ TEST(MeshIo, WheelWrittenInMillimetres) {
   s.resolution.max_arc_m = 0.05;
   s.resolution.max_width_edge_m = 0.1;
   TriangleMesh wheel = wheelsim::meshes::build_wheel_mesh(s);
-  for (auto &v : wheel.vertices_m) v *= 1000.0;
+  for (auto &v : wheel.vertices_m)
+    v *= 1000.0;
   write_stl(wheel, (dir / "wheel_mm.stl").string());
   expect_load_error(dir / "wheel_mm.stl", "looks like millimetres: use scale 0.001");
   LoadOptions options;

@@ -27,8 +27,10 @@ inline TriangleMesh box(double a, double b, double c) {
 }
 
 /// Applies p -> R p + t to every vertex.
-inline TriangleMesh transformed(TriangleMesh m, const Eigen::Matrix3d &R, const Eigen::Vector3d &t) {
-  for (auto &v : m.vertices_m) v = R * v + t;
+inline TriangleMesh transformed(TriangleMesh m, const Eigen::Matrix3d &R,
+                                const Eigen::Vector3d &t) {
+  for (auto &v : m.vertices_m)
+    v = R * v + t;
   return m;
 }
 

@@ -37,19 +37,25 @@ double radius_xz(const Eigen::Vector3d &v) { return std::hypot(v.x(), v.z()); }
 int count_lug_tops(const TriangleMesh &m, double r_out) {
   std::vector<int> parent(m.vertices_m.size());
   std::iota(parent.begin(), parent.end(), 0);
-  std::function<int(int)> find = [&](int i) { return parent[i] == i ? i : parent[i] = find(parent[i]); };
+  std::function<int(int)> find = [&](int i) {
+    return parent[i] == i ? i : parent[i] = find(parent[i]);
+  };
   std::vector<bool> on_top(m.vertices_m.size(), false);
   for (const auto &t : m.triangles) {
     bool top = true;
-    for (int i : t) top = top && std::abs(radius_xz(m.vertices_m[i]) - r_out) < 1e-9;
-    if (!top) continue;
-    for (int i : t) on_top[i] = true;
+    for (int i : t)
+      top = top && std::abs(radius_xz(m.vertices_m[i]) - r_out) < 1e-9;
+    if (!top)
+      continue;
+    for (int i : t)
+      on_top[i] = true;
     parent[find(t[0])] = find(t[1]);
     parent[find(t[1])] = find(t[2]);
   }
   std::map<int, int> roots;
   for (std::size_t i = 0; i < on_top.size(); ++i) {
-    if (on_top[i]) roots[find(static_cast<int>(i))]++;
+    if (on_top[i])
+      roots[find(static_cast<int>(i))]++;
   }
   return static_cast<int>(roots.size());
 }
@@ -144,11 +150,15 @@ TEST(WheelMesh, CombinedLugCentreLeadsInForwardRotation) {
   // Lug 0 is at theta ~ 0: compare the top vertices near theta = 0.
   double centre_theta = -1e9, edge_theta = 1e9;
   for (const auto &v : w.mesh.vertices_m) {
-    if (std::abs(radius_xz(v) - 0.617) > 1e-9) continue;
+    if (std::abs(radius_xz(v) - 0.617) > 1e-9)
+      continue;
     const double th = std::atan2(v.x(), v.z());
-    if (std::abs(th) > 0.3) continue;
-    if (std::abs(v.y()) < 1e-9) centre_theta = std::max(centre_theta, th);
-    if (std::abs(std::abs(v.y()) - 0.2395) < 1e-9) edge_theta = std::min(edge_theta, th);
+    if (std::abs(th) > 0.3)
+      continue;
+    if (std::abs(v.y()) < 1e-9)
+      centre_theta = std::max(centre_theta, th);
+    if (std::abs(std::abs(v.y()) - 0.2395) < 1e-9)
+      edge_theta = std::min(edge_theta, th);
   }
   EXPECT_GT(centre_theta, edge_theta + 0.2);
 }
@@ -176,11 +186,12 @@ TEST(WheelMesh, RejectsOverlappingLugs) {
 TEST(WheelMesh, CatalogueHasTheStudyWheels) {
   const auto entries = read_catalog(WHEEL_MESH_CATALOG);
   std::map<std::string, CatalogEntry> by_name;
-  for (const auto &e : entries) by_name[e.name] = e;
+  for (const auto &e : entries)
+    by_name[e.name] = e;
   ASSERT_EQ(entries.size(), 13u);
-  for (const char *n : {"wheel1", "wheel2", "wheel3", "wheel4", "wheel5", "wheel6", "wheel7",
-                        "wheel8", "scm_size_1220", "scm_size_1420", "scm_size_1620",
-                        "smooth_1234", "test_small"}) {
+  for (const char *n :
+       {"wheel1", "wheel2", "wheel3", "wheel4", "wheel5", "wheel6", "wheel7", "wheel8",
+        "scm_size_1220", "scm_size_1420", "scm_size_1620", "smooth_1234", "test_small"}) {
     EXPECT_EQ(by_name.count(n), 1u) << n;
   }
   const WheelSpec &w3 = by_name["wheel3"].spec;

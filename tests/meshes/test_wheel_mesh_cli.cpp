@@ -70,10 +70,11 @@ TEST(WheelMeshCli, WritesMeshesAndProperties) {
   const fs::path dir = fs::temp_directory_path() / "wheelsim_test_cli_out";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const CliResult r = run_cli("--diameter 0.2 --width 0.08 --lugs 8 --lug-height 0.01 --lug-width 0.008 "
-                    "--lug-angle 25 --centre-length 0.02 --type combined --max-arc 0.01 "
-                    "--out " + (dir / "small").string() + " --formats obj,stl,ply --props " +
-                    (dir / "small.json").string());
+  const CliResult r = run_cli(
+      "--diameter 0.2 --width 0.08 --lugs 8 --lug-height 0.01 --lug-width 0.008 "
+      "--lug-angle 25 --centre-length 0.02 --type combined --max-arc 0.01 "
+      "--out " +
+      (dir / "small").string() + " --formats obj,stl,ply --props " + (dir / "small.json").string());
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char *f : {"small.obj", "small.stl", "small.ply", "small.json"}) {
     EXPECT_TRUE(fs::exists(dir / f)) << f;

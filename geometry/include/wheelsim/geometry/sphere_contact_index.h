@@ -71,8 +71,8 @@ public:
 
 private:
   struct Edge {
-    int v0, v1;     // vertex indices, v0 < v1
-    int tri[2];     // the two triangles sharing it
+    int v0, v1; // vertex indices, v0 < v1
+    int tri[2]; // the two triangles sharing it
   };
   void build_adjacency();
   void build_grid(double cell_size_m);
@@ -84,7 +84,7 @@ private:
   TriangleMesh mesh_;
   std::vector<Eigen::Vector3d> normals_;
   std::vector<Edge> edges_;
-  std::vector<std::array<int, 3>> triangle_edges_;  // edge index of (a,b), (b,c), (c,a)
+  std::vector<std::array<int, 3>> triangle_edges_;      // edge index of (a,b), (b,c), (c,a)
   std::vector<int> vertex_edge_offsets_, vertex_edges_; // CSR: edges incident to each vertex
   std::vector<int> vertex_tri_offsets_, vertex_tris_;   // CSR: triangles incident to each vertex
   double bounding_radius_m_ = 0.0;

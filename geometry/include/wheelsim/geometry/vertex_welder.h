@@ -29,7 +29,9 @@ public:
 private:
   struct Key {
     std::int64_t k[3];
-    bool operator==(const Key &o) const { return k[0] == o.k[0] && k[1] == o.k[1] && k[2] == o.k[2]; }
+    bool operator==(const Key &o) const {
+      return k[0] == o.k[0] && k[1] == o.k[1] && k[2] == o.k[2];
+    }
   };
   struct KeyHash {
     std::size_t operator()(const Key &key) const;
