@@ -1,0 +1,783 @@
+// fix wheel/cosim: see fix_wheel_cosim.h and docs/fix-wheel-cosim.md.
+#include "fix_wheel_cosim.h"
+
+#include "contact_law.h"
+#include "contact_slots.h"
+#include "prescribed_motion.h"
+#include "wheel_motion.h"
+#include "wheel_surface_vtk.h"
+#include "wheelsim/geometry/mesh_error.h"
+#include "wheelsim/geometry/mesh_io.h"
+#include "wheelsim/geometry/sphere_contact_index.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "fix_property_global.h"
+#include "force.h"
+#include "input.h"
+#include "memory.h"
+#include "modify.h"
+#include "update.h"
+#include "variable.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+namespace wheelsim {
+
+/// Largest number of contacts one particle can have with the wheel in one step (a sphere in a
+/// groove touches at most a few faces; extra contacts are an error in the mesh or the setup).
+constexpr int kMaxContactsPerParticle = 8;
+constexpr int kDefaultSlots = 3;
+/// Time-step check thresholds (docs/fix-wheel-cosim.md): dt must not exceed these fractions of
+/// the particles' Rayleigh time and of the Hertz collision time of a particle hitting the wheel.
+constexpr double kMaxRayleighFraction = 0.3;
+constexpr double kMaxHertzFraction = 0.1;
+
+struct WheelCosimState {
+  std::string mesh_path;
+  double scale = 1.0;
+  Eigen::Vector3d origin_m = Eigen::Vector3d::Zero();
+  std::unique_ptr<geometry::SphereContactIndex> index;
+  std::vector<double> triangle_area_m2;
+
+  contact::ContactSettings settings;
+  std::vector<contact::PairConstants> pair; // by particle type (index = type)
+  std::vector<contact::Material> material;  // by type
+
+  WheelState state;
+  std::unique_ptr<WheelMotion> motion;
+  PrescribedMotion *prescribed = nullptr;
+  std::array<std::string, 6> motion_args{{"0", "0", "0", "0", "0", "0"}};
+  std::array<int, 6> motion_variable{{-1, -1, -1, -1, -1, -1}};
+  std::array<double, 6> motion_constant{{0, 0, 0, 0, 0, 0}};
+
+  bool check_timestep = true;
+  int vtk_every = 0;
+  std::string vtk_prefix;
+  std::vector<double> triangle_normal_force_sum; // [N], summed over the VTK window's steps
+  std::vector<double> triangle_contact_sum;
+  long vtk_window_steps = 0;
+
+  std::vector<geometry::SurfaceContact> contacts; // query scratch
+  long too_many_contacts = 0;                     // contacts dropped (> kMaxContacts...)
+  long slot_overflows = 0;                        // contacts without a free history slot
+};
+
+} // namespace wheelsim
+
+namespace {
+
+bool parse_double(const char *text, double &value) {
+  char *end = nullptr;
+  value = std::strtod(text, &end);
+  return end != text && *end == '\0' && std::isfinite(value);
+}
+
+bool parse_on_off(const char *text, bool &value) {
+  if (std::strcmp(text, "on") == 0 || std::strcmp(text, "yes") == 0)
+    value = true;
+  else if (std::strcmp(text, "off") == 0 || std::strcmp(text, "no") == 0)
+    value = false;
+  else
+    return false;
+  return true;
+}
+
+} // namespace
+
+/* ---------------------------------------------------------------------- */
+
+FixWheelCosim::FixWheelCosim(LAMMPS *lmp, int narg, char **arg)
+    : Fix(lmp, narg, arg), s_(new wheelsim::WheelCosimState), wheel_type_(0),
+      nslots_(wheelsim::kDefaultSlots), history_columns_(0), history_(nullptr),
+      contact_force_(nullptr), first_setup_(true) {
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag || !atom->torque_flag)
+    error->fix_error(FLERR, this,
+                     "needs per-atom radius, mass, omega and torque: use atom_style granular "
+                     "(or sphere)");
+  parse_arguments(narg, arg);
+  history_columns_ = nslots_ * wheelsim::kSlotDoubles;
+
+  try {
+    wheelsim::geometry::LoadOptions options;
+    options.scale = s_->scale;
+    s_->index = std::make_unique<wheelsim::geometry::SphereContactIndex>(
+        wheelsim::geometry::load_mesh(s_->mesh_path, options));
+  } catch (const std::exception &e) {
+    bad_argument("keyword 'mesh': %s", e.what());
+  }
+  const auto &mesh = s_->index->mesh();
+  for (const auto &t : mesh.triangles)
+    s_->triangle_area_m2.push_back(
+        0.5 * (mesh.vertices_m[t[1]] - mesh.vertices_m[t[0]])
+                  .cross(mesh.vertices_m[t[2]] - mesh.vertices_m[t[0]])
+                  .norm());
+  s_->state.position_m = s_->origin_m;
+
+  // The motion source. Components are constants or equal-style variables (resolved in init()).
+  std::array<wheelsim::PrescribedMotion::Component, 3> v, w;
+  for (int k = 0; k < 6; ++k) {
+    auto component = [this, k]() {
+      const int ivar = s_->motion_variable[k];
+      return ivar >= 0 ? input->variable->compute_equal(ivar) : s_->motion_constant[k];
+    };
+    (k < 3 ? v[k] : w[k - 3]) = component;
+  }
+  std::string description = "prescribed: v = (" + s_->motion_args[0] + ", " + s_->motion_args[1] +
+                            ", " + s_->motion_args[2] + ") m/s, omega = (" + s_->motion_args[3] +
+                            ", " + s_->motion_args[4] + ", " + s_->motion_args[5] + ") rad/s";
+  auto prescribed = std::make_unique<wheelsim::PrescribedMotion>(v, w, description);
+  s_->prescribed = prescribed.get();
+  s_->motion = std::move(prescribed);
+
+  if (s_->vtk_every > 0) {
+    s_->triangle_normal_force_sum.assign(mesh.triangles.size(), 0.0);
+    s_->triangle_contact_sum.assign(mesh.triangles.size(), 0.0);
+  }
+
+  vector_flag = 1;
+  size_vector = 10;
+  global_freq = 1;
+  extvector = 0;
+  peratom_flag = 1;
+  size_peratom_cols = 3;
+  peratom_freq = 1;
+  restart_global = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  nevery = 1;
+  std::fill(vector_, vector_ + 10, 0.0);
+
+  grow_arrays(atom->nmax);
+  atom->add_callback(0);
+  atom->add_callback(1);
+  for (int i = 0; i < atom->nlocal; ++i)
+    set_arrays(i);
+
+  if (comm->me == 0) {
+    char line[512];
+    snprintf(line, sizeof(line),
+             "fix wheel/cosim %s: mesh %s, %zu triangles, %zu vertices, bounding radius %.6g m, "
+             "index cell %.3g m; %s\n",
+             id, s_->mesh_path.c_str(), mesh.triangles.size(), mesh.vertices_m.size(),
+             s_->index->bounding_radius_m(), s_->index->cell_size_m(),
+             s_->motion->describe().c_str());
+    if (screen)
+      fputs(line, screen);
+    if (logfile)
+      fputs(line, logfile);
+  }
+}
+
+FixWheelCosim::~FixWheelCosim() {
+  atom->delete_callback(id, 0);
+  atom->delete_callback(id, 1);
+  memory->destroy(history_);
+  memory->destroy(contact_force_);
+}
+
+void FixWheelCosim::bad_argument(const char *fmt, ...) {
+  char msg[1024];
+  va_list args;
+  va_start(args, fmt);
+  vsnprintf(msg, sizeof(msg), fmt, args);
+  va_end(args);
+  error->fix_error(FLERR, this, msg);
+  std::abort(); // not reached: fix_error ends the run
+}
+
+void FixWheelCosim::parse_arguments(int narg, char **arg) {
+  // Required, in this order: mesh FILE type T
+  if (narg < 7 || std::strcmp(arg[3], "mesh") != 0 || std::strcmp(arg[5], "type") != 0)
+    bad_argument("expected 'fix ID group wheel/cosim mesh FILE type T [keyword value ...]'");
+  s_->mesh_path = arg[4];
+  char *end = nullptr;
+  const long type = std::strtol(arg[6], &end, 10);
+  if (*end != '\0' || type < 1 || type > atom->ntypes)
+    bad_argument("keyword 'type' expects the wheel's atom type, an integer in 1..%d (the "
+                 "types of create_box), got '%s'",
+                 atom->ntypes, arg[6]);
+  wheel_type_ = static_cast<int>(type);
+
+  auto need = [&](int iarg, int count, const char *usage) {
+    if (iarg + count >= narg)
+      bad_argument("keyword '%s' expects %s", arg[iarg], usage);
+  };
+  auto number = [&](int iarg, const char *keyword, const char *what) {
+    double value = 0.0;
+    if (!parse_double(arg[iarg], value))
+      bad_argument("keyword '%s' expects %s, got '%s'", keyword, what, arg[iarg]);
+    return value;
+  };
+  auto on_off = [&](int iarg) {
+    bool value = false;
+    if (!parse_on_off(arg[iarg + 1], value))
+      bad_argument("keyword '%s' expects on or off, got '%s'", arg[iarg], arg[iarg + 1]);
+    return value;
+  };
+
+  using wheelsim::contact::CohesionModel;
+  using wheelsim::contact::NormalModel;
+  using wheelsim::contact::RollingModel;
+  using wheelsim::contact::Switch;
+  int iarg = 7;
+  while (iarg < narg) {
+    const char *key = arg[iarg];
+    if (std::strcmp(key, "scale") == 0) {
+      need(iarg, 1, "a positive factor (mesh units to m)");
+      s_->scale = number(iarg + 1, key, "a positive factor (mesh units to m)");
+      if (s_->scale <= 0.0)
+        bad_argument("keyword 'scale' expects a factor > 0, got %s", arg[iarg + 1]);
+      iarg += 2;
+    } else if (std::strcmp(key, "origin") == 0) {
+      need(iarg, 3, "three coordinates x y z [m] of the wheel centre");
+      for (int k = 0; k < 3; ++k)
+        s_->origin_m[k] = number(iarg + 1 + k, key, "a coordinate [m]");
+      iarg += 4;
+    } else if (std::strcmp(key, "model") == 0) {
+      need(iarg, 1, "hertz or eepa");
+      if (std::strcmp(arg[iarg + 1], "hertz") == 0)
+        s_->settings.normal = NormalModel::Hertz;
+      else if (std::strcmp(arg[iarg + 1], "eepa") == 0 ||
+               std::strcmp(arg[iarg + 1], "edinburgh") == 0)
+        s_->settings.normal = NormalModel::Eepa;
+      else
+        bad_argument("keyword 'model' expects hertz or eepa, got '%s'", arg[iarg + 1]);
+      iarg += 2;
+    } else if (std::strcmp(key, "cohesion") == 0) {
+      need(iarg, 1, "off or sjkr");
+      if (std::strcmp(arg[iarg + 1], "off") == 0)
+        s_->settings.cohesion = CohesionModel::Off;
+      else if (std::strcmp(arg[iarg + 1], "sjkr") == 0)
+        s_->settings.cohesion = CohesionModel::Sjkr;
+      else
+        bad_argument("keyword 'cohesion' expects off or sjkr, got '%s'", arg[iarg + 1]);
+      iarg += 2;
+    } else if (std::strcmp(key, "rolling_friction") == 0) {
+      need(iarg, 1, "off or epsd2");
+      if (std::strcmp(arg[iarg + 1], "off") == 0)
+        s_->settings.rolling = RollingModel::Off;
+      else if (std::strcmp(arg[iarg + 1], "epsd2") == 0)
+        s_->settings.rolling = RollingModel::Epsd2;
+      else
+        bad_argument("keyword 'rolling_friction' expects off or epsd2, got '%s'",
+                     arg[iarg + 1]);
+      iarg += 2;
+    } else if (std::strcmp(key, "tangential_damping") == 0) {
+      need(iarg, 1, "on or off");
+      s_->settings.tangentialDamping = on_off(iarg);
+      iarg += 2;
+    } else if (std::strcmp(key, "limitForce") == 0) {
+      need(iarg, 1, "on or off");
+      s_->settings.limitForce = on_off(iarg) ? Switch::On : Switch::Off;
+      iarg += 2;
+    } else if (std::strcmp(key, "fixKc") == 0) {
+      need(iarg, 1, "on or off");
+      s_->settings.fixKc = on_off(iarg);
+      iarg += 2;
+    } else if (std::strcmp(key, "tangential_reduce") == 0) {
+      need(iarg, 1, "on or off");
+      s_->settings.tangentialReduce = on_off(iarg);
+      iarg += 2;
+    } else if (std::strcmp(key, "torsionTorque") == 0) {
+      need(iarg, 1, "on or off");
+      s_->settings.torsionTorque = on_off(iarg);
+      iarg += 2;
+    } else if (std::strcmp(key, "motion") == 0) {
+      need(iarg, 1, "prescribed vx vy vz wx wy wz");
+      if (std::strcmp(arg[iarg + 1], "prescribed") == 0) {
+        need(iarg + 1, 6, "six values vx vy vz [m/s] wx wy wz [rad/s], each a number or v_name");
+        for (int k = 0; k < 6; ++k) {
+          const char *value = arg[iarg + 2 + k];
+          s_->motion_args[k] = value;
+          if (std::strncmp(value, "v_", 2) != 0)
+            s_->motion_constant[k] = number(iarg + 2 + k, "motion prescribed",
+                                            "a number or an equal-style variable v_name");
+        }
+        iarg += 8;
+      } else if (std::strcmp(arg[iarg + 1], "coupled") == 0) {
+        bad_argument("'motion coupled' (the wheel-rig coupling) is not available in this build "
+                     "yet; use 'motion prescribed vx vy vz wx wy wz'");
+      } else {
+        bad_argument("keyword 'motion' expects 'prescribed', got '%s'", arg[iarg + 1]);
+      }
+    } else if (std::strcmp(key, "vtk") == 0) {
+      need(iarg, 2, "N PREFIX (write the wheel surface every N steps to PREFIX_<step>.vtk)");
+      const double every = number(iarg + 1, key, "a step interval N >= 1");
+      if (every < 1 || every != std::floor(every))
+        bad_argument("keyword 'vtk' expects a step interval N >= 1, got '%s'", arg[iarg + 1]);
+      s_->vtk_every = static_cast<int>(every);
+      s_->vtk_prefix = arg[iarg + 2];
+      iarg += 3;
+    } else if (std::strcmp(key, "slots") == 0) {
+      need(iarg, 1, "the number of contact-history slots per particle, 2..4");
+      const double n = number(iarg + 1, key, "an integer 2..4");
+      if (n < 2 || n > 4 || n != std::floor(n))
+        bad_argument("keyword 'slots' expects an integer 2..4, got '%s'", arg[iarg + 1]);
+      nslots_ = static_cast<int>(n);
+      iarg += 2;
+    } else if (std::strcmp(key, "check_timestep") == 0) {
+      need(iarg, 1, "on or off");
+      s_->check_timestep = on_off(iarg);
+      iarg += 2;
+    } else {
+      bad_argument("unknown keyword '%s'; expected one of scale, origin, model, cohesion, "
+                   "rolling_friction, tangential_damping, limitForce, fixKc, tangential_reduce, "
+                   "torsionTorque, motion, vtk, slots, check_timestep",
+                   key);
+    }
+  }
+}
+
+int FixWheelCosim::setmask() {
+  return INITIAL_INTEGRATE | POST_FORCE | END_OF_STEP;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixWheelCosim::init() {
+  for (int k = 0; k < 6; ++k) {
+    const std::string &text = s_->motion_args[k];
+    if (text.compare(0, 2, "v_") != 0)
+      continue;
+    std::string name = text.substr(2);
+    const int ivar = input->variable->find(&name[0]);
+    if (ivar < 0)
+      bad_argument("motion prescribed: variable '%s' does not exist", name.c_str());
+    if (!input->variable->equalstyle(ivar))
+      bad_argument("motion prescribed: variable '%s' must be equal-style", name.c_str());
+    s_->motion_variable[k] = ivar;
+  }
+  read_materials();
+  if (s_->check_timestep)
+    check_timestep();
+}
+
+void FixWheelCosim::read_materials() {
+  const int ntypes = atom->ntypes;
+  auto find = [&](const char *name, const char *kind, int len1, int len2) {
+    Fix *fix = modify->find_fix_property(name, "property/global", kind, len1, len2, style, false);
+    if (fix == nullptr)
+      bad_argument("material property '%s' is missing or too short: it must be given with 'fix "
+                   "ID all property/global %s %s ...' for all %d atom types, including the "
+                   "wheel's type %d",
+                   name, name, kind, ntypes, wheel_type_);
+    return static_cast<FixPropertyGlobal *>(fix);
+  };
+  FixPropertyGlobal *E = find("youngsModulus", "peratomtype", ntypes, 0);
+  FixPropertyGlobal *nu = find("poissonsRatio", "peratomtype", ntypes, 0);
+  FixPropertyGlobal *e = find("coefficientRestitution", "peratomtypepair", ntypes, ntypes);
+  FixPropertyGlobal *mu = find("coefficientFriction", "peratomtypepair", ntypes, ntypes);
+  using wheelsim::contact::CohesionModel;
+  using wheelsim::contact::NormalModel;
+  using wheelsim::contact::RollingModel;
+  FixPropertyGlobal *mur = nullptr, *kcoh = nullptr, *k2 = nullptr, *kc = nullptr,
+                    *f0 = nullptr, *gamma = nullptr, *dex = nullptr, *cex = nullptr;
+  if (s_->settings.rolling == RollingModel::Epsd2)
+    mur = find("coefficientRollingFriction", "peratomtypepair", ntypes, ntypes);
+  if (s_->settings.cohesion == CohesionModel::Sjkr)
+    kcoh = find("cohesionEnergyDensity", "peratomtypepair", ntypes, ntypes);
+  if (s_->settings.normal == NormalModel::Eepa) {
+    k2 = find("UnloadingStiffness", "peratomtypepair", ntypes, ntypes);
+    kc = find("coefficientAdhesionStiffness", "peratomtypepair", ntypes, ntypes);
+    f0 = find("pullOffForce", "peratomtypepair", ntypes, ntypes);
+    gamma = find("surfaceEnergy", "peratomtypepair", ntypes, ntypes);
+    dex = find("overlapExponent", "scalar", 0, 0);
+    cex = find("adhesionExponent", "scalar", 0, 0);
+  }
+
+  s_->material.assign(ntypes + 1, {});
+  for (int t = 1; t <= ntypes; ++t)
+    s_->material[t] = {E->compute_vector(t - 1), nu->compute_vector(t - 1)};
+  s_->pair.assign(ntypes + 1, {});
+  const int w = wheel_type_ - 1;
+  for (int t = 1; t <= ntypes; ++t) {
+    wheelsim::contact::PairMaterial pm;
+    pm.coefficientRestitution = e->compute_array(t - 1, w);
+    pm.coefficientFriction = mu->compute_array(t - 1, w);
+    if (mur)
+      pm.coefficientRollingFriction = mur->compute_array(t - 1, w);
+    if (kcoh)
+      pm.cohesionEnergyDensity = kcoh->compute_array(t - 1, w);
+    if (k2) {
+      pm.UnloadingStiffness = k2->compute_array(t - 1, w);
+      pm.coefficientAdhesionStiffness = kc->compute_array(t - 1, w);
+      pm.pullOffForce = f0->compute_array(t - 1, w);
+      pm.surfaceEnergy = gamma->compute_array(t - 1, w);
+      pm.overlapExponent = dex->compute_scalar();
+      pm.adhesionExponent = cex->compute_scalar();
+    }
+    try {
+      s_->pair[t] = wheelsim::contact::makePairConstants(s_->material[t],
+                                                         s_->material[wheel_type_], pm,
+                                                         s_->settings);
+    } catch (const std::exception &ex) {
+      bad_argument("materials of particle type %d against the wheel's type %d: %s", t,
+                   wheel_type_, ex.what());
+    }
+  }
+}
+
+void FixWheelCosim::check_timestep() {
+  // Smallest radius, largest speed and the density of each type in the group (over all ranks).
+  const int ntypes = atom->ntypes;
+  std::vector<double> rmin(ntypes + 1, 1e300), rho(ntypes + 1, 0.0), mass_at_rmin(ntypes + 1, 0);
+  double vmax = 0.0;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    if (!(atom->mask[i] & groupbit))
+      continue;
+    const int t = atom->type[i];
+    const double *v = atom->v[i];
+    vmax = std::max(vmax, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    if (atom->radius[i] < rmin[t]) {
+      rmin[t] = atom->radius[i];
+      mass_at_rmin[t] = atom->rmass[i];
+      rho[t] = atom->rmass[i] / (4.0 / 3.0 * M_PI * std::pow(atom->radius[i], 3));
+    }
+  }
+  std::vector<double> rmin_all(ntypes + 1), rho_all(ntypes + 1), mass_all(ntypes + 1);
+  MPI_Allreduce(rmin.data(), rmin_all.data(), ntypes + 1, MPI_DOUBLE, MPI_MIN, world);
+  MPI_Allreduce(rho.data(), rho_all.data(), ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(mass_at_rmin.data(), mass_all.data(), ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
+  double vmax_all = 0.0;
+  MPI_Allreduce(&vmax, &vmax_all, 1, MPI_DOUBLE, MPI_MAX, world);
+  const Eigen::Vector3d &vw = s_->prescribed->velocity_m_s();
+  const double v_impact = std::max(
+      vmax_all + vw.norm() +
+          s_->prescribed->angular_velocity_rad_s().norm() * s_->index->bounding_radius_m(),
+      1e-3); // a resting bed still needs a finite impact speed for the Hertz estimate
+  const double dt = update->dt;
+  for (int t = 1; t <= ntypes; ++t) {
+    if (rmin_all[t] > 1e299 || t == wheel_type_)
+      continue;
+    const auto &m = s_->material[t];
+    const double G = m.youngsModulus / (2.0 * (1.0 + m.poissonsRatio));
+    const double rayleigh = M_PI * rmin_all[t] * std::sqrt(rho_all[t] / G) /
+                            (0.1631 * m.poissonsRatio + 0.8766);
+    const double Yeff = s_->pair[t].Yeff;
+    const double hertz = 2.87 * std::pow(mass_all[t] * mass_all[t] /
+                                             (rmin_all[t] * Yeff * Yeff * v_impact),
+                                         0.2);
+    if (dt > wheelsim::kMaxRayleighFraction * rayleigh || dt > wheelsim::kMaxHertzFraction * hertz) {
+      char msg[512];
+      snprintf(msg, sizeof(msg),
+               "time step %g s is too large for the wheel contact of particle type %d (radius "
+               "%g m): it must be <= %.2g x Rayleigh time %g s and <= %.2g x Hertz time %g s "
+               "(impact speed %g m/s); use timestep <= %g or 'check_timestep off'",
+               dt, t, rmin_all[t], wheelsim::kMaxRayleighFraction, rayleigh, wheelsim::kMaxHertzFraction, hertz,
+               v_impact, std::min(wheelsim::kMaxRayleighFraction * rayleigh, wheelsim::kMaxHertzFraction * hertz));
+      error->fix_error(FLERR, this, msg);
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixWheelCosim::setup(int /*vflag*/) {
+  s_->state.velocity_m_s = s_->prescribed->velocity_m_s();
+  s_->state.angular_velocity_rad_s = s_->prescribed->angular_velocity_rad_s();
+  compute_contacts(false);
+  if (first_setup_) {
+    first_setup_ = false;
+    // Particles already overlapping the wheel when the first run starts get a kick.
+    int overlapping = 0;
+    for (int i = 0; i < atom->nlocal; ++i)
+      if (contact_force_[i][0] != 0.0 || contact_force_[i][1] != 0.0 ||
+          contact_force_[i][2] != 0.0)
+        ++overlapping;
+    int total = 0;
+    MPI_Allreduce(&overlapping, &total, 1, MPI_INT, MPI_SUM, world);
+    if (total > 0 && comm->me == 0) {
+      char msg[256];
+      snprintf(msg, sizeof(msg),
+               "fix wheel/cosim %s: %d particles overlap the wheel at the start: place the wheel "
+               "(keyword 'origin') above the bed, or lower it in gradually",
+               id, total);
+      error->warning(FLERR, msg);
+    }
+  }
+  if (s_->vtk_every > 0 && update->ntimestep % s_->vtk_every == 0)
+    write_vtk();
+}
+
+void FixWheelCosim::initial_integrate(int /*vflag*/) {
+  s_->state = s_->motion->next_state(s_->state, update->ntimestep, update->dt);
+}
+
+void FixWheelCosim::post_force(int /*vflag*/) {
+  compute_contacts(update->setupflag == 0);
+}
+
+void FixWheelCosim::end_of_step() {
+  wheelsim::WheelWrench wrench;
+  wrench.force_N = Eigen::Vector3d(vector_[0], vector_[1], vector_[2]);
+  wrench.torque_Nm = Eigen::Vector3d(vector_[3], vector_[4], vector_[5]);
+  wrench.contacts = static_cast<long>(vector_[6]);
+  s_->motion->wrench_computed(update->ntimestep, update->get_cur_time(), wrench);
+  if (s_->vtk_every > 0 && update->ntimestep % s_->vtk_every == 0)
+    write_vtk();
+}
+
+void FixWheelCosim::reset_dt() {
+  if (s_->check_timestep)
+    check_timestep();
+}
+
+/* ----------------------------------------------------------------------
+   The contact loop: every owned particle of the group near the wheel, in the wheel frame.
+------------------------------------------------------------------------- */
+
+void FixWheelCosim::compute_contacts(bool update_history) {
+  using Eigen::Vector3d;
+  double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega,
+         **torque = atom->torque;
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const int *mask = atom->mask, *type = atom->type;
+  const int nlocal = atom->nlocal;
+  const double dt = update->dt;
+
+  const wheelsim::WheelState &state = s_->state;
+  const Eigen::Matrix3d R = state.orientation.toRotationMatrix();
+  const Eigen::Matrix3d Rt = R.transpose();
+  const Vector3d &centre = state.position_m;
+  const double reach = s_->index->bounding_radius_m();
+  const bool accumulate_vtk = update_history && s_->vtk_every > 0;
+
+  Vector3d wheel_force = Vector3d::Zero(), wheel_torque = Vector3d::Zero();
+  double ncontacts = 0.0;
+  wheelsim::SlotQuery queries[wheelsim::kMaxContactsPerParticle];
+  int slot_of[wheelsim::kMaxContactsPerParticle];
+
+  for (int i = 0; i < nlocal; ++i) {
+    contact_force_[i][0] = contact_force_[i][1] = contact_force_[i][2] = 0.0;
+    if (!(mask[i] & groupbit))
+      continue;
+    auto *slots = reinterpret_cast<wheelsim::ContactSlot *>(history_[i]);
+    const double r = radius[i];
+    const Vector3d xi(x[i][0], x[i][1], x[i][2]);
+    const Vector3d d = xi - centre;
+    if (d.squaredNorm() > (reach + r) * (reach + r)) {
+      if (update_history)
+        wheelsim::clear_contact_slots(slots, nslots_);
+      continue;
+    }
+    s_->contacts.clear();
+    int n = s_->index->find_contacts(Rt * d, r, s_->contacts);
+    if (n == 0) {
+      if (update_history)
+        wheelsim::clear_contact_slots(slots, nslots_);
+      continue;
+    }
+    if (n > wheelsim::kMaxContactsPerParticle) {
+      s_->too_many_contacts += n - wheelsim::kMaxContactsPerParticle;
+      n = wheelsim::kMaxContactsPerParticle;
+    }
+    for (int j = 0; j < n; ++j)
+      queries[j] = {s_->contacts[j].feature_key, s_->contacts[j].point_m};
+    wheelsim::match_contact_slots(slots, nslots_, queries, n, r, update_history, slot_of);
+
+    const Vector3d vi(v[i][0], v[i][1], v[i][2]);
+    const Vector3d wi(omega[i][0], omega[i][1], omega[i][2]);
+    Vector3d force_on_particle = Vector3d::Zero(), torque_on_particle = Vector3d::Zero();
+    for (int j = 0; j < n; ++j) {
+      const wheelsim::geometry::SurfaceContact &c = s_->contacts[j];
+      const Vector3d normal = R * c.normal;
+      const Vector3d point = centre + R * c.point_m;
+      wheelsim::contact::ContactState cs;
+      cs.radius = r;
+      cs.mass = rmass[i];
+      cs.overlap = c.overlap_m;
+      cs.normal = normal;
+      cs.vRel = wheelsim::contact::relativeContactVelocity(vi, wi, state.velocity_at(point),
+                                                            normal, r, c.overlap_m);
+      cs.omega = wi;
+      wheelsim::contact::ContactHistory fresh{};
+      wheelsim::contact::ContactHistory &history =
+          slot_of[j] >= 0 ? slots[slot_of[j]].history : fresh;
+      if (slot_of[j] < 0 && update_history)
+        ++s_->slot_overflows;
+      const wheelsim::contact::ContactResult res =
+          wheelsim::contact::evaluate(s_->pair[type[i]], cs, dt, update_history, history);
+      force_on_particle += res.force;
+      torque_on_particle += res.torque;
+      // Reaction on the wheel: -F at the contact point, and minus the rolling-resistance torque
+      // (the particle's torque less the moment of its tangential force about its centre).
+      const Vector3d tangential = res.force - res.force.dot(normal) * normal;
+      const Vector3d lever_torque = -(r - 0.5 * c.overlap_m) * normal.cross(tangential);
+      const Vector3d rolling_torque = res.torque - lever_torque;
+      wheel_force -= res.force;
+      wheel_torque += (point - centre).cross(-res.force) - rolling_torque;
+      ncontacts += 1.0;
+      if (accumulate_vtk) {
+        s_->triangle_normal_force_sum[c.triangle] += res.force.dot(normal);
+        s_->triangle_contact_sum[c.triangle] += 1.0;
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      f[i][k] += force_on_particle[k];
+      torque[i][k] += torque_on_particle[k];
+      contact_force_[i][k] = force_on_particle[k];
+    }
+  }
+  if (accumulate_vtk)
+    ++s_->vtk_window_steps;
+
+  double local[7] = {wheel_force.x(),  wheel_force.y(),  wheel_force.z(), wheel_torque.x(),
+                     wheel_torque.y(), wheel_torque.z(), ncontacts};
+  double total[7];
+  MPI_Allreduce(local, total, 7, MPI_DOUBLE, MPI_SUM, world);
+  std::copy(total, total + 7, vector_);
+  vector_[7] = centre.x();
+  vector_[8] = centre.y();
+  vector_[9] = centre.z();
+}
+
+double FixWheelCosim::compute_vector(int i) {
+  return vector_[i];
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixWheelCosim::write_vtk() {
+  const std::size_t nt = s_->triangle_area_m2.size();
+  std::vector<double> force(nt, 0.0), count(nt, 0.0);
+  MPI_Reduce(s_->triangle_normal_force_sum.data(), force.data(), static_cast<int>(nt),
+             MPI_DOUBLE, MPI_SUM, 0, world);
+  MPI_Reduce(s_->triangle_contact_sum.data(), count.data(), static_cast<int>(nt), MPI_DOUBLE,
+             MPI_SUM, 0, world);
+  const double steps = static_cast<double>(std::max(1L, s_->vtk_window_steps));
+  std::fill(s_->triangle_normal_force_sum.begin(), s_->triangle_normal_force_sum.end(), 0.0);
+  std::fill(s_->triangle_contact_sum.begin(), s_->triangle_contact_sum.end(), 0.0);
+  s_->vtk_window_steps = 0;
+  if (comm->me != 0)
+    return;
+  for (std::size_t t = 0; t < nt; ++t)
+    force[t] /= steps * s_->triangle_area_m2[t]; // time-averaged pressure [Pa]
+  char path[1024];
+  snprintf(path, sizeof(path), "%s_%ld.vtk", s_->vtk_prefix.c_str(),
+           static_cast<long>(update->ntimestep));
+  if (!wheelsim::write_wheel_surface_vtk(path, s_->index->mesh(), s_->state, force, count,
+                                         static_cast<long>(update->ntimestep),
+                                         update->get_cur_time())) {
+    char msg[1200];
+    snprintf(msg, sizeof(msg), "fix wheel/cosim %s: cannot write VTK file '%s' (keyword vtk)",
+             id, path);
+    error->one(FLERR, msg);
+  }
+}
+
+/* ----------------------------------------------------------------------
+   Per-atom storage
+------------------------------------------------------------------------- */
+
+double FixWheelCosim::memory_usage() {
+  return static_cast<double>(atom->nmax) * (history_columns_ + 3) * sizeof(double);
+}
+
+void FixWheelCosim::grow_arrays(int nmax) {
+  memory->grow(history_, nmax, history_columns_, "wheel/cosim:history");
+  memory->grow(contact_force_, nmax, 3, "wheel/cosim:contact_force");
+  array_atom = contact_force_;
+}
+
+void FixWheelCosim::copy_arrays(int i, int j, int /*delflag*/) {
+  std::copy(history_[i], history_[i] + history_columns_, history_[j]);
+  std::copy(contact_force_[i], contact_force_[i] + 3, contact_force_[j]);
+}
+
+void FixWheelCosim::set_arrays(int i) {
+  std::fill(history_[i], history_[i] + history_columns_, 0.0);
+  wheelsim::clear_contact_slots(reinterpret_cast<wheelsim::ContactSlot *>(history_[i]), nslots_);
+  std::fill(contact_force_[i], contact_force_[i] + 3, 0.0);
+}
+
+int FixWheelCosim::pack_exchange(int i, double *buf) {
+  std::copy(history_[i], history_[i] + history_columns_, buf);
+  return history_columns_;
+}
+
+int FixWheelCosim::unpack_exchange(int nlocal, double *buf) {
+  std::copy(buf, buf + history_columns_, history_[nlocal]);
+  std::fill(contact_force_[nlocal], contact_force_[nlocal] + 3, 0.0);
+  return history_columns_;
+}
+
+int FixWheelCosim::pack_restart(int i, double *buf) {
+  buf[0] = history_columns_ + 1;
+  std::copy(history_[i], history_[i] + history_columns_, buf + 1);
+  return history_columns_ + 1;
+}
+
+void FixWheelCosim::unpack_restart(int nlocal, int nth) {
+  double **extra = atom->extra;
+  int m = 0;
+  for (int k = 0; k < nth; ++k)
+    m += static_cast<int>(extra[nlocal][m]);
+  const int stored = static_cast<int>(extra[nlocal][m]) - 1;
+  if (stored != history_columns_)
+    bad_argument("the restart file holds %d history values per particle, this fix expects %d: "
+                 "use the same 'slots' value as the run that wrote it",
+                 stored, history_columns_);
+  std::copy(&extra[nlocal][m + 1], &extra[nlocal][m + 1] + history_columns_, history_[nlocal]);
+  std::fill(contact_force_[nlocal], contact_force_[nlocal] + 3, 0.0);
+}
+
+int FixWheelCosim::size_restart(int /*i*/) {
+  return history_columns_ + 1;
+}
+
+int FixWheelCosim::maxsize_restart() {
+  return history_columns_ + 1;
+}
+
+/* ----------------------------------------------------------------------
+   Global restart state: the wheel pose and twist
+------------------------------------------------------------------------- */
+
+void FixWheelCosim::write_restart(FILE *fp) {
+  const wheelsim::WheelState &st = s_->state;
+  double list[14] = {1.0, // format version
+                     st.position_m.x(), st.position_m.y(), st.position_m.z(),
+                     st.orientation.w(), st.orientation.x(), st.orientation.y(),
+                     st.orientation.z(), st.velocity_m_s.x(), st.velocity_m_s.y(),
+                     st.velocity_m_s.z(), st.angular_velocity_rad_s.x(),
+                     st.angular_velocity_rad_s.y(), st.angular_velocity_rad_s.z()};
+  if (comm->me == 0) {
+    const int size = sizeof(list);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), 14, fp);
+  }
+}
+
+void FixWheelCosim::restart(char *buf) {
+  const double *list = reinterpret_cast<const double *>(buf);
+  if (list[0] != 1.0)
+    bad_argument("restart data of fix wheel/cosim has format %g, expected 1", list[0]);
+  wheelsim::WheelState &st = s_->state;
+  st.position_m = Eigen::Vector3d(list[1], list[2], list[3]);
+  st.orientation = Eigen::Quaterniond(list[4], list[5], list[6], list[7]).normalized();
+  st.velocity_m_s = Eigen::Vector3d(list[8], list[9], list[10]);
+  st.angular_velocity_rad_s = Eigen::Vector3d(list[11], list[12], list[13]);
+  first_setup_ = false; // particles touching a wheel restored mid-run are not an error
+  if (comm->me == 0) {
+    char line[256];
+    snprintf(line, sizeof(line),
+             "fix wheel/cosim %s: pose restored from the restart file (centre %g %g %g m); "
+             "keyword 'origin' ignored\n",
+             id, list[1], list[2], list[3]);
+    if (screen)
+      fputs(line, screen);
+    if (logfile)
+      fputs(line, logfile);
+  }
+}

@@ -1,0 +1,93 @@
+/* fix wheel/cosim — the rigid lugged wheel's particle contacts, inside LIGGGHTS.
+
+   fix ID group-ID wheel/cosim mesh FILE type T [keyword value ...]
+
+   Every particle of the group that touches the wheel mesh gets a contact force from wheelsim's
+   contact law (liggghts_fix/contact: LIGGGHTS' hertz or edinburgh with history tangential,
+   optional sjkr cohesion and epsd2 rolling friction), found against a spatial index of the mesh
+   built once in the wheel frame. The wheel moves by a motion source (prescribed here; the
+   coupled rig in the coupling issue). Full syntax, outputs and restart behaviour:
+   docs/fix-wheel-cosim.md.
+
+   Global vector (10): 1-3 contact force on the wheel [N], 4-6 contact torque on the wheel about
+   its centre [N m], 7 number of particle-wheel contacts, 8-10 wheel centre [m]. World frame.
+   Per-atom array (3 columns): contact force of the wheel on each particle [N].
+
+   The FixStyle block is in the form LIGGGHTS' Make.sh expects (docs/building.md). */
+
+#ifdef FIX_CLASS
+
+FixStyle(wheel/cosim,FixWheelCosim)
+
+#else
+
+#ifndef LMP_FIX_WHEEL_COSIM_H
+#define LMP_FIX_WHEEL_COSIM_H
+
+#include "fix.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace wheelsim {
+struct WheelCosimState; // all non-LIGGGHTS state (Eigen, mesh index, contact law, motion)
+}
+
+namespace LAMMPS_NS {
+
+class FixWheelCosim : public Fix {
+public:
+  FixWheelCosim(class LAMMPS *lmp, int narg, char **arg);
+  ~FixWheelCosim() override;
+
+  int setmask() override;
+  void init() override;
+  void setup(int vflag) override;
+  void initial_integrate(int vflag) override;
+  void post_force(int vflag) override;
+  void end_of_step() override;
+  void reset_dt() override;
+
+  double compute_vector(int i) override;
+  int min_type() override { return wheel_type_; }
+  int max_type() override { return wheel_type_; }
+
+  // per-atom contact history (follows atoms between ranks and into restart files)
+  double memory_usage() override;
+  void grow_arrays(int nmax) override;
+  void copy_arrays(int i, int j, int delflag) override;
+  void set_arrays(int i) override;
+  int pack_exchange(int i, double *buf) override;
+  int unpack_exchange(int nlocal, double *buf) override;
+  int pack_restart(int i, double *buf) override;
+  void unpack_restart(int nlocal, int nth) override;
+  int size_restart(int i) override;
+  int maxsize_restart() override;
+
+  // global state (wheel pose and twist) in restart files
+  void write_restart(FILE *fp) override;
+  void restart(char *buf) override;
+
+private:
+  void parse_arguments(int narg, char **arg);
+  void read_materials();
+  void check_timestep();
+  void compute_contacts(bool update_history);
+  void write_vtk();
+  [[noreturn]] void bad_argument(const char *fmt, ...);
+
+  std::unique_ptr<wheelsim::WheelCosimState> s_;
+  int wheel_type_;
+  int nslots_;          // history slots per particle
+  int history_columns_; // nslots_ * kSlotDoubles
+  double **history_;    // per atom: nslots_ slots of kSlotDoubles doubles
+  double **contact_force_; // per atom: force of the wheel on the particle [N]
+  double vector_[10];   // the global vector, reduced over ranks
+  bool first_setup_;    // warn about initial overlaps only once
+};
+
+} // namespace LAMMPS_NS
+
+#endif
+#endif
