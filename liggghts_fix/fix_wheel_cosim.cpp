@@ -264,14 +264,22 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
         bad_argument("keyword 'cohesion' expects off or sjkr, got '%s'", arg[iarg + 1]);
       iarg += 2;
     } else if (std::strcmp(key, "rolling_friction") == 0) {
-      need(iarg, 1, "off or epsd2");
+      need(iarg, 1, "off, epsd2 or cdt");
       if (std::strcmp(arg[iarg + 1], "off") == 0)
         s_->settings.rolling = RollingModel::Off;
       else if (std::strcmp(arg[iarg + 1], "epsd2") == 0)
         s_->settings.rolling = RollingModel::Epsd2;
+      else if (std::strcmp(arg[iarg + 1], "cdt") == 0)
+        s_->settings.rolling = RollingModel::Cdt;
       else
-        bad_argument("keyword 'rolling_friction' expects off or epsd2, got '%s'",
+        bad_argument("keyword 'rolling_friction' expects off, epsd2 or cdt, got '%s'",
                      arg[iarg + 1]);
+      iarg += 2;
+    } else if (std::strcmp(key, "tangential") == 0) {
+      // Accepted so that a deck can pass its pair style's model words (e.g. ${soil_model}).
+      need(iarg, 1, "history");
+      if (std::strcmp(arg[iarg + 1], "history") != 0)
+        bad_argument("keyword 'tangential' supports only 'history', got '%s'", arg[iarg + 1]);
       iarg += 2;
     } else if (std::strcmp(key, "tangential_damping") == 0) {
       need(iarg, 1, "on or off");
@@ -331,8 +339,8 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
       s_->check_timestep = on_off(iarg);
       iarg += 2;
     } else {
-      bad_argument("unknown keyword '%s'; expected one of scale, origin, model, cohesion, "
-                   "rolling_friction, tangential_damping, limitForce, fixKc, tangential_reduce, "
+      bad_argument("unknown keyword '%s'; expected one of scale, origin, model, tangential, "
+                   "cohesion, rolling_friction, tangential_damping, limitForce, fixKc, tangential_reduce, "
                    "torsionTorque, motion, vtk, slots, check_timestep",
                    key);
     }
@@ -383,7 +391,7 @@ void FixWheelCosim::read_materials() {
   using wheelsim::contact::RollingModel;
   FixPropertyGlobal *mur = nullptr, *kcoh = nullptr, *k2 = nullptr, *kc = nullptr,
                     *f0 = nullptr, *gamma = nullptr, *dex = nullptr, *cex = nullptr;
-  if (s_->settings.rolling == RollingModel::Epsd2)
+  if (s_->settings.rolling != RollingModel::Off)
     mur = find("coefficientRollingFriction", "peratomtypepair", ntypes, ntypes);
   if (s_->settings.cohesion == CohesionModel::Sjkr)
     kcoh = find("cohesionEnergyDensity", "peratomtypepair", ntypes, ntypes);

@@ -36,6 +36,7 @@ struct NormalPart {
   double Fn;     ///< normal force incl. damping [N]
   double kt;     ///< tangential stiffness [N/m]
   double gammat; ///< tangential damping coefficient [N·s/m]
+  double knDelta; ///< sidata.kn · δ, the "normal force" of rolling model cdt [N]
 };
 
 // --- model hertz (normal_model_hertz.h, NormalModel<HERTZ>::surfacesIntersect) ---
@@ -51,7 +52,7 @@ NormalPart hertzNormal(const PairConstants &pc, double R, double m, double delta
   double Fn = kn * delta - gamman * vn;
   if (pc.limitForce && Fn < 0.0)
     Fn = 0.0;
-  return {Fn, St, gammat};
+  return {Fn, St, gammat, kn * delta};
 }
 
 /// EEPA adhesive stiffness from the surface energy (normal_model_edinburgh.h, calculate_k_adh):
@@ -155,7 +156,7 @@ NormalPart eepaNormal(const PairConstants &pc, double R, double m, double delta,
   h.fo = pc.f0;
   if (pc.limitForce && Fn < 0.0 && kAdh == 0.0 && pc.f0 == 0.0)
     Fn = 0.0;
-  return {Fn, kt, gammat};
+  return {Fn, kt, gammat, kn * delta};
 }
 
 } // namespace
@@ -306,6 +307,18 @@ ContactResult evaluate(const PairConstants &pc, const ContactState &s, double dt
     if (updateHistory)
       rollTorque = Mr;
     out.torque -= Mr;
+  }
+  // Rolling model (rolling_model_cdt.h, wall branch): a constant torque μr (kn δ) c_r opposing
+  // the spin, its normal (torsion) part removed. kn δ is the elastic Hertz force for hertz; for
+  // edinburgh it is k1 δ (k1 the loading coefficient), as LIGGGHTS' sidata.kn is k1 there.
+  if (pc.settings.rolling == RollingModel::Cdt) {
+    const Eigen::Vector3d wr = (cr / (R - delta)) * s.omega;
+    const double wrMag = wr.norm();
+    if (wrMag > 0.0) {
+      Eigen::Vector3d rTorque = (pc.muRoll * np.knDelta * cr / wrMag) * wr;
+      rTorque -= rTorque.dot(n) * n;
+      out.torque -= rTorque;
+    }
   }
   return out;
 }

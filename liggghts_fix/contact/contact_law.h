@@ -38,6 +38,7 @@ enum class CohesionModel {
 enum class RollingModel {
   Off,   ///< none
   Epsd2, ///< `rolling_friction epsd2`: elastic-plastic spring, torque capped at μr R |Fn|.
+  Cdt,   ///< `rolling_friction cdt`: constant torque μr kn δ (R − δ/2) against the spin.
 };
 
 /// An on/off model setting whose LIGGGHTS default depends on the normal model.

@@ -288,6 +288,32 @@ TEST(RollingEpsd2, TorqueIsCappedAndOpposesTheRotation) {
   EXPECT_TRUE(capped);
 }
 
+TEST(RollingCdt, ConstantTorqueMuRollElasticForceLeverAgainstTheSpin) {
+  // rolling_model_cdt.h, wall branch: |M| = μr (kn δ) (R − δ/2), kn δ = 4/3 Yeff sqrt(R δ) δ for
+  // hertz, direction −ω with the normal (twist) part removed; independent of the history.
+  wc::PairMaterial pair;
+  pair.coefficientRollingFriction = 0.1;
+  wc::ContactSettings settings;
+  settings.rolling = wc::RollingModel::Cdt;
+  const auto pc = constants(pair, settings);
+  const double delta = 1e-5;
+  wc::ContactHistory h{};
+  auto s = state(delta);
+  s.omega = Vector3d(3.0, -4.0, 7.0);
+  const auto r = wc::evaluate(pc, s, 1e-6, true, h); // vRel = 0: the torque is all rolling
+  const double knDelta = 4.0 / 3.0 * pc.Yeff * std::sqrt(kR * delta) * delta;
+  const double cr = kR - 0.5 * delta;
+  // the magnitude before the normal part is removed is μr kn δ c_r; the tangential spin is 5/√74
+  // of the spin, so the torque keeps that fraction
+  const double expected = 0.1 * knDelta * cr * 5.0 / std::sqrt(74.0);
+  EXPECT_NEAR(r.torque.norm(), expected, 1e-12 * expected);
+  EXPECT_LT(r.torque.dot(s.omega), 0.0);
+  EXPECT_NEAR(r.torque.z(), 0.0, 1e-15 * expected);
+  s.omega *= 10.0; // constant: the spin rate does not matter
+  const auto r10 = wc::evaluate(pc, s, 1e-6, true, h);
+  EXPECT_NEAR(r10.torque.norm(), expected, 1e-12 * expected);
+}
+
 // ---------------------------------------------------------------------------------------------
 // EEPA (model edinburgh), linear (n = X = 1) so that the branches are straight lines in δ.
 struct EepaLinear : ::testing::Test {
