@@ -1,0 +1,212 @@
+#!/usr/bin/python3
+"""Driver of the tests/wheel_cosim integration tests (see CMakeLists.txt, docs/validation-fix.md).
+
+  run_case.py bed     --launch "mpiexec;-n;1;liggghts-wheel" --inputs DIR --work DIR
+  run_case.py compare --launch ... --inputs DIR --work DIR --bed BED --mesh STL --model hertz|eepa|sjkr
+                      --steps N [--early-window S --early-tol X --floor N] [--window-from K --window-tol X]
+  run_case.py restart --launch ... --bed BED --mesh STL --n N --m M --tol X
+  run_case.py vtk     --launch ... --bed BED --mesh STL
+
+Runs liggghts-wheel on tests/wheel_cosim/in.wheel_roll, then compare_wrench.py. Exit 0 = pass.
+"""
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DECK = os.path.join(HERE, "in.wheel_roll")
+COMPARE = os.path.join(HERE, "compare_wrench.py")
+
+# The wheel-particle contact model in both spellings, and the extra material include.
+MODELS = {
+    "hertz": ("model hertz rolling_friction off", "model hertz tangential history", "props_none.in", 1.0),
+    "sjkr": ("model hertz cohesion sjkr rolling_friction off",
+             "model hertz tangential history cohesion sjkr", "props_sjkr.in", 1.0),
+    # EEPA with n = 1 needs half the soil time step (props_eepa.in)
+    "eepa": ("model eepa rolling_friction off", "model edinburgh tangential history",
+             "props_eepa.in", 0.5),
+}
+
+
+def run(launch, work, out, variables):
+    cmd = list(launch) + ["-in", DECK, "-log", "none", "-echo", "none"]
+    for k, v in variables.items():
+        cmd += ["-var", k, str(v)]
+    with open(os.path.join(work, out), "w") as fh:
+        r = subprocess.run(cmd, cwd=work, stdout=fh, stderr=subprocess.STDOUT)
+    text = open(os.path.join(work, out), errors="replace").read()
+    if r.returncode != 0 or "ERROR" in text:
+        sys.stdout.write(text[-3000:])
+        raise SystemExit(f"run_case: {out}: liggghts-wheel failed (exit {r.returncode})")
+    return text
+
+
+def compare(args, rest):
+    r = subprocess.run(["/usr/bin/python3", COMPARE] + rest)
+    return r.returncode
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("mode", choices=["bed", "compare", "restart", "vtk"])
+    p.add_argument("--launch", required=True, help="launcher and executable, ';'-separated")
+    p.add_argument("--inputs", required=True)
+    p.add_argument("--work", required=True)
+    p.add_argument("--bed")
+    p.add_argument("--mesh")
+    p.add_argument("--model", default="hertz")
+    p.add_argument("--steps", type=int, default=4000)
+    p.add_argument("--vz", default="-0.05")
+    p.add_argument("--early-window", type=int, default=0)
+    p.add_argument("--early-tol", type=float, default=0.01)
+    p.add_argument("--floor", type=float, default=1.0)
+    p.add_argument("--window-from", type=int, default=-1)
+    p.add_argument("--window-tol", type=float, default=0.03)
+    p.add_argument("--n", type=int, default=500)
+    p.add_argument("--m", type=int, default=300)
+    p.add_argument("--tol", type=float, default=1e-6)
+    a = p.parse_args()
+    launch = a.launch.split(";")
+    os.makedirs(a.work, exist_ok=True)
+    common = {"inputs_dir": a.inputs, "restart_file": a.bed, "mesh": a.mesh}
+
+    if a.mode == "bed":
+        # A bin just longer than the contact patch's path; ~3800 particles of the ci soil.
+        cmd = launch + ["-in", os.path.join(a.inputs, "in.soilbin"), "-log", "none",
+                        "-var", "inputs_dir", a.inputs, "-var", "soil", "ci",
+                        "-var", "bin_length", "0.2", "-var", "bin_width", "0.1",
+                        "-var", "fill_height", "0.025", "-var", "max_settle_time", "1.0",
+                        "-var", "out_dir", a.work]
+        r = subprocess.run(cmd, cwd=a.work, capture_output=True, text=True)
+        sys.stdout.write("\n".join(l for l in r.stdout.splitlines() if l.startswith("soilbin:")))
+        ok = r.returncode == 0 and os.path.exists(os.path.join(a.work, "soilbin_ci.restart.vars"))
+        if not ok:
+            sys.stdout.write(r.stdout[-3000:] + r.stderr[-2000:])
+        return 0 if ok else 1
+
+    if a.mode == "compare":
+        cosim_model, mesh_model, props, dt_factor = MODELS[a.model]
+        v = dict(common, steps=a.steps, vz=a.vz, cosim_model=cosim_model, mesh_model=mesh_model,
+                 props=os.path.join(HERE, props), dt_factor=dt_factor,
+                 neigh_every_step=1 if a.early_window else 0,
+                 thermo_every=1 if a.early_window else 10)
+        for impl in ("cosim", "mesh"):
+            run(launch, a.work, f"out.{impl}", dict(v, impl=impl))
+        rc = 0
+        ours, ref = os.path.join(a.work, "out.cosim"), os.path.join(a.work, "out.mesh")
+        if a.early_window:
+            rc |= compare(a, ["early", ours, ref, "--window", str(a.early_window), "--tol",
+                              str(a.early_tol), "--force-floor", str(a.floor), "--lever", "0.1",
+                              "--label", a.model])
+        if a.window_from >= 0:
+            rc |= compare(a, ["window", ours, ref, "--from-offset", str(a.window_from), "--tol",
+                              str(a.window_tol), "--lever", "0.1", "--label", a.model])
+        return rc
+
+    if a.mode == "restart":
+        v = dict(common, vz="-0.2", neigh_every_step=1, thermo_every=1)
+        run(launch, a.work, "out.full", dict(v, impl="cosim", steps=a.n + a.m))
+        run(launch, a.work, "out.first", dict(v, impl="cosim", steps=a.n, restart_out=1))
+        v2 = dict(v, impl="cosim", steps=a.m, restart_in=1,
+                  restart_file=os.path.join(a.work, "restart.out"))
+        text = run(launch, a.work, "out.second", v2)
+        if "pose restored from the restart file" not in text:
+            print("run_case: the continued run did not restore the wheel pose FAIL")
+            return 1
+        return compare(a, ["equal", os.path.join(a.work, "out.second"),
+                           os.path.join(a.work, "out.full"), "--from-offset", "1",
+                           "--tol", str(a.tol), "--force-floor", "1e-3", "--lever", "0.1",
+                           "--label", "restart"])
+
+    if a.mode == "vtk":
+        steps, every = 400, 100
+        vx, vz, wy = 0.1125, -0.2, 1.5
+        text = run(launch, a.work, "out.vtk",
+                   dict(common, impl="cosim", steps=steps, vz=vz, vx=vx, wy=wy,
+                        neigh_every_step=0, thermo_every=100,
+                        cosim_extra=f"vtk {every} {os.path.join(a.work, 'wheel')}"))
+        return check_vtk(a, text, steps, every, vx, vz, wy)
+    return 2
+
+
+def read_vtk(path):
+    """Points and the cell-data arrays of a legacy ASCII VTK polydata file."""
+    tok = open(path).read().split()
+    i = tok.index("POINTS")
+    n = int(tok[i + 1])
+    pts = np.array(tok[i + 3:i + 3 + 3 * n], dtype=float).reshape(n, 3)
+    fields = {}
+    j = 0
+    while True:
+        try:
+            j = tok.index("SCALARS", j + 1)
+        except ValueError:
+            break
+        name = tok[j + 1]
+        k = j + 3
+        if tok[k] != "LOOKUP_TABLE":
+            k += 1
+        k += 2
+        vals = []
+        while k < len(tok):
+            try:
+                vals.append(float(tok[k]))
+            except ValueError:
+                break
+            k += 1
+        fields[name] = np.array(vals)
+    return pts, fields
+
+
+def check_vtk(a, text, steps, every, vx, vz, wy):
+    import re
+    m = re.search(r"centre start (\S+) 0 (\S+) m, dt (\S+) s", text)
+    x0, z0, dt = float(m.group(1)), float(m.group(2)), float(m.group(3))
+    m = re.search(r"Step\s+Atoms.*?\n\s*(\d+)\s", text)
+    step0 = int(m.group(1))
+    ref = np.array([[float(t) for t in l.split()[1:]] for l in open(a.mesh)
+                    if l.split()[:1] == ["vertex"]])
+    ok = True
+    files = sorted(f for f in os.listdir(a.work) if f.startswith("wheel_") and f.endswith(".vtk"))
+    print(f"run_case: vtk files {files}")
+    if len(files) < 2:
+        print("run_case: expected VTK files every 100 steps FAIL")
+        return 1
+    any_pressure = False
+    for f in files:
+        step = int(f[len("wheel_"):-4])
+        t = (step - step0) * dt
+        c = np.array([x0 + vx * t, 0.0, z0 + vz * t])
+        th = wy * t
+        Ry = np.array([[np.cos(th), 0, np.sin(th)], [0, 1, 0], [-np.sin(th), 0, np.cos(th)]])
+        pts, fields = read_vtk(os.path.join(a.work, f))
+        expected = (Ry @ ref.T).T + c
+        # every written point must be a mesh vertex moved by the prescribed pose (nearest match)
+        d = np.array([np.min(np.linalg.norm(expected - q, axis=1)) for q in pts])
+        # and the vertex with the largest wheel-frame x, moved: a known point
+        pressure = next((v for k, v in fields.items() if "pressure" in k.lower()), None)
+        if pressure is None:
+            print(f"run_case: {f}: no pressure array (fields {list(fields)}) FAIL")
+            return 1
+        neg = int((pressure < 0).sum())
+        pos = int((pressure > 0).sum())
+        any_pressure |= pos > 0
+        good = d.max() < 1e-6 and neg == 0
+        ok &= good
+        print(f"run_case: {f}: t = {t:.6g} s, {len(pts)} points, max distance to the posed mesh "
+              f"{d.max():.3g} m (tol 1e-6: STL vertices are single precision), pressure "
+              f"min {pressure.min():.4g} max {pressure.max():.4g} Pa, {pos} cells > 0, {neg} < 0 "
+              f"{'ok' if good else 'FAIL'}")
+    if not any_pressure:
+        print("run_case: no cell with a pressure > 0 although the wheel touches the bed FAIL")
+    ok &= any_pressure
+    print(f"run_case: vtk {'PASS' if ok else 'FAIL'}")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
