@@ -205,7 +205,7 @@ TEST(SphereContactIndex, NeverMissesTheDeepestContactNorCountsOneTwice) {
   std::uniform_real_distribution<double> ux(-0.1, 2.1), uy(-1.1, 1.1), uz(0.9, 2.1);
   const double r = 0.08;
   int tested = 0;
-  for (int i = 0; i < 20000; ++i) {
+  for (int i = 0; i < 6000; ++i) {
     const Vector3d c(ux(rng), uy(rng), uz(rng));
     if (inside(c))
       continue;
@@ -248,7 +248,7 @@ TEST(SphereContactIndex, NeverMissesTheDeepestContactNorCountsOneTwice) {
         EXPECT_GT((cs[a].point_m - cs[b].point_m).norm(), 1e-6) << "double contact at " << c.transpose();
     EXPECT_LE(cs.size(), 3u) << "at " << c.transpose();
   }
-  EXPECT_GT(tested, 500);
+  EXPECT_GT(tested, 150);
 }
 
 TEST(SphereContactIndex, NoContactAwayOrInside) {
