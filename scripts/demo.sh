@@ -26,13 +26,12 @@ echo "demo: [2/3] settling a small ci soil bin on $np MPI rank(s) (about a minut
   -var inputs_dir "$root/inputs" -var soil ci -var bin_length 0.36 -var bin_width 0.12 \
   -var fill_height 0.035 -var out_dir "$out" -log none -screen "$out/soilbin.screen"
 grep '^soilbin: ' "$out/soilbin.screen" | sed -n '/---- result/,/---- end/p' | sed 's/^/    /'
-bed_top=$(awk '/^soilbin: bed_depth =/ {print $4}' "$out/soilbin.screen")
 
 echo "demo: [3/3] rolling wheel test_small through the bed with fix wheel/cosim ..."
 cp "$build_dir/meshes/test_small.stl" "$out/"
 (cd "$out" && "${launch[@]}" "$build_dir/bin/liggghts-wheel" \
   -in "$root/inputs/examples/in.wheel_prescribed" -var inputs_dir "$root/inputs" \
-  -var restart soilbin_ci.restart -var mesh test_small.stl -var bed_top "$bed_top" \
+  -var restart soilbin_ci.restart -var mesh test_small.stl \
   -log log.wheel -screen wheel.screen)
 tail -n 3 "$out/wheel.csv" 2>/dev/null | sed 's/^/    /' || true
 
