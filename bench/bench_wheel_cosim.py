@@ -80,7 +80,7 @@ def main():
     p.add_argument("--mpiexec", default="mpiexec")
     p.add_argument("--steps", type=int, default=2000)
     a = p.parse_args()
-    a.launch = ([a.mpiexec, "-n", str(a.np)] if a.np > 1 else []) + [a.exe]
+    a.launch = ([a.mpiexec, "-n", str(a.np)] if a.np > 1 else []) + [os.path.abspath(a.exe)]
     os.makedirs(a.work, exist_ok=True)
     print(f"bench: deck {os.path.normpath(DECK)}, mesh {a.mesh}, {a.steps} steps, np {a.np}; "
           "wheel starts 4 mm above the bed and sinks at 0.1 m/s while rolling (1.5 rad/s, slip 0.25)")
