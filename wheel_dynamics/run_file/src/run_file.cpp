@@ -1,0 +1,575 @@
+// wheelsim::runfile — implementation over the HDF5 C API (1.10). See run_file.h and
+// docs/hdf5-layout.md. All HDF5 identifiers live in RAII Handles; every public method silences
+// HDF5's automatic error printing for its duration and turns a failure into a RunFileError that
+// carries the library's error stack as text.
+#include "wheelsim/run_file/run_file.h"
+
+#include <hdf5.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <utility>
+
+namespace wheelsim::runfile {
+
+namespace {
+
+/// Rows per chunk of every time-series dataset (step, time, value): 1024 rows of a quaternion
+/// are 32 KiB, well inside HDF5's default 1 MiB chunk cache.
+constexpr hsize_t kChunkRows = 1024;
+
+/// H5MD version written to /h5md:version (see docs/hdf5-layout.md for what follows H5MD).
+constexpr int kH5mdVersion[2] = {1, 0};
+
+double now_s() {
+  using namespace std::chrono;
+  return duration<double>(steady_clock::now().time_since_epoch()).count();
+}
+
+/// Owns one HDF5 identifier and closes it with the matching H5?close.
+class Handle {
+public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  Handle(Handle &&o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), closer_(o.closer_) {}
+  Handle &operator=(Handle &&o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = std::exchange(o.id_, H5I_INVALID_HID);
+      closer_ = o.closer_;
+    }
+    return *this;
+  }
+  Handle(const Handle &) = delete;
+  Handle &operator=(const Handle &) = delete;
+  ~Handle() { reset(); }
+
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  /// Closes the identifier; returns false if HDF5 reported an error.
+  bool reset() {
+    bool ok = true;
+    if (id_ >= 0 && closer_ != nullptr)
+      ok = closer_(id_) >= 0;
+    id_ = H5I_INVALID_HID;
+    return ok;
+  }
+
+private:
+  hid_t id_ = H5I_INVALID_HID;
+  Closer closer_ = nullptr;
+};
+
+/// Turns HDF5's automatic error printing off for a scope (restored afterwards).
+class QuietHdf5Errors {
+public:
+  QuietHdf5Errors() {
+    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~QuietHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+  QuietHdf5Errors(const QuietHdf5Errors &) = delete;
+  QuietHdf5Errors &operator=(const QuietHdf5Errors &) = delete;
+
+private:
+  H5E_auto2_t func_ = nullptr;
+  void *data_ = nullptr;
+};
+
+/// The current HDF5 error stack as one line (outermost call first), then clears it.
+std::string hdf5_error_text() {
+  std::string text;
+  auto walker = [](unsigned, const H5E_error2_t *e, void *client) -> herr_t {
+    auto *out = static_cast<std::string *>(client);
+    if (e->desc != nullptr && *e->desc != '\0') {
+      if (!out->empty())
+        *out += ": ";
+      *out += e->desc;
+    }
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, walker, &text);
+  H5Eclear2(H5E_DEFAULT);
+  return text.empty() ? std::string("(no HDF5 error description)") : text;
+}
+
+/// Splits "a/b/c" into its components; rejects empty names, empty components, "." and "..".
+std::vector<std::string> split_name(const std::string &kind, const std::string &name) {
+  std::vector<std::string> parts;
+  std::string part;
+  auto bad = [&](const std::string &why) {
+    return RunFileError(kind + " name '" + name + "' is invalid: " + why +
+                        " (expected components separated by '/', e.g. \"wheel/position\")");
+  };
+  if (name.empty())
+    throw bad("it is empty");
+  for (std::size_t i = 0; i <= name.size(); ++i) {
+    if (i == name.size() || name[i] == '/') {
+      if (part.empty())
+        throw bad("it has an empty component (leading, trailing or double '/')");
+      if (part == "." || part == "..")
+        throw bad("'.' and '..' are not allowed");
+      parts.push_back(part);
+      part.clear();
+    } else {
+      part += name[i];
+    }
+  }
+  return parts;
+}
+
+} // namespace
+
+// ------------------------------------------------------------------------------------------------
+struct RunFile::Impl {
+  std::string path;
+  Handle file, parameters, observables, terrain;
+  Handle lcpl;        // link creation: intermediate groups, UTF-8 names
+  Handle gcpl;        // group creation: no object time stamps (files that diff)
+  Handle string_type; // variable-length UTF-8 string
+
+  [[noreturn]] void fail(const std::string &what) const {
+    throw RunFileError("run file '" + path + "': " + what + ": " + hdf5_error_text());
+  }
+  hid_t check(hid_t id, const std::string &what) const {
+    if (id < 0)
+      fail(what);
+    return id;
+  }
+  void check_status(herr_t status, const std::string &what) const {
+    if (status < 0)
+      fail(what);
+  }
+
+  Handle dataset_creation(bool track_times = false) const {
+    Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "creating a property list"), H5Pclose);
+    check_status(H5Pset_obj_track_times(dcpl.get(), track_times ? 1 : 0), "setting time tracking");
+    return dcpl;
+  }
+
+  /// True if `name` (relative, possibly nested) exists below `loc`.
+  bool exists(hid_t loc, const std::vector<std::string> &parts) const {
+    std::string prefix;
+    for (const auto &p : parts) {
+      prefix += (prefix.empty() ? "" : "/") + p;
+      const htri_t e = H5Lexists(loc, prefix.c_str(), H5P_DEFAULT);
+      if (e < 0)
+        fail("checking whether '" + prefix + "' exists");
+      if (e == 0)
+        return false;
+    }
+    return true;
+  }
+
+  void write_string_attribute(hid_t obj, const char *name, const std::string &value) const {
+    Handle space(check(H5Screate(H5S_SCALAR), "creating a dataspace"), H5Sclose);
+    Handle attr(check(H5Acreate2(obj, name, string_type.get(), space.get(), H5P_DEFAULT,
+                                 H5P_DEFAULT),
+                      std::string("creating attribute '") + name + "'"),
+                H5Aclose);
+    const char *p = value.c_str();
+    check_status(H5Awrite(attr.get(), string_type.get(), &p),
+                 std::string("writing attribute '") + name + "'");
+  }
+
+  void write_int_array_attribute(hid_t obj, const char *name, const int *values,
+                                 hsize_t n) const {
+    Handle space(check(H5Screate_simple(1, &n, nullptr), "creating a dataspace"), H5Sclose);
+    Handle attr(check(H5Acreate2(obj, name, H5T_STD_I32LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                      std::string("creating attribute '") + name + "'"),
+                H5Aclose);
+    check_status(H5Awrite(attr.get(), H5T_NATIVE_INT, values),
+                 std::string("writing attribute '") + name + "'");
+  }
+
+  Handle create_group(hid_t loc, const std::string &name) const {
+    return Handle(check(H5Gcreate2(loc, name.c_str(), lcpl.get(), gcpl.get(), H5P_DEFAULT),
+                        "creating group '" + name + "'"),
+                  H5Gclose);
+  }
+
+  /// A scalar dataset `name` below `loc` of file type `file_type`, written from `mem_type`.
+  void write_scalar_dataset(hid_t loc, const std::string &name, hid_t file_type, hid_t mem_type,
+                            const void *value, const std::string &unit) const {
+    Handle space(check(H5Screate(H5S_SCALAR), "creating a dataspace"), H5Sclose);
+    Handle dcpl = dataset_creation();
+    Handle ds(check(H5Dcreate2(loc, name.c_str(), file_type, space.get(), lcpl.get(), dcpl.get(),
+                               H5P_DEFAULT),
+                    "creating dataset '" + name + "'"),
+              H5Dclose);
+    check_status(H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, value),
+                 "writing dataset '" + name + "'");
+    if (!unit.empty())
+      write_string_attribute(ds.get(), "unit", unit);
+  }
+
+  enum class ParamKind { Text, Float, Integer };
+  void write_parameter(const std::string &name, ParamKind kind, const void *value,
+                       const std::string &unit) const {
+    const auto parts = split_name("parameter", name);
+    if (exists(parameters.get(), parts))
+      throw RunFileError("run file '" + path + "': parameter '" + name +
+                         "' is already set (each parameter is written once)");
+    if (kind != ParamKind::Text && unit.empty())
+      throw RunFileError("run file '" + path + "': parameter '" + name +
+                         "' needs a unit (use \"1\" for a dimensionless number)");
+    switch (kind) {
+    case ParamKind::Text: {
+      const char *p = static_cast<const std::string *>(value)->c_str();
+      write_scalar_dataset(parameters.get(), name, string_type.get(), string_type.get(), &p, "");
+      break;
+    }
+    case ParamKind::Float:
+      write_scalar_dataset(parameters.get(), name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, value, unit);
+      break;
+    case ParamKind::Integer:
+      write_scalar_dataset(parameters.get(), name, H5T_STD_I64LE, H5T_NATIVE_INT64, value, unit);
+      break;
+    }
+    flush_file();
+  }
+
+  void flush_file() const {
+    check_status(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "flushing (H5Fflush)");
+  }
+};
+
+// ------------------------------------------------------------------------------------------------
+struct TimeSeries::Datasets {
+  Handle group, step, time, value;
+};
+
+TimeSeries::TimeSeries(RunFile &owner, std::string name, std::string unit, int components,
+                       std::unique_ptr<Datasets> datasets)
+    : owner_(&owner), name_(std::move(name)), unit_(std::move(unit)), components_(components),
+      datasets_(std::move(datasets)) {}
+
+TimeSeries::~TimeSeries() = default;
+
+void TimeSeries::append(std::int64_t step, double time_s, const double *values) {
+  owner_->require_open("append to an observable");
+  if (values == nullptr)
+    throw RunFileError("observable '" + name_ + "': append with a null values pointer");
+  if (has_last_step_ && step <= last_step_)
+    throw RunFileError("observable '" + name_ + "': step " + std::to_string(step) +
+                       " appended after step " + std::to_string(last_step_) +
+                       " (steps must increase)");
+  steps_.push_back(step);
+  times_.push_back(time_s);
+  values_.insert(values_.end(), values, values + components_);
+  last_step_ = step;
+  has_last_step_ = true;
+  owner_->after_append(*this);
+}
+
+void TimeSeries::append(std::int64_t step, double time_s, double value) {
+  if (components_ != 1)
+    throw RunFileError("observable '" + name_ + "' has " + std::to_string(components_) +
+                       " components: append a pointer to that many values, not one scalar");
+  append(step, time_s, &value);
+}
+
+void TimeSeries::write_buffered() {
+  const hsize_t n = steps_.size();
+  if (n == 0)
+    return;
+  const RunFile::Impl &f = *owner_->impl_;
+  const hsize_t old_rows = static_cast<hsize_t>(rows_written_);
+  const hsize_t comps = static_cast<hsize_t>(components_);
+  auto extend_and_write = [&](const Handle &ds, const char *what, int rank, hid_t mem_type,
+                              const void *data) {
+    const std::string where = "observable '" + name_ + "' " + what;
+    const hsize_t new_dims[2] = {old_rows + n, comps};
+    f.check_status(H5Dset_extent(ds.get(), new_dims), where + ": extending");
+    Handle fspace(f.check(H5Dget_space(ds.get()), where + ": dataspace"), H5Sclose);
+    const hsize_t start[2] = {old_rows, 0};
+    const hsize_t count[2] = {n, comps};
+    f.check_status(H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count,
+                                       nullptr),
+                   where + ": selecting rows");
+    Handle mspace(f.check(H5Screate_simple(rank, count, nullptr), where + ": memory space"),
+                  H5Sclose);
+    f.check_status(H5Dwrite(ds.get(), mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, data),
+                   where + ": writing rows");
+  };
+  extend_and_write(datasets_->step, "step", 1, H5T_NATIVE_INT64, steps_.data());
+  extend_and_write(datasets_->time, "time", 1, H5T_NATIVE_DOUBLE, times_.data());
+  extend_and_write(datasets_->value, "value", components_ == 1 ? 1 : 2, H5T_NATIVE_DOUBLE,
+                   values_.data());
+  rows_written_ += static_cast<std::int64_t>(n);
+  steps_.clear();
+  times_.clear();
+  values_.clear();
+}
+
+void TimeSeries::close_datasets() {
+  datasets_->value.reset();
+  datasets_->time.reset();
+  datasets_->step.reset();
+  datasets_->group.reset();
+}
+
+// ------------------------------------------------------------------------------------------------
+RunFile::RunFile(const std::string &path, const Creator &creator, const FlushPolicy &policy)
+    : path_(path), impl_(std::make_unique<Impl>()) {
+  set_flush_policy(policy);
+  QuietHdf5Errors quiet;
+  Impl &f = *impl_;
+  f.path = path;
+
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
+    throw RunFileError("cannot create run file '" + path + "': directory '" + dir.string() +
+                       "' does not exist (create it first or choose another --out path)");
+
+  // HDF5 file format 2 (library 1.8 objects), as H5MD recommends; not the 1.10 format, whose
+  // superblock marks a crashed writer's file as "still open" (unreadable without h5clear).
+  Handle fapl(f.check(H5Pcreate(H5P_FILE_ACCESS), "creating a property list"), H5Pclose);
+  f.check_status(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18),
+                 "setting the file format version");
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  if (file < 0)
+    throw RunFileError("cannot create run file '" + path + "': " + hdf5_error_text());
+  f.file = Handle(file, H5Fclose);
+
+  f.lcpl = Handle(f.check(H5Pcreate(H5P_LINK_CREATE), "creating a property list"), H5Pclose);
+  f.check_status(H5Pset_create_intermediate_group(f.lcpl.get(), 1), "link property list");
+  f.check_status(H5Pset_char_encoding(f.lcpl.get(), H5T_CSET_UTF8), "link property list");
+  f.gcpl = Handle(f.check(H5Pcreate(H5P_GROUP_CREATE), "creating a property list"), H5Pclose);
+  f.check_status(H5Pset_obj_track_times(f.gcpl.get(), 0), "group property list");
+  f.string_type = Handle(f.check(H5Tcopy(H5T_C_S1), "creating the string type"), H5Tclose);
+  f.check_status(H5Tset_size(f.string_type.get(), H5T_VARIABLE), "string type");
+  f.check_status(H5Tset_cset(f.string_type.get(), H5T_CSET_UTF8), "string type");
+
+  {
+    Handle h5md = f.create_group(file, "h5md");
+    f.write_int_array_attribute(h5md.get(), "version", kH5mdVersion, 2);
+    Handle creator_group = f.create_group(h5md.get(), "creator");
+    f.write_string_attribute(creator_group.get(), "name", creator.name);
+    f.write_string_attribute(creator_group.get(), "version", creator.version);
+    f.write_string_attribute(creator_group.get(), "git_revision", creator.git_revision);
+    std::string author = creator.author;
+    if (author.empty()) {
+      const char *user = std::getenv("USER");
+      author = (user != nullptr && *user != '\0') ? user : "unknown";
+    }
+    Handle author_group = f.create_group(h5md.get(), "author");
+    f.write_string_attribute(author_group.get(), "name", author);
+  }
+  f.parameters = f.create_group(file, "parameters");
+  f.observables = f.create_group(file, "observables");
+  f.terrain = f.create_group(file, "terrain");
+  f.flush_file();
+  last_flush_s_ = now_s();
+}
+
+RunFile::~RunFile() {
+  try {
+    close();
+  } catch (const std::exception &e) {
+    std::fprintf(stderr, "wheelsim::runfile: closing '%s' failed: %s\n", path_.c_str(), e.what());
+  }
+}
+
+bool RunFile::is_open() const { return impl_ && impl_->file.valid(); }
+
+void RunFile::require_open(const char *what) const {
+  if (!is_open())
+    throw RunFileError("run file '" + path_ + "': cannot " + what + ": the file is closed");
+}
+
+void RunFile::set_flush_policy(const FlushPolicy &policy) {
+  if (policy.flush_every < 0 || !(policy.flush_interval_s >= 0.0))
+    throw RunFileError("run file '" + path_ + "': flush_every must be >= 0 rows and " +
+                       "flush_interval >= 0 s (0 disables), got " +
+                       std::to_string(policy.flush_every) + " rows and " +
+                       std::to_string(policy.flush_interval_s) + " s");
+  policy_ = policy;
+}
+
+// --- parameters ----------------------------------------------------------------------------------
+void RunFile::set_parameter_text(const std::string &name, const std::string &text) {
+  require_open("set a parameter");
+  QuietHdf5Errors quiet;
+  impl_->write_parameter(name, Impl::ParamKind::Text, &text, "");
+}
+
+void RunFile::set_parameter(const std::string &name, const std::string &value) {
+  set_parameter_text(name, value);
+}
+
+void RunFile::set_parameter(const std::string &name, const char *value) {
+  if (value == nullptr)
+    throw RunFileError("run file '" + path_ + "': parameter '" + name + "' is a null string");
+  set_parameter_text(name, std::string(value));
+}
+
+void RunFile::set_parameter(const std::string &name, double value, const std::string &unit) {
+  require_open("set a parameter");
+  QuietHdf5Errors quiet;
+  impl_->write_parameter(name, Impl::ParamKind::Float, &value, unit);
+}
+
+void RunFile::set_parameter(const std::string &name, std::int64_t value,
+                            const std::string &unit) {
+  require_open("set a parameter");
+  QuietHdf5Errors quiet;
+  impl_->write_parameter(name, Impl::ParamKind::Integer, &value, unit);
+}
+
+void RunFile::set_parameter(const std::string &name, int value, const std::string &unit) {
+  set_parameter(name, static_cast<std::int64_t>(value), unit);
+}
+
+// --- observables ---------------------------------------------------------------------------------
+TimeSeries &RunFile::observable(const std::string &name, const std::string &unit,
+                                int components) {
+  require_open("declare an observable");
+  auto found = series_.find(name);
+  if (found != series_.end()) {
+    const TimeSeries &s = *found->second;
+    if (s.unit() != unit || s.components() != components)
+      throw RunFileError("run file '" + path_ + "': observable '" + name + "' exists with unit '" +
+                         s.unit() + "' and " + std::to_string(s.components()) +
+                         " components; asked again with unit '" + unit + "' and " +
+                         std::to_string(components));
+    return *found->second;
+  }
+  const auto parts = split_name("observable", name);
+  if (unit.empty())
+    throw RunFileError("run file '" + path_ + "': observable '" + name +
+                       "' needs a unit (use \"1\" for a dimensionless quantity)");
+  if (components < 1)
+    throw RunFileError("run file '" + path_ + "': observable '" + name +
+                       "' needs components >= 1 (1 scalar, 3 vector, 4 quaternion), got " +
+                       std::to_string(components));
+
+  QuietHdf5Errors quiet;
+  Impl &f = *impl_;
+  if (f.exists(f.observables.get(), parts))
+    throw RunFileError("run file '" + path_ + "': observable '" + name +
+                       "' collides with an existing group (e.g. 'wheel' vs 'wheel/position')");
+  auto ds = std::make_unique<TimeSeries::Datasets>();
+  ds->group = f.create_group(f.observables.get(), name);
+
+  auto make = [&](const char *what, int rank, hid_t file_type) {
+    const hsize_t dims[2] = {0, static_cast<hsize_t>(components)};
+    const hsize_t maxdims[2] = {H5S_UNLIMITED, static_cast<hsize_t>(components)};
+    const hsize_t chunk[2] = {kChunkRows, static_cast<hsize_t>(components)};
+    Handle space(f.check(H5Screate_simple(rank, dims, maxdims), "creating a dataspace"),
+                 H5Sclose);
+    Handle dcpl = f.dataset_creation();
+    f.check_status(H5Pset_chunk(dcpl.get(), rank, chunk), "setting the chunk size");
+    return Handle(f.check(H5Dcreate2(ds->group.get(), what, file_type, space.get(), H5P_DEFAULT,
+                                     dcpl.get(), H5P_DEFAULT),
+                          "creating dataset '" + name + "/" + what + "'"),
+                  H5Dclose);
+  };
+  ds->step = make("step", 1, H5T_STD_I64LE);
+  ds->time = make("time", 1, H5T_IEEE_F64LE);
+  f.write_string_attribute(ds->time.get(), "unit", "s");
+  ds->value = make("value", components == 1 ? 1 : 2, H5T_IEEE_F64LE);
+  f.write_string_attribute(ds->value.get(), "unit", unit);
+  f.flush_file();
+
+  std::unique_ptr<TimeSeries> series(new TimeSeries(*this, name, unit, components, std::move(ds)));
+  TimeSeries &ref = *series;
+  series_.emplace(name, std::move(series));
+  return ref;
+}
+
+void RunFile::after_append(const TimeSeries &series) {
+  if (policy_.flush_every > 0 && series.buffered_rows() >= policy_.flush_every) {
+    flush();
+    return;
+  }
+  if (policy_.flush_interval_s > 0.0 && now_s() - last_flush_s_ >= policy_.flush_interval_s)
+    flush();
+}
+
+// --- terrain -------------------------------------------------------------------------------------
+void RunFile::write_snapshot(const std::string &group_name, std::int64_t step, double time_s,
+                             const Grid2D &grid, const std::string &unit,
+                             const std::vector<SnapshotScalar> &scalars) {
+  require_open("write a terrain snapshot");
+  const auto parts = split_name("terrain snapshot", group_name);
+  const std::string where = "run file '" + path_ + "': terrain snapshot '" + group_name + "'";
+  if (grid.values == nullptr || grid.rows == 0 || grid.cols == 0)
+    throw RunFileError(where + ": the grid must have rows > 0, cols > 0 and values, got " +
+                       std::to_string(grid.rows) + " x " + std::to_string(grid.cols));
+  if (unit.empty())
+    throw RunFileError(where + ": needs a unit (use \"1\" for dimensionless)");
+  for (const auto &s : scalars) {
+    split_name("terrain snapshot scalar", s.name);
+    if (s.name == "step" || s.name == "time" || s.name == "value")
+      throw RunFileError(where + ": scalar name '" + s.name + "' is reserved");
+    if (s.unit.empty())
+      throw RunFileError(where + ": scalar '" + s.name + "' needs a unit (\"1\" if none)");
+  }
+  QuietHdf5Errors quiet;
+  Impl &f = *impl_;
+  if (f.exists(f.terrain.get(), parts))
+    throw RunFileError(where + " already exists (each snapshot name is written once)");
+  Handle group = f.create_group(f.terrain.get(), group_name);
+  f.write_scalar_dataset(group.get(), "step", H5T_STD_I64LE, H5T_NATIVE_INT64, &step, "");
+  f.write_scalar_dataset(group.get(), "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &time_s, "s");
+  {
+    const hsize_t dims[2] = {grid.rows, grid.cols};
+    Handle space(f.check(H5Screate_simple(2, dims, nullptr), "creating a dataspace"), H5Sclose);
+    Handle dcpl = f.dataset_creation();
+    Handle ds(f.check(H5Dcreate2(group.get(), "value", H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                                 dcpl.get(), H5P_DEFAULT),
+                      where + ": creating 'value'"),
+              H5Dclose);
+    f.check_status(H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                            grid.values),
+                   where + ": writing 'value'");
+    f.write_string_attribute(ds.get(), "unit", unit);
+  }
+  for (const auto &s : scalars)
+    f.write_scalar_dataset(group.get(), s.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &s.value,
+                           s.unit);
+  f.flush_file();
+}
+
+// --- flush / close -------------------------------------------------------------------------------
+void RunFile::flush() {
+  require_open("flush");
+  QuietHdf5Errors quiet;
+  for (auto &entry : series_)
+    entry.second->write_buffered();
+  impl_->flush_file();
+  ++flush_count_;
+  last_flush_s_ = now_s();
+}
+
+void RunFile::close() {
+  if (!is_open())
+    return;
+  std::string first_error;
+  try {
+    flush();
+  } catch (const RunFileError &e) {
+    first_error = e.what();
+  }
+  QuietHdf5Errors quiet;
+  for (auto &entry : series_)
+    entry.second->close_datasets();
+  Impl &f = *impl_;
+  f.terrain.reset();
+  f.observables.reset();
+  f.parameters.reset();
+  f.string_type.reset();
+  f.gcpl.reset();
+  f.lcpl.reset();
+  if (!f.file.reset() && first_error.empty())
+    first_error = "run file '" + path_ + "': closing (H5Fclose): " + hdf5_error_text();
+  if (!first_error.empty())
+    throw RunFileError(first_error);
+}
+
+} // namespace wheelsim::runfile
