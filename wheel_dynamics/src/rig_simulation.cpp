@@ -1,0 +1,310 @@
+#include "wheelsim/rig/rig_simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "wheelsim/geometry/mass_properties.h"
+#include "wheelsim/geometry/mesh_error.h"
+#include "wheelsim/geometry/mesh_io.h"
+
+namespace wheelsim::rig {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+/// Below these, slip and efficiency are undefined (reported as NaN).
+constexpr double kMinRollingSpeed_m_s = 1e-9;
+constexpr double kMinPower_W = 1e-9;
+/// Largest distance of a mesh's centroid from the axle the balanced-wheel model accepts [m].
+constexpr double kMaxCentroidOffset_m = 1e-3;
+/// Release: the lowering speed rises linearly from 0 to run.release_speed over this time [s], so
+/// the holder's force changes by only (wheel + spindle mass) * release_speed / this (e.g. 30 N
+/// for 305 kg at 0.01 m/s) and the suspended mass is barely excited.
+constexpr double kReleaseAccelerationTime_s = 0.1;
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+} // namespace
+
+const char *to_string(Phase p) {
+  switch (p) {
+  case Phase::release: return "release";
+  case Phase::settle: return "settle";
+  case Phase::ramp: return "ramp";
+  case Phase::test: return "test";
+  case Phase::finished: return "finished";
+  }
+  return "?";
+}
+
+WheelProperties resolve_wheel_properties(const WheelConfig &w) {
+  WheelProperties p;
+  p.source = "config";
+  if (!w.mesh.empty()) {
+    geometry::TriangleMesh mesh;
+    try {
+      geometry::LoadOptions opt;
+      opt.scale = w.mesh_scale;
+      mesh = geometry::load_mesh(w.mesh, opt);
+    } catch (const geometry::MeshError &e) {
+      throw RigConfigError(std::string("wheel.mesh: ") + e.what());
+    }
+    for (const auto &v : mesh.vertices_m)
+      p.rim_radius_m = std::max(p.rim_radius_m, std::hypot(v.x(), v.z()));
+    p.source = "mesh " + w.mesh;
+    if (w.density_kg_m3) {
+      geometry::MassProperties mp;
+      try {
+        mp = geometry::mass_properties(mesh, *w.density_kg_m3);
+      } catch (const geometry::MeshError &e) {
+        throw RigConfigError(std::string("wheel.mesh: ") + e.what());
+      }
+      const double off = std::hypot(mp.centroid_m.x(), mp.centroid_m.z());
+      if (off > kMaxCentroidOffset_m)
+        throw RigConfigError("wheel.mesh: " + w.mesh + ": the centroid is " + fmt(off * 1e3) +
+                             " mm off the axle (the rig model needs a balanced wheel, <= 1 mm); "
+                             "centre the mesh on the axle or give wheel.mass and wheel.inertia");
+      p.mass_kg = mp.mass_kg;
+      p.axle_inertia_kg_m2 = geometry::inertia_about_point(mp, Eigen::Vector3d::Zero())(1, 1);
+      p.source += " (density " + fmt(*w.density_kg_m3) + " kg/m^3)";
+    }
+  }
+  if (!w.density_kg_m3) {
+    p.mass_kg = w.mass_kg.value();
+    p.axle_inertia_kg_m2 = w.inertia_kg_m2.value();
+  }
+  p.effective_radius_m = w.effective_radius_m.value_or(p.rim_radius_m);
+  if (w.mesh.empty())
+    p.rim_radius_m = p.effective_radius_m;
+  if (!(p.effective_radius_m > 0))
+    throw RigConfigError("wheel.effective_radius: the wheel radius must be > 0 m, got " +
+                         fmt(p.effective_radius_m));
+  return p;
+}
+
+RigParameters rig_parameters(const RigConfig &c, const WheelProperties &w) {
+  RigParameters p;
+  p.wheel_mass_kg = w.mass_kg;
+  p.wheel_axle_inertia_kg_m2 = w.axle_inertia_kg_m2;
+  p.spindle_mass_kg = c.rig.spindle_mass_kg;
+  p.carriage_mass_kg = c.rig.carriage_mass_kg;
+  p.spring_k_N_m = c.rig.spring_k_N_m;
+  p.spring_c_N_s_m = c.rig.spring_c_N_s_m;
+  p.gravity_m_s2 = c.rig.gravity_m_s2;
+  if (c.rig.suspended_mass_kg) {
+    p.suspended_mass_kg = *c.rig.suspended_mass_kg;
+  } else {
+    const double W = c.rig.vertical_load_N.value();
+    const double own = (w.mass_kg + c.rig.spindle_mass_kg) * c.rig.gravity_m_s2;
+    if (!(W > own))
+      throw RigConfigError("rig.vertical_load must be > the weight of wheel and spindle (" +
+                           fmt(own) + " N), got " + fmt(W) +
+                           " N; raise it or give rig.suspended_mass instead");
+    p.suspended_mass_kg = (W - own) / c.rig.gravity_m_s2;
+  }
+  return p;
+}
+
+FlatGround make_flat_ground(const RigConfig &c, const WheelProperties &w) {
+  if (c.terrain.type != TerrainType::flat)
+    throw RigConfigError(std::string("make_flat_ground: terrain.type is \"") +
+                         to_string(c.terrain.type) + "\", not \"flat\"");
+  FlatGroundParameters p = c.terrain.flat;
+  p.surface_height_m = c.terrain.surface_height_m;
+  p.radius_m = w.effective_radius_m;
+  return FlatGround(p);
+}
+
+namespace {
+Rig initial_rig(const RigConfig &c, const WheelProperties &w) {
+  const RigParameters p = rig_parameters(c, w);
+  RigCoordinates q;
+  q.z_m = c.terrain.surface_height_m + w.rim_radius_m + c.run.release_gap_m;
+  // Suspended mass at its static equilibrium on the held spindle: e = -m_m g / k.
+  q.mass_z_m = q.z_m - p.suspended_mass_kg * p.gravity_m_s2 / p.spring_k_N_m;
+  return Rig(p, q, RigVelocities{});
+}
+} // namespace
+
+RigSimulation::RigSimulation(const RigConfig &config)
+    : RigSimulation(config, resolve_wheel_properties(config.wheel)) {}
+
+RigSimulation::RigSimulation(const RigConfig &config, const WheelProperties &wheel)
+    : config_(config), wheel_(wheel), rig_(initial_rig(config, wheel)), static_sinkage_m_(kNaN),
+      test_start_s_(kNaN) {
+  enter(Phase::release);
+}
+
+void RigSimulation::enter(Phase p) {
+  phase_ = p;
+  phase_start_s_ = rig_.time_s();
+  settle_quiet_since_s_ = -1.0;
+  if (p == Phase::ramp && config_.motor.ramp_time_s <= 0.0)
+    phase_ = Phase::test;
+  if (phase_ == Phase::test)
+    test_start_s_ = rig_.time_s();
+}
+
+void RigSimulation::configure_drives(double t_next) {
+  const double t = rig_.time_s();
+  const MotorConfig &m = config_.motor;
+  const CarriageConfig &c = config_.carriage;
+  RigDrives d;
+  load_command_N_ = 0.0;
+  if (phase_ == Phase::release || phase_ == Phase::settle) {
+    d.spindle = phase_ == Phase::release ? Drive::imposed_velocity : Drive::free;
+    d.spindle_velocity_m_s =
+        -config_.run.release_speed_m_s *
+        std::min(1.0, (t_next - phase_start_s_) / kReleaseAccelerationTime_s);
+    d.wheel = Drive::imposed_velocity; // the motor holds the wheel
+    d.wheel_value = 0.0;
+    d.carriage = Drive::imposed_velocity; // the carriage is at rest
+    d.carriage_value = 0.0;
+    rig_.set_drives(d);
+    return;
+  }
+  // Ramp fraction at t (forces) and at t_next (imposed velocities).
+  auto fraction = [&](double time) {
+    if (phase_ == Phase::test)
+      return 1.0;
+    return std::clamp((time - phase_start_s_) / m.ramp_time_s, 0.0, 1.0);
+  };
+  const double f_now = fraction(t), f_next = fraction(t_next);
+  if (m.mode == MotorMode::omega) {
+    d.wheel = Drive::imposed_velocity;
+    d.wheel_value = f_next * m.omega_rad_s;
+  } else {
+    d.wheel = Drive::free;
+    d.wheel_value = f_now * m.torque_Nm;
+  }
+  switch (c.mode) {
+  case CarriageMode::imposed_slip:
+    d.carriage = Drive::follow_wheel;
+    d.carriage_value = (1.0 - c.slip) * wheel_.effective_radius_m;
+    break;
+  case CarriageMode::imposed_speed:
+    d.carriage = Drive::imposed_velocity;
+    d.carriage_value = f_next * c.speed_m_s;
+    break;
+  case CarriageMode::constant_load:
+    load_command_N_ = f_now * c.load_N;
+    break;
+  case CarriageMode::ramped_load:
+    if (phase_ == Phase::test)
+      load_command_N_ = c.load_start_N + (c.load_end_N - c.load_start_N) *
+                                             std::clamp((t - test_start_s_) / c.ramp_time_s, 0.0, 1.0);
+    else
+      load_command_N_ = f_now * c.load_start_N;
+    break;
+  }
+  if (c.mode == CarriageMode::constant_load || c.mode == CarriageMode::ramped_load) {
+    d.carriage = Drive::free;
+    d.carriage_value = -load_command_N_; // the load pulls the rig backwards
+  }
+  rig_.set_drives(d);
+}
+
+const RigOutputs &RigSimulation::advance(const ContactWrench &w) {
+  if (phase_ == Phase::finished)
+    throw std::logic_error("RigSimulation::advance: the run is finished (test phase of " +
+                           fmt(config_.run.duration_s) + " s done)");
+  const double dt = config_.run.dt_s;
+  const double R = wheel_.effective_radius_m;
+  RigOutputs o;
+  o.step = rig_.step_count();
+  o.time_s = rig_.time_s();
+  o.phase = phase_;
+  o.wheel = rig_.wheel_state();
+  o.contact = w;
+  const RigCoordinates q = rig_.coordinates();
+  const RigVelocities u = rig_.velocities();
+  o.carriage_x_m = q.x_m;
+  o.forward_velocity_m_s = u.x_m_s;
+  o.omega_rad_s = u.omega_rad_s;
+  o.theta_rad = q.theta_rad;
+  o.wheel_centre_z_m = q.z_m;
+  o.vertical_velocity_m_s = u.z_m_s;
+  o.suspended_mass_z_m = q.mass_z_m;
+  o.spring_force_N = rig_.spring_force_on_mass_N();
+  o.slip_velocity_m_s = u.omega_rad_s * R - u.x_m_s;
+  o.slip = std::abs(u.omega_rad_s * R) > kMinRollingSpeed_m_s
+               ? 1.0 - u.x_m_s / (u.omega_rad_s * R)
+               : kNaN;
+  o.sinkage_m = config_.terrain.surface_height_m - (q.z_m - wheel_.rim_radius_m);
+  o.vertical_load_N = rig_.vertical_load_N();
+
+  configure_drives(o.time_s + dt);
+  rig_.step(w, dt);
+
+  const RigReactions &r = rig_.reactions();
+  o.drawbar_pull_N = -r.carriage_force_N;
+  o.drawbar_load_command_N = load_command_N_;
+  o.driving_torque_Nm = r.motor_torque_Nm;
+  o.traction_force_N = r.motor_torque_Nm / R;
+  const double input_power = r.motor_torque_Nm * u.omega_rad_s;
+  o.tractive_efficiency =
+      std::abs(input_power) > kMinPower_W ? o.drawbar_pull_N * u.x_m_s / input_power : kNaN;
+  o.spindle_support_force_N = r.spindle_support_force_N;
+  o.lateral_force_N = r.held_force_y_N;
+  o.roll_torque_Nm = r.held_torque_x_Nm;
+  o.yaw_torque_Nm = r.held_torque_z_Nm;
+  out_ = o;
+
+  // Phase transitions, decided on the new state n+1.
+  const double t = rig_.time_s();
+  const double in_phase = t - phase_start_s_;
+  switch (phase_) {
+  case Phase::release:
+    if (r.spindle_support_force_N <= 0.0) {
+      enter(Phase::settle);
+    } else if (in_phase >= config_.run.release_timeout_s) {
+      throw std::runtime_error(
+          "release: the terrain did not carry the load within run.release_timeout = " +
+          fmt(config_.run.release_timeout_s) + " s (wheel lowered by " +
+          fmt(in_phase * config_.run.release_speed_m_s) + " m, contact force z = " +
+          fmt(w.force_N.z()) + " N of " + fmt(rig_.vertical_load_N()) +
+          " N); check terrain.surface_height and the terrain, or raise run.release_timeout");
+    }
+    break;
+  case Phase::settle: {
+    const bool quiet = std::abs(rig_.velocities().z_m_s) < config_.run.settle_velocity_m_s;
+    if (!quiet)
+      settle_quiet_since_s_ = -1.0;
+    else if (settle_quiet_since_s_ < 0.0)
+      settle_quiet_since_s_ = t;
+    const bool settled = quiet && t - settle_quiet_since_s_ >= config_.run.settle_window_s &&
+                         in_phase >= config_.run.settle_min_time_s;
+    const bool timed_out = in_phase >= config_.run.settle_max_time_s;
+    if (settled || timed_out) {
+      if (!settled)
+        warnings_.push_back("settle: |v_z| = " + fmt(std::abs(rig_.velocities().z_m_s)) +
+                            " m/s not below run.settle_velocity = " +
+                            fmt(config_.run.settle_velocity_m_s) + " m/s after run.settle_max_time = " +
+                            fmt(config_.run.settle_max_time_s) + " s; continuing with the ramp");
+      static_sinkage_m_ =
+          config_.terrain.surface_height_m - (rig_.coordinates().z_m - wheel_.rim_radius_m);
+      enter(Phase::ramp);
+    }
+    break;
+  }
+  case Phase::ramp:
+    if (in_phase >= config_.motor.ramp_time_s - 0.5 * dt)
+      enter(Phase::test);
+    break;
+  case Phase::test:
+    if (t - test_start_s_ >= config_.run.duration_s - 0.5 * dt)
+      phase_ = Phase::finished;
+    break;
+  case Phase::finished:
+    break;
+  }
+  return out_;
+}
+
+} // namespace wheelsim::rig
