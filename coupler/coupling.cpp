@@ -10,8 +10,8 @@ namespace {
 /// Sends a Close; swallows every failure (the peer may be gone, which is why we close).
 void send_close_quietly(Transport& transport, CloseReason reason, const std::string& text) noexcept {
   try {
-    transport.send(encode(Close::make(reason, text)));
-  } catch (...) {
+    transport.send_nowait(encode(Close::make(reason, text)));
+  } catch (...) { // encode: only std::bad_alloc is possible
   }
 }
 

@@ -28,6 +28,16 @@ public:
                                             const std::string& awaiting) = 0;
   /// Who is at the other end, for messages: "the rig (ipc:///tmp/run/rig.sock)".
   virtual std::string peer_name() const = 0;
+  /// Queue a message without blocking at all; false if it could not be queued (no peer). Used for
+  /// the best-effort Close on failures, so that telling a dead peer costs no time.
+  virtual bool send_nowait(const std::vector<std::uint8_t>& message) noexcept {
+    try {
+      send(message);
+      return true;
+    } catch (...) {
+      return false;
+    }
+  }
 };
 
 /// "30 s", "0.25 s".
@@ -84,6 +94,7 @@ public:
   std::vector<std::uint8_t> receive(std::chrono::milliseconds timeout,
                                     const std::string& awaiting) override;
   std::string peer_name() const override;
+  bool send_nowait(const std::vector<std::uint8_t>& message) noexcept override;
   /// The endpoint as bound or connected (a "*" port resolved to the actual port).
   const std::string& endpoint() const;
 

@@ -208,6 +208,14 @@ void ZmqTransport::send(const Bytes& message) {
   }
 }
 
+bool ZmqTransport::send_nowait(const Bytes& message) noexcept {
+  try {
+    return static_cast<bool>(impl_->socket.send(zmq::buffer(message), zmq::send_flags::dontwait));
+  } catch (...) {
+    return false;
+  }
+}
+
 Bytes ZmqTransport::receive(std::chrono::milliseconds timeout, const std::string& awaiting) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   // The full timeout on the first try keeps the socket option unchanged between calls (no
