@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <utility>
 
 namespace wheelsim::runfile {
@@ -253,16 +254,21 @@ void TimeSeries::append(std::int64_t step, double time_s, const double *values) 
   owner_->require_open("append to an observable");
   if (values == nullptr)
     throw RunFileError("observable '" + name_ + "': append with a null values pointer");
+  if (step < 0)
+    throw RunFileError("observable '" + name_ + "': step " + std::to_string(step) +
+                       " is negative (steps are >= 0; -1 marks rows a crash left unwritten)");
   if (has_last_step_ && step <= last_step_)
     throw RunFileError("observable '" + name_ + "': step " + std::to_string(step) +
                        " appended after step " + std::to_string(last_step_) +
                        " (steps must increase)");
+  // A flush that has become due is done before this row is buffered: when the rig appends every
+  // observable of step n before any of step n+1, each flush then ends at a step boundary.
+  owner_->before_append(*this);
   steps_.push_back(step);
   times_.push_back(time_s);
   values_.insert(values_.end(), values, values + components_);
   last_step_ = step;
   has_last_step_ = true;
-  owner_->after_append(*this);
 }
 
 void TimeSeries::append(std::int64_t step, double time_s, double value) {
@@ -456,7 +462,12 @@ TimeSeries &RunFile::observable(const std::string &name, const std::string &unit
   auto ds = std::make_unique<TimeSeries::Datasets>();
   ds->group = f.create_group(f.observables.get(), name);
 
-  auto make = [&](const char *what, int rank, hid_t file_type) {
+  // Fill values mark rows whose extent reached the disk but whose data did not (a kill inside a
+  // flush): step -1, time and value NaN. See docs/hdf5-layout.md, "Crash guarantees".
+  const std::int64_t step_fill = kUnwrittenStep;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto make = [&](const char *what, int rank, hid_t file_type, hid_t fill_type,
+                  const void *fill) {
     const hsize_t dims[2] = {0, static_cast<hsize_t>(components)};
     const hsize_t maxdims[2] = {H5S_UNLIMITED, static_cast<hsize_t>(components)};
     const hsize_t chunk[2] = {kChunkRows, static_cast<hsize_t>(components)};
@@ -464,15 +475,16 @@ TimeSeries &RunFile::observable(const std::string &name, const std::string &unit
                  H5Sclose);
     Handle dcpl = f.dataset_creation();
     f.check_status(H5Pset_chunk(dcpl.get(), rank, chunk), "setting the chunk size");
+    f.check_status(H5Pset_fill_value(dcpl.get(), fill_type, fill), "setting the fill value");
     return Handle(f.check(H5Dcreate2(ds->group.get(), what, file_type, space.get(), H5P_DEFAULT,
                                      dcpl.get(), H5P_DEFAULT),
                           "creating dataset '" + name + "/" + what + "'"),
                   H5Dclose);
   };
-  ds->step = make("step", 1, H5T_STD_I64LE);
-  ds->time = make("time", 1, H5T_IEEE_F64LE);
+  ds->step = make("step", 1, H5T_STD_I64LE, H5T_NATIVE_INT64, &step_fill);
+  ds->time = make("time", 1, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &nan);
   f.write_string_attribute(ds->time.get(), "unit", "s");
-  ds->value = make("value", components == 1 ? 1 : 2, H5T_IEEE_F64LE);
+  ds->value = make("value", components == 1 ? 1 : 2, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &nan);
   f.write_string_attribute(ds->value.get(), "unit", unit);
   f.flush_file();
 
@@ -482,7 +494,7 @@ TimeSeries &RunFile::observable(const std::string &name, const std::string &unit
   return ref;
 }
 
-void RunFile::after_append(const TimeSeries &series) {
+void RunFile::before_append(const TimeSeries &series) {
   if (policy_.flush_every > 0 && series.buffered_rows() >= policy_.flush_every) {
     flush();
     return;

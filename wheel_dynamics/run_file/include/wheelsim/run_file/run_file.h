@@ -9,9 +9,11 @@
 // Crash safety: the HDF5 library is only called inside the public methods, and every method that
 // changes the file ends with H5Fflush. Between calls the file on disk is therefore complete and
 // consistent; rows appended since the last flush live only in memory. A process killed with
-// SIGKILL leaves a file that reads back with every row up to the last flush() (manual or
-// automatic) and nothing after it (tests/run_file proves this). A kill *during* a flush is the
-// one window where the file can be inconsistent; see docs/hdf5-layout.md for what was measured.
+// SIGKILL between flushes leaves a file that reads back with every row up to the last flush()
+// (manual or automatic) and nothing after it. A kill *during* a flush leaves a file that opens,
+// with every row of the previous flush intact and part of the interrupted flush's rows; rows
+// whose extent but not data reached the disk read as step kUnwrittenStep (-1), time and value
+// NaN. tests/run_file proves both; docs/hdf5-layout.md has the measurements.
 //
 // No HDF5 header is included here: the handles live in the .cpp.
 #pragma once
@@ -43,11 +45,15 @@ struct Creator {
 
 /// When RunFile flushes by itself (checked at every append). 0 disables a criterion.
 struct FlushPolicy {
-  std::int64_t flush_every = 1000; ///< rows buffered in any one series
+  std::int64_t flush_every = 1000; ///< rows buffered in any one series (memory bound per series)
   double flush_interval_s = 10.0;  ///< wall-clock seconds since the last flush [s]
 };
 
 class RunFile;
+
+/// The `step` fill value: a row with this step was never written (a kill inside a flush left the
+/// dataset's extent on disk but not the row's data); its time and value read as NaN.
+constexpr std::int64_t kUnwrittenStep = -1;
 
 /// One time series /observables/<name>/{step,time,value}. Obtained from RunFile::observable();
 /// owned by the RunFile (the reference stays valid until the RunFile is destroyed).
@@ -58,8 +64,11 @@ public:
   TimeSeries &operator=(const TimeSeries &) = delete;
 
   /// Buffers one row: `values` points to components() doubles in the series' unit. `step` must
-  /// be greater than the previous step of this series. May trigger an automatic flush of the
-  /// whole file (FlushPolicy); throws RunFileError if that flush fails or the file is closed.
+  /// be >= 0 and greater than the previous step of this series. If an automatic flush of the whole file
+  /// is due (FlushPolicy: this series holds flush_every rows, or flush_interval has passed), it
+  /// is done first, before the row is buffered — so when every observable of step n is appended
+  /// before any of step n+1, flushes end at step boundaries. Throws RunFileError if that flush
+  /// fails or the file is closed.
   void append(std::int64_t step, double time_s, const double *values);
   /// Convenience for scalar series (components() == 1).
   void append(std::int64_t step, double time_s, double value);
@@ -160,7 +169,7 @@ public:
 private:
   friend class TimeSeries;
   struct Impl; // HDF5 handles, defined in the .cpp
-  void after_append(const TimeSeries &series);
+  void before_append(const TimeSeries &series);
   void require_open(const char *what) const;
 
   std::string path_;
