@@ -17,7 +17,8 @@
 namespace wheelsim::rig {
 namespace {
 
-using Tables = std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::string>>>>;
+using Tables =
+    std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::string>>>>;
 
 /// A valid config as tables of (key, TOML literal).
 Tables base() {
@@ -98,21 +99,27 @@ struct RangeCase {
 
 TEST(RigConfig, EveryKeyRangeCheckNamesKeyRangeUnitAndValue) {
   const std::vector<std::pair<std::string, std::string>> none;
-  const std::vector<std::pair<std::string, std::string>> density = {
-      {"wheel.mass", ""}, {"wheel.inertia", ""}, {"wheel.mesh", "\"w.obj\""},
-      {"wheel.density", "1000"}};
+  const std::vector<std::pair<std::string, std::string>> density = {{"wheel.mass", ""},
+                                                                    {"wheel.inertia", ""},
+                                                                    {"wheel.mesh", "\"w.obj\""},
+                                                                    {"wheel.density", "1000"}};
   const std::vector<std::pair<std::string, std::string>> load = {{"rig.suspended_mass", ""}};
   const std::vector<std::pair<std::string, std::string>> torque = {{"motor.omega", ""}};
   const std::vector<std::pair<std::string, std::string>> ramped = {
-      {"carriage.mode", "\"ramped_load\""}, {"carriage.slip", ""},
-      {"carriage.load_start", "0"}, {"carriage.load_end", "100"}, {"carriage.ramp_time", "2"}};
+      {"carriage.mode", "\"ramped_load\""},
+      {"carriage.slip", ""},
+      {"carriage.load_start", "0"},
+      {"carriage.load_end", "100"},
+      {"carriage.ramp_time", "2"}};
   const std::vector<std::pair<std::string, std::string>> regularized = {
       {"terrain.friction_model", "\"regularized\""}};
   const std::vector<std::pair<std::string, std::string>> dem = {
       {"terrain.type", "\"dem\""}, {"terrain.endpoint", "\"ipc:///tmp/x\""}};
-  const std::vector<std::pair<std::string, std::string>> scm = {
-      {"terrain.type", "\"scm\""}, {"terrain.soil", "\"soil.toml\""},
-      {"terrain.grid_spacing", "0.01"}, {"terrain.grid_length", "3"}, {"terrain.grid_width", "1"}};
+  const std::vector<std::pair<std::string, std::string>> scm = {{"terrain.type", "\"scm\""},
+                                                                {"terrain.soil", "\"soil.toml\""},
+                                                                {"terrain.grid_spacing", "0.01"},
+                                                                {"terrain.grid_length", "3"},
+                                                                {"terrain.grid_width", "1"}};
   const std::vector<RangeCase> cases = {
       {density, "wheel.mesh", "\"\"", "wheel.mesh must be a file name (OBJ, STL or PLY), got \"\""},
       {none, "wheel.mass", "-1", "wheel.mass must be > 0 kg, got -1"},
@@ -131,13 +138,19 @@ TEST(RigConfig, EveryKeyRangeCheckNamesKeyRangeUnitAndValue) {
       {torque, "motor.torque", "0", "motor.torque must be != 0 N m, got 0"},
       {none, "motor.ramp_time", "-1", "motor.ramp_time must be >= 0 s, got -1"},
       {none, "carriage.mode", "\"imposed_skid\"",
-       "carriage.mode must be one of \"imposed_slip\", \"imposed_speed\", \"constant_load\", \"ramped_load\", got \"imposed_skid\"; did you mean \"imposed_slip\"?"},
+       "carriage.mode must be one of \"imposed_slip\", \"imposed_speed\", \"constant_load\", "
+       "\"ramped_load\", got \"imposed_skid\"; did you mean \"imposed_slip\"?"},
       {none, "carriage.slip", "1.5", "carriage.slip must be in [-1, 1], got 1.5"},
-      {{{"carriage.mode", "\"imposed_speed\""}, {"carriage.slip", ""}}, "carriage.speed",
-       "\"fast\"", "carriage.speed must be a number in m/s, got a string"},
-      {{{"carriage.mode", "\"constant_load\""}, {"carriage.slip", ""}}, "carriage.load", "inf",
+      {{{"carriage.mode", "\"imposed_speed\""}, {"carriage.slip", ""}},
+       "carriage.speed",
+       "\"fast\"",
+       "carriage.speed must be a number in m/s, got a string"},
+      {{{"carriage.mode", "\"constant_load\""}, {"carriage.slip", ""}},
+       "carriage.load",
+       "inf",
        "carriage.load must be a finite number in N, got inf"},
-      {ramped, "carriage.load_start", "true", "carriage.load_start must be a number in N, got a boolean"},
+      {ramped, "carriage.load_start", "true",
+       "carriage.load_start must be a number in N, got a boolean"},
       {ramped, "carriage.load_end", "[1]", "carriage.load_end must be a number in N, got an array"},
       {ramped, "carriage.ramp_time", "0", "carriage.ramp_time must be > 0 s, got 0"},
       {none, "run.dt", "0", "run.dt must be > 0 s, got 0"},
@@ -149,16 +162,23 @@ TEST(RigConfig, EveryKeyRangeCheckNamesKeyRangeUnitAndValue) {
       {none, "run.settle_window", "-1", "run.settle_window must be >= 0 s, got -1"},
       {none, "run.settle_min_time", "-1", "run.settle_min_time must be >= 0 s, got -1"},
       {none, "run.settle_max_time", "0", "run.settle_max_time must be > 0 s, got 0"},
-      {none, "terrain.type", "\"sand\"", "terrain.type must be one of \"flat\", \"dem\", \"scm\", got \"sand\""},
-      {none, "terrain.surface_height", "\"zero\"", "terrain.surface_height must be a number in m, got a string"},
+      {none, "terrain.type", "\"sand\"",
+       "terrain.type must be one of \"flat\", \"dem\", \"scm\", got \"sand\""},
+      {none, "terrain.surface_height", "\"zero\"",
+       "terrain.surface_height must be a number in m, got a string"},
       {none, "terrain.stiffness", "0", "terrain.stiffness must be > 0 N/m, got 0"},
       {none, "terrain.damping", "-1", "terrain.damping must be >= 0 N s/m, got -1"},
-      {none, "terrain.friction", "-0.1", "terrain.friction must be >= 0 (friction coefficient), got -0.1"},
+      {none, "terrain.friction", "-0.1",
+       "terrain.friction must be >= 0 (friction coefficient), got -0.1"},
       {none, "terrain.friction_model", "\"coulumb\"", "did you mean \"coulomb\"?"},
-      {none, "terrain.tangential_stiffness", "0", "terrain.tangential_stiffness must be > 0 N/m, got 0"},
-      {none, "terrain.tangential_damping", "-1", "terrain.tangential_damping must be >= 0 N s/m, got -1"},
-      {regularized, "terrain.slip_velocity_scale", "0", "terrain.slip_velocity_scale must be > 0 m/s, got 0"},
-      {dem, "terrain.endpoint", "\"localhost:5555\"", "terrain.endpoint must start with ipc:// or tcp://, got \"localhost:5555\""},
+      {none, "terrain.tangential_stiffness", "0",
+       "terrain.tangential_stiffness must be > 0 N/m, got 0"},
+      {none, "terrain.tangential_damping", "-1",
+       "terrain.tangential_damping must be >= 0 N s/m, got -1"},
+      {regularized, "terrain.slip_velocity_scale", "0",
+       "terrain.slip_velocity_scale must be > 0 m/s, got 0"},
+      {dem, "terrain.endpoint", "\"localhost:5555\"",
+       "terrain.endpoint must start with ipc:// or tcp://, got \"localhost:5555\""},
       {dem, "terrain.timeout", "0", "terrain.timeout must be > 0 s, got 0"},
       {scm, "terrain.soil", "1", "terrain.soil must be a string, got an integer"},
       {scm, "terrain.grid_spacing", "0", "terrain.grid_spacing must be > 0 m, got 0"},
@@ -198,8 +218,9 @@ TEST(RigConfig, UnknownKeysAndTablesSuggestTheRightName) {
   EXPECT_NE(error_of(with(base(), "wheel.spring_c", "1"))
                 .find("unknown key 'wheel.spring_c'; 'spring_c' belongs in [rig]"),
             std::string::npos);
-  EXPECT_NE(error_of(with(base(), "whel.mass", "1")).find("unknown table [whel]; did you mean [wheel]?"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(with(base(), "whel.mass", "1")).find("unknown table [whel]; did you mean [wheel]?"),
+      std::string::npos);
   EXPECT_NE(error_of(with(base(), "output.zzz", "1")).find("the keys of [output] are file, every"),
             std::string::npos);
   // With the line number of the offending key.
@@ -228,8 +249,9 @@ TEST(RigConfig, ModeConsistencyAndRequiredKeys) {
             std::string::npos);
   EXPECT_NE(error_of(with(base(), "wheel.effective_radius", "")).find("wheel.effective_radius"),
             std::string::npos);
-  EXPECT_NE(error_of(with(base(), "run.settle_max_time", "0.01")).find("settle_max_time must be >="),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(with(base(), "run.settle_max_time", "0.01")).find("settle_max_time must be >="),
+      std::string::npos);
   Tables no_run = base();
   no_run.erase(no_run.begin() + 4);
   EXPECT_NE(error_of(no_run).find("missing table [run]"), std::string::npos);

@@ -32,17 +32,20 @@ spring_c = 800.0
 omega = 1.05
 ramp_time = 1.0
 [carriage]
-)" + carriage + R"(
+)" + carriage +
+         R"(
 [run]
 dt = 1.0e-4
-duration = )" + std::to_string(duration) +
+duration = )" +
+         std::to_string(duration) +
          R"(
 [terrain]
 type = "flat"
 stiffness = 1.0e7
 damping = 1.1e5
 friction = 0.6
-)" + friction + "\n";
+)" + friction +
+         "\n";
 }
 
 const std::string kCoulomb = "friction_model = \"coulomb\"\ntangential_damping = 2.0e4";
@@ -104,7 +107,7 @@ TEST(RigSimulation, ImposedSlipDrawbarPullIsMuWAndSlipHeld) {
   RecordProperty("drawbar_pull_N", std::to_string(dp.first));
   EXPECT_GT(dp.first, 0.0);
   EXPECT_NEAR(dp.first, kMu * kLoad, 0.005 * kMu * kLoad);
-  EXPECT_NEAR(s.first, 0.2, 0.005 * 0.2);  // held within 0.5 %, every step:
+  EXPECT_NEAR(s.first, 0.2, 0.005 * 0.2); // held within 0.5 %, every step:
   EXPECT_LE(s.second, 0.005 * 0.2);
   // Fully sliding: T = μ W R, F_T = T / R = μ W, η = DP v / (T ω) = 1 - s.
   EXPECT_NEAR(T.first, kMu * kLoad * kR, 0.005 * kMu * kLoad * kR);
@@ -151,8 +154,8 @@ TEST(RigSimulation, ConstantLoadSettlesToTheFrictionLawSlip) {
 TEST(RigSimulation, RampedLoadGivesMonotoneDrawbarRampAndSlipCurve) {
   const double L1 = 0.8 * kMu * kLoad;
   const SimRun r(config("mode = \"ramped_load\"\nload_start = 0.0\nload_end = " +
-                         std::to_string(L1) + "\nramp_time = 4.0",
-                     kRegularized, 4.0));
+                            std::to_string(L1) + "\nramp_time = 4.0",
+                        kRegularized, 4.0));
   double prev = -1, first = NAN;
   int n = 0;
   for (const auto &o : r.out) {

@@ -41,8 +41,7 @@ ContactWrench FlatGround::contact(const WheelState &s, double time_s) {
     slip_displacement_m_.setZero();
     return w;
   }
-  const double N =
-      std::max(0.0, p_.stiffness_N_m * penetration - p_.damping_N_s_m * s.v_WBo_W.z());
+  const double N = std::max(0.0, p_.stiffness_N_m * penetration - p_.damping_N_s_m * s.v_WBo_W.z());
   const Eigen::Vector3d r(0.0, 0.0, -R); // centre -> lowest point, world
   const Eigen::Vector3d v_contact = s.v_WBo_W + s.w_WB_W.cross(r);
   const Eigen::Vector2d v_slip(v_contact.x(), v_contact.y());

@@ -55,7 +55,8 @@ std::string closest(const std::string &word, const std::vector<std::string> &can
   std::size_t best_score = static_cast<std::size_t>(-1);
   for (const auto &c : candidates) {
     std::size_t score;
-    if (word.size() >= 3 && (c.find(word) != std::string::npos || word.find(c) != std::string::npos))
+    if (word.size() >= 3 &&
+        (c.find(word) != std::string::npos || word.find(c) != std::string::npos))
       score = 0;
     else {
       const std::size_t d = edit_distance(word, c);
@@ -79,13 +80,20 @@ std::string fmt(double v) {
 
 const char *type_name(const toml::node &n) {
   switch (n.type()) {
-  case toml::node_type::string: return "a string";
-  case toml::node_type::integer: return "an integer";
-  case toml::node_type::floating_point: return "a number";
-  case toml::node_type::boolean: return "a boolean";
-  case toml::node_type::table: return "a table";
-  case toml::node_type::array: return "an array";
-  default: return "a date/time";
+  case toml::node_type::string:
+    return "a string";
+  case toml::node_type::integer:
+    return "an integer";
+  case toml::node_type::floating_point:
+    return "a number";
+  case toml::node_type::boolean:
+    return "a boolean";
+  case toml::node_type::table:
+    return "a table";
+  case toml::node_type::array:
+    return "an array";
+  default:
+    return "a date/time";
   }
 }
 
@@ -179,12 +187,12 @@ public:
   /// A number that must satisfy `ok`; `range` reads like "> 0" and the message is
   /// "<table.key> must be <range> <unit>, got <value>".
   template <class Ok>
-  std::optional<double> checked(const std::string &key, const std::string &unit,
-                                const char *range, Ok ok) const {
+  std::optional<double> checked(const std::string &key, const std::string &unit, const char *range,
+                                Ok ok) const {
     const auto v = number(key, unit);
     if (v && !ok(*v))
-      fail(key, full(key) + " must be " + range + (unit.empty() ? "" : " ") + unit + ", got " +
-                    fmt(*v));
+      fail(key,
+           full(key) + " must be " + range + (unit.empty() ? "" : " ") + unit + ", got " + fmt(*v));
     return v;
   }
   std::optional<double> positive(const std::string &key, const std::string &unit) const {
@@ -271,21 +279,36 @@ std::string resolve(const std::string &path, const std::string &base_dir) {
 
 } // namespace
 
+std::vector<std::string> rig_config_keys() {
+  std::vector<std::string> out;
+  for (const auto &[table, keys] : schema())
+    for (const auto &k : keys)
+      out.push_back(table + "." + k);
+  return out;
+}
+
 const char *to_string(CarriageMode m) {
   switch (m) {
-  case CarriageMode::imposed_slip: return "imposed_slip";
-  case CarriageMode::imposed_speed: return "imposed_speed";
-  case CarriageMode::constant_load: return "constant_load";
-  case CarriageMode::ramped_load: return "ramped_load";
+  case CarriageMode::imposed_slip:
+    return "imposed_slip";
+  case CarriageMode::imposed_speed:
+    return "imposed_speed";
+  case CarriageMode::constant_load:
+    return "constant_load";
+  case CarriageMode::ramped_load:
+    return "ramped_load";
   }
   return "?";
 }
 
 const char *to_string(TerrainType t) {
   switch (t) {
-  case TerrainType::flat: return "flat";
-  case TerrainType::dem: return "dem";
-  case TerrainType::scm: return "scm";
+  case TerrainType::flat:
+    return "flat";
+  case TerrainType::dem:
+    return "dem";
+  case TerrainType::scm:
+    return "scm";
   }
   return "?";
 }
@@ -334,8 +357,9 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
         t.fail("density", "wheel.density needs wheel.mesh = \"<file>\" (mass and inertia come "
                           "from the mesh); without a mesh give wheel.mass and wheel.inertia");
       if (c.wheel.mass_kg || c.wheel.inertia_kg_m2)
-        t.fail(c.wheel.mass_kg ? "mass" : "inertia",
-               "give either wheel.density (with the mesh) or wheel.mass and wheel.inertia, not both");
+        t.fail(
+            c.wheel.mass_kg ? "mass" : "inertia",
+            "give either wheel.density (with the mesh) or wheel.mass and wheel.inertia, not both");
     } else {
       if (!c.wheel.mass_kg)
         p.fail(nullptr, "missing key 'wheel.mass' (kg, > 0) with 'wheel.inertia' (kg m^2 about the "
@@ -394,8 +418,8 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
       c.carriage.mode = CarriageMode::imposed_slip;
       t.only_with({"speed", "load", "load_start", "load_end", "ramp_time"}, "mode", mode);
       c.carriage.slip = t.required(
-          t.checked("slip", "", "in [-1, 1]", [](double v) { return v >= -1 && v <= 1; }),
-          "slip", "slip in [-1, 1], e.g. 0.2");
+          t.checked("slip", "", "in [-1, 1]", [](double v) { return v >= -1 && v <= 1; }), "slip",
+          "slip in [-1, 1], e.g. 0.2");
     } else if (mode == "imposed_speed") {
       c.carriage.mode = CarriageMode::imposed_speed;
       t.only_with({"slip", "load", "load_start", "load_end", "ramp_time"}, "mode", mode);
@@ -443,11 +467,14 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
     const std::string type = t.choice("type", {"flat", "dem", "scm"}, std::nullopt);
     c.terrain.surface_height_m = t.number("surface_height", "m").value_or(0.0);
     const std::vector<std::string> dem_keys = {"endpoint", "timeout"};
-    const std::vector<std::string> scm_keys = {"soil", "grid_spacing", "grid_length",
-                                               "grid_width"};
-    const std::vector<std::string> flat_keys = {
-        "stiffness",          "damping",           "friction",           "friction_model",
-        "tangential_stiffness", "tangential_damping", "slip_velocity_scale"};
+    const std::vector<std::string> scm_keys = {"soil", "grid_spacing", "grid_length", "grid_width"};
+    const std::vector<std::string> flat_keys = {"stiffness",
+                                                "damping",
+                                                "friction",
+                                                "friction_model",
+                                                "tangential_stiffness",
+                                                "tangential_damping",
+                                                "slip_velocity_scale"};
     if (type == "dem") {
       c.terrain.type = TerrainType::dem;
       t.only_with(scm_keys, "type", type);
@@ -457,7 +484,8 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
         p.fail(nullptr, "missing key 'terrain.endpoint': write e.g. terrain.endpoint = "
                         "\"ipc:///tmp/wheelsim.ipc\" or \"tcp://127.0.0.1:5555\"");
       if (ep->rfind("ipc://", 0) != 0 && ep->rfind("tcp://", 0) != 0)
-        t.fail("endpoint", "terrain.endpoint must start with ipc:// or tcp://, got \"" + *ep + "\"");
+        t.fail("endpoint",
+               "terrain.endpoint must start with ipc:// or tcp://, got \"" + *ep + "\"");
       c.terrain.endpoint = *ep;
       c.terrain.timeout_s = t.positive("timeout", "s").value_or(60.0);
     } else if (type == "scm") {
@@ -487,8 +515,8 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
       f.stiffness_N_m = t.positive("stiffness", "N/m").value_or(f.stiffness_N_m);
       f.damping_N_s_m = t.non_negative("damping", "N s/m").value_or(f.damping_N_s_m);
       f.friction = t.non_negative("friction", "(friction coefficient)").value_or(f.friction);
-      const std::string fm = t.choice("friction_model", {"coulomb", "regularized"},
-                                      std::string("coulomb"));
+      const std::string fm =
+          t.choice("friction_model", {"coulomb", "regularized"}, std::string("coulomb"));
       f.friction_model = fm == "coulomb" ? FrictionModel::coulomb : FrictionModel::regularized;
       if (f.friction_model == FrictionModel::coulomb)
         t.only_with({"slip_velocity_scale"}, "friction_model", fm);

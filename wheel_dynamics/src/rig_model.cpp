@@ -20,23 +20,22 @@ void check_finite(double v, const char *name) { check(std::isfinite(v), name, "f
 
 } // namespace
 
-Rig::Rig(const RigParameters &p, const RigCoordinates &q0, const RigVelocities &u0,
-         double time0_s)
+Rig::Rig(const RigParameters &p, const RigCoordinates &q0, const RigVelocities &u0, double time0_s)
     : p_(p), q_(q0), u_(u0), time_s_(time0_s) {
   check(p.wheel_mass_kg > 0 && std::isfinite(p.wheel_mass_kg), "wheel_mass_kg", "> 0 kg",
         p.wheel_mass_kg);
   check(p.wheel_axle_inertia_kg_m2 > 0 && std::isfinite(p.wheel_axle_inertia_kg_m2),
         "wheel_axle_inertia_kg_m2", "> 0 kg m^2", p.wheel_axle_inertia_kg_m2);
-  check(p.spindle_mass_kg >= 0 && std::isfinite(p.spindle_mass_kg), "spindle_mass_kg",
-        ">= 0 kg", p.spindle_mass_kg);
+  check(p.spindle_mass_kg >= 0 && std::isfinite(p.spindle_mass_kg), "spindle_mass_kg", ">= 0 kg",
+        p.spindle_mass_kg);
   check(p.suspended_mass_kg > 0 && std::isfinite(p.suspended_mass_kg), "suspended_mass_kg",
         "> 0 kg", p.suspended_mass_kg);
-  check(p.carriage_mass_kg >= 0 && std::isfinite(p.carriage_mass_kg), "carriage_mass_kg",
-        ">= 0 kg", p.carriage_mass_kg);
+  check(p.carriage_mass_kg >= 0 && std::isfinite(p.carriage_mass_kg), "carriage_mass_kg", ">= 0 kg",
+        p.carriage_mass_kg);
   check(p.spring_k_N_m > 0 && std::isfinite(p.spring_k_N_m), "spring_k_N_m", "> 0 N/m",
         p.spring_k_N_m);
-  check(p.spring_c_N_s_m >= 0 && std::isfinite(p.spring_c_N_s_m), "spring_c_N_s_m",
-        ">= 0 N s/m", p.spring_c_N_s_m);
+  check(p.spring_c_N_s_m >= 0 && std::isfinite(p.spring_c_N_s_m), "spring_c_N_s_m", ">= 0 N s/m",
+        p.spring_c_N_s_m);
   check(p.gravity_m_s2 > 0 && std::isfinite(p.gravity_m_s2), "gravity_m_s2", "> 0 m/s^2",
         p.gravity_m_s2);
   for (double v : {q0.x_m, q0.z_m, q0.mass_z_m, q0.theta_rad, u0.x_m_s, u0.z_m_s, u0.mass_z_m_s,
@@ -103,9 +102,8 @@ void Rig::step(const ContactWrench &w, double dt) {
     break;
   case Drive::imposed_velocity:
   case Drive::follow_wheel:
-    u.x_m_s = drives_.carriage == Drive::imposed_velocity
-                  ? drives_.carriage_value
-                  : drives_.carriage_value * u.omega_rad_s;
+    u.x_m_s = drives_.carriage == Drive::imposed_velocity ? drives_.carriage_value
+                                                          : drives_.carriage_value * u.omega_rad_s;
     r.carriage_force_N = Mx * (u.x_m_s - u_.x_m_s) / dt - fx;
     break;
   }

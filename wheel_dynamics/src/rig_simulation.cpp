@@ -34,11 +34,16 @@ std::string fmt(double v) {
 
 const char *to_string(Phase p) {
   switch (p) {
-  case Phase::release: return "release";
-  case Phase::settle: return "settle";
-  case Phase::ramp: return "ramp";
-  case Phase::test: return "test";
-  case Phase::finished: return "finished";
+  case Phase::release:
+    return "release";
+  case Phase::settle:
+    return "settle";
+  case Phase::ramp:
+    return "ramp";
+  case Phase::test:
+    return "test";
+  case Phase::finished:
+    return "finished";
   }
   return "?";
 }
@@ -159,9 +164,8 @@ void RigSimulation::configure_drives(double t_next) {
   load_command_N_ = 0.0;
   if (phase_ == Phase::release || phase_ == Phase::settle) {
     d.spindle = phase_ == Phase::release ? Drive::imposed_velocity : Drive::free;
-    d.spindle_velocity_m_s =
-        -config_.run.release_speed_m_s *
-        std::min(1.0, (t_next - phase_start_s_) / kReleaseAccelerationTime_s);
+    d.spindle_velocity_m_s = -config_.run.release_speed_m_s *
+                             std::min(1.0, (t_next - phase_start_s_) / kReleaseAccelerationTime_s);
     d.wheel = Drive::imposed_velocity; // the motor holds the wheel
     d.wheel_value = 0.0;
     d.carriage = Drive::imposed_velocity; // the carriage is at rest
@@ -197,8 +201,9 @@ void RigSimulation::configure_drives(double t_next) {
     break;
   case CarriageMode::ramped_load:
     if (phase_ == Phase::test)
-      load_command_N_ = c.load_start_N + (c.load_end_N - c.load_start_N) *
-                                             std::clamp((t - test_start_s_) / c.ramp_time_s, 0.0, 1.0);
+      load_command_N_ =
+          c.load_start_N + (c.load_end_N - c.load_start_N) *
+                               std::clamp((t - test_start_s_) / c.ramp_time_s, 0.0, 1.0);
     else
       load_command_N_ = f_now * c.load_start_N;
     break;
@@ -233,9 +238,8 @@ const RigOutputs &RigSimulation::advance(const ContactWrench &w) {
   o.suspended_mass_z_m = q.mass_z_m;
   o.spring_force_N = rig_.spring_force_on_mass_N();
   o.slip_velocity_m_s = u.omega_rad_s * R - u.x_m_s;
-  o.slip = std::abs(u.omega_rad_s * R) > kMinRollingSpeed_m_s
-               ? 1.0 - u.x_m_s / (u.omega_rad_s * R)
-               : kNaN;
+  o.slip = std::abs(u.omega_rad_s * R) > kMinRollingSpeed_m_s ? 1.0 - u.x_m_s / (u.omega_rad_s * R)
+                                                              : kNaN;
   o.sinkage_m = config_.terrain.surface_height_m - (q.z_m - wheel_.rim_radius_m);
   o.vertical_load_N = rig_.vertical_load_N();
 
@@ -267,8 +271,8 @@ const RigOutputs &RigSimulation::advance(const ContactWrench &w) {
       throw std::runtime_error(
           "release: the terrain did not carry the load within run.release_timeout = " +
           fmt(config_.run.release_timeout_s) + " s (wheel lowered by " +
-          fmt(in_phase * config_.run.release_speed_m_s) + " m, contact force z = " +
-          fmt(w.force_N.z()) + " N of " + fmt(rig_.vertical_load_N()) +
+          fmt(in_phase * config_.run.release_speed_m_s) +
+          " m, contact force z = " + fmt(w.force_N.z()) + " N of " + fmt(rig_.vertical_load_N()) +
           " N); check terrain.surface_height and the terrain, or raise run.release_timeout");
     }
     break;
@@ -283,10 +287,11 @@ const RigOutputs &RigSimulation::advance(const ContactWrench &w) {
     const bool timed_out = in_phase >= config_.run.settle_max_time_s;
     if (settled || timed_out) {
       if (!settled)
-        warnings_.push_back("settle: |v_z| = " + fmt(std::abs(rig_.velocities().z_m_s)) +
-                            " m/s not below run.settle_velocity = " +
-                            fmt(config_.run.settle_velocity_m_s) + " m/s after run.settle_max_time = " +
-                            fmt(config_.run.settle_max_time_s) + " s; continuing with the ramp");
+        warnings_.push_back(
+            "settle: |v_z| = " + fmt(std::abs(rig_.velocities().z_m_s)) +
+            " m/s not below run.settle_velocity = " + fmt(config_.run.settle_velocity_m_s) +
+            " m/s after run.settle_max_time = " + fmt(config_.run.settle_max_time_s) +
+            " s; continuing with the ramp");
       static_sinkage_m_ =
           config_.terrain.surface_height_m - (rig_.coordinates().z_m - wheel_.rim_radius_m);
       enter(Phase::ramp);

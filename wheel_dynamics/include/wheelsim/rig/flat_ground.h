@@ -19,15 +19,15 @@ namespace wheelsim::rig {
 enum class FrictionModel { coulomb, regularized };
 
 struct FlatGroundParameters {
-  double surface_height_m = 0.0;            ///< height of the ground plane [m]
-  double radius_m = 0.6;                    ///< contact radius R (the wheel's R_eff) [m], > 0
-  double stiffness_N_m = 1.0e7;             ///< normal penalty stiffness k_n [N/m], > 0
-  double damping_N_s_m = 2.0e4;             ///< normal damping c_n [N s/m], >= 0
-  double friction = 0.6;                    ///< Coulomb coefficient μ [-], >= 0
+  double surface_height_m = 0.0; ///< height of the ground plane [m]
+  double radius_m = 0.6;         ///< contact radius R (the wheel's R_eff) [m], > 0
+  double stiffness_N_m = 1.0e7;  ///< normal penalty stiffness k_n [N/m], > 0
+  double damping_N_s_m = 2.0e4;  ///< normal damping c_n [N s/m], >= 0
+  double friction = 0.6;         ///< Coulomb coefficient μ [-], >= 0
   FrictionModel friction_model = FrictionModel::coulomb;
-  double tangential_stiffness_N_m = 1.0e6;  ///< coulomb: k_t [N/m], > 0
-  double tangential_damping_N_s_m = 0.0;    ///< coulomb: c_t [N s/m], >= 0
-  double slip_velocity_scale_m_s = 0.01;    ///< regularized: v_c [m/s], > 0
+  double tangential_stiffness_N_m = 1.0e6; ///< coulomb: k_t [N/m], > 0
+  double tangential_damping_N_s_m = 0.0;   ///< coulomb: c_t [N s/m], >= 0
+  double slip_velocity_scale_m_s = 0.01;   ///< regularized: v_c [m/s], > 0
 };
 
 class FlatGround : public Terrain {

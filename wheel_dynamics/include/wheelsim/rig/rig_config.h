@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "wheelsim/rig/flat_ground.h"
 
@@ -19,17 +20,17 @@ public:
 };
 
 struct WheelConfig {
-  std::string mesh;                     ///< mesh file (OBJ/STL/PLY), resolved path; "" = none
-  double mesh_scale = 1.0;              ///< mesh units -> m
-  std::optional<double> mass_kg;        ///< with inertia_kg_m2 (or density_kg_m3 with a mesh)
-  std::optional<double> inertia_kg_m2;  ///< about the axle (+y)
-  std::optional<double> density_kg_m3;  ///< mass and inertia from the mesh and this density
+  std::string mesh;                         ///< mesh file (OBJ/STL/PLY), resolved path; "" = none
+  double mesh_scale = 1.0;                  ///< mesh units -> m
+  std::optional<double> mass_kg;            ///< with inertia_kg_m2 (or density_kg_m3 with a mesh)
+  std::optional<double> inertia_kg_m2;      ///< about the axle (+y)
+  std::optional<double> density_kg_m3;      ///< mass and inertia from the mesh and this density
   std::optional<double> effective_radius_m; ///< R_eff; default: outer radius of the mesh
 };
 
 struct RigSection {
   double spindle_mass_kg = 100.0;
-  std::optional<double> suspended_mass_kg;  ///< exactly one of suspended_mass / vertical_load
+  std::optional<double> suspended_mass_kg; ///< exactly one of suspended_mass / vertical_load
   std::optional<double> vertical_load_N;
   double carriage_mass_kg = 0.0;
   double spring_k_N_m = 12000.0;
@@ -40,28 +41,28 @@ struct RigSection {
 enum class MotorMode { omega, torque };
 struct MotorConfig {
   MotorMode mode = MotorMode::omega;
-  double omega_rad_s = 0.0;   ///< target ω (mode omega)
-  double torque_Nm = 0.0;     ///< target torque (mode torque)
-  double ramp_time_s = 1.0;   ///< linear ramp 0 -> target
+  double omega_rad_s = 0.0; ///< target ω (mode omega)
+  double torque_Nm = 0.0;   ///< target torque (mode torque)
+  double ramp_time_s = 1.0; ///< linear ramp 0 -> target
 };
 
 enum class CarriageMode { imposed_slip, imposed_speed, constant_load, ramped_load };
 struct CarriageConfig {
   CarriageMode mode = CarriageMode::imposed_slip;
-  double slip = 0.0;          ///< imposed_slip [-]
-  double speed_m_s = 0.0;     ///< imposed_speed [m/s]
-  double load_N = 0.0;        ///< constant_load: drawbar load [N]
-  double load_start_N = 0.0;  ///< ramped_load [N]
-  double load_end_N = 0.0;    ///< ramped_load [N]
-  double ramp_time_s = 0.0;   ///< ramped_load: duration of load_start -> load_end [s]
+  double slip = 0.0;         ///< imposed_slip [-]
+  double speed_m_s = 0.0;    ///< imposed_speed [m/s]
+  double load_N = 0.0;       ///< constant_load: drawbar load [N]
+  double load_start_N = 0.0; ///< ramped_load [N]
+  double load_end_N = 0.0;   ///< ramped_load [N]
+  double ramp_time_s = 0.0;  ///< ramped_load: duration of load_start -> load_end [s]
 };
 
 struct RunConfig {
   double dt_s = 0.0;
-  double duration_s = 0.0;          ///< length of the test phase (after the ω ramp)
-  double release_gap_m = 0.002;     ///< initial clearance of the lowest rim point
-  double release_speed_m_s = 0.01;  ///< lowering speed of the held spindle
-  double release_timeout_s = 10.0;  ///< the contact must carry the load within this time
+  double duration_s = 0.0;         ///< length of the test phase (after the ω ramp)
+  double release_gap_m = 0.002;    ///< initial clearance of the lowest rim point
+  double release_speed_m_s = 0.01; ///< lowering speed of the held spindle
+  double release_timeout_s = 10.0; ///< the contact must carry the load within this time
   double settle_velocity_m_s = 1e-3;
   double settle_window_s = 0.05;
   double settle_min_time_s = 0.1;
@@ -86,14 +87,14 @@ struct TerrainConfig {
 
 struct OutputConfig {
   std::string file = "run.h5";
-  long long every = 1;             ///< record every N-th step
-  long long flush_interval = 1000; ///< flush the run file every N recorded steps
+  long long every = 1;               ///< record every N-th step
+  long long flush_interval = 1000;   ///< flush the run file every N recorded steps
   double progress_interval_s = 10.0; ///< wall-clock seconds between progress lines; 0 = off
 };
 
 struct RigConfig {
-  std::string source;  ///< file name or source name given to the parser
-  std::string text;    ///< the TOML text as read (for /parameters of the run file)
+  std::string source; ///< file name or source name given to the parser
+  std::string text;   ///< the TOML text as read (for /parameters of the run file)
   WheelConfig wheel;
   RigSection rig;
   MotorConfig motor;
@@ -110,6 +111,9 @@ RigConfig parse_rig_config(const std::string &toml_text, const std::string &sour
 
 /// Reads `path` and parses it; relative paths resolve against the file's directory.
 RigConfig load_rig_config(const std::string &path);
+
+/// Every key the parser accepts, as "table.key" (the documentation lists the same).
+std::vector<std::string> rig_config_keys();
 
 const char *to_string(CarriageMode mode);
 const char *to_string(TerrainType type);

@@ -26,37 +26,37 @@ namespace wheelsim::rig {
 
 /// Masses, inertia, suspension of the rig. Checked by the Rig constructor.
 struct RigParameters {
-  double wheel_mass_kg = 205.0;              ///< wheel mass [kg], > 0
-  double wheel_axle_inertia_kg_m2 = 72.0;    ///< wheel moment of inertia about the axle [kg m^2], > 0
-  double spindle_mass_kg = 100.0;            ///< spindle block [kg], >= 0
-  double suspended_mass_kg = 1000.0;         ///< spring-suspended mass [kg], > 0
-  double carriage_mass_kg = 0.0;             ///< extra longitudinal mass of the carriage [kg], >= 0
-  double spring_k_N_m = 12000.0;             ///< suspension stiffness [N/m], > 0
-  double spring_c_N_s_m = 800.0;             ///< suspension damping [N s/m], >= 0
-  double gravity_m_s2 = 9.81;                ///< gravitational acceleration along -z [m/s^2], > 0
+  double wheel_mass_kg = 205.0;           ///< wheel mass [kg], > 0
+  double wheel_axle_inertia_kg_m2 = 72.0; ///< wheel moment of inertia about the axle [kg m^2], > 0
+  double spindle_mass_kg = 100.0;         ///< spindle block [kg], >= 0
+  double suspended_mass_kg = 1000.0;      ///< spring-suspended mass [kg], > 0
+  double carriage_mass_kg = 0.0;          ///< extra longitudinal mass of the carriage [kg], >= 0
+  double spring_k_N_m = 12000.0;          ///< suspension stiffness [N/m], > 0
+  double spring_c_N_s_m = 800.0;          ///< suspension damping [N s/m], >= 0
+  double gravity_m_s2 = 9.81;             ///< gravitational acceleration along -z [m/s^2], > 0
 };
 
 /// Generalized coordinates (see the file comment).
 struct RigCoordinates {
-  double x_m = 0.0;         ///< carriage position along world x [m]
-  double z_m = 0.0;         ///< wheel centre (spindle) height [m]
-  double mass_z_m = 0.0;    ///< suspended-mass coordinate z_m [m] (spring unstretched at z_m = z)
-  double theta_rad = 0.0;   ///< wheel rotation about +y [rad]
+  double x_m = 0.0;       ///< carriage position along world x [m]
+  double z_m = 0.0;       ///< wheel centre (spindle) height [m]
+  double mass_z_m = 0.0;  ///< suspended-mass coordinate z_m [m] (spring unstretched at z_m = z)
+  double theta_rad = 0.0; ///< wheel rotation about +y [rad]
 };
 
 /// Generalized velocities, d/dt of RigCoordinates.
 struct RigVelocities {
-  double x_m_s = 0.0;          ///< carriage speed along world x [m/s]
-  double z_m_s = 0.0;          ///< spindle vertical speed [m/s]
-  double mass_z_m_s = 0.0;     ///< suspended-mass vertical speed [m/s]
-  double omega_rad_s = 0.0;    ///< wheel angular speed about +y [rad/s]
+  double x_m_s = 0.0;       ///< carriage speed along world x [m/s]
+  double z_m_s = 0.0;       ///< spindle vertical speed [m/s]
+  double mass_z_m_s = 0.0;  ///< suspended-mass vertical speed [m/s]
+  double omega_rad_s = 0.0; ///< wheel angular speed about +y [rad/s]
 };
 
 /// How a degree of freedom is driven during one step.
 enum class Drive {
-  free,              ///< integrated under the applied force/torque
-  imposed_velocity,  ///< velocity at n+1 prescribed; the reaction is reported
-  follow_wheel,      ///< carriage only: v_{n+1} = ratio * ω_{n+1} (imposed slip); reaction reported
+  free,             ///< integrated under the applied force/torque
+  imposed_velocity, ///< velocity at n+1 prescribed; the reaction is reported
+  follow_wheel,     ///< carriage only: v_{n+1} = ratio * ω_{n+1} (imposed slip); reaction reported
 };
 
 /// Per-step commands. Defaults: everything free and unloaded.
@@ -65,10 +65,10 @@ struct RigDrives {
   /// free: force the carriage applies to the rig along +x [N] (a drawbar load L is -L);
   /// imposed_velocity: the carriage speed at n+1 [m/s]; follow_wheel: the ratio v/ω [m/rad].
   double carriage_value = 0.0;
-  Drive spindle = Drive::free;  ///< free or imposed_velocity (release phase: lowering)
+  Drive spindle = Drive::free; ///< free or imposed_velocity (release phase: lowering)
   /// imposed_velocity: spindle vertical speed at n+1 [m/s]; free: ignored.
   double spindle_velocity_m_s = 0.0;
-  Drive wheel = Drive::free;    ///< free (motor torque) or imposed_velocity (motor imposes ω)
+  Drive wheel = Drive::free; ///< free (motor torque) or imposed_velocity (motor imposes ω)
   /// free: motor torque on the wheel about +y [N m]; imposed_velocity: ω at n+1 [rad/s].
   double wheel_value = 0.0;
 };

@@ -32,10 +32,10 @@ namespace wheelsim::rig {
 /// The wheel's mass properties and radii as used by the run.
 struct WheelProperties {
   double mass_kg = 0.0;
-  double axle_inertia_kg_m2 = 0.0;       ///< about +y through the centre
-  double effective_radius_m = 0.0;       ///< R_eff: slip, traction force, flat-ground contact
-  double rim_radius_m = 0.0;             ///< outer radius: lowest rim point for sinkage
-  std::string source;                    ///< "config" or "mesh <path> (density ...)"
+  double axle_inertia_kg_m2 = 0.0; ///< about +y through the centre
+  double effective_radius_m = 0.0; ///< R_eff: slip, traction force, flat-ground contact
+  double rim_radius_m = 0.0;       ///< outer radius: lowest rim point for sinkage
+  std::string source;              ///< "config" or "mesh <path> (density ...)"
 };
 
 /// From the config: mass/inertia given, or from the mesh and density (wheelsim_geometry). With a
@@ -53,29 +53,29 @@ struct RigOutputs {
   long long step = 0;
   double time_s = 0.0;
   Phase phase = Phase::release;
-  WheelState wheel;                  ///< pose and twist at this step (state n)
-  ContactWrench contact;             ///< contact wrench at state n (about the centre, W)
-  double carriage_x_m = 0.0;         ///< carriage position [m]
-  double forward_velocity_m_s = 0.0; ///< carriage = wheel-centre speed along x, v [m/s]
-  double omega_rad_s = 0.0;          ///< wheel angular speed about +y, ω [rad/s]
-  double theta_rad = 0.0;            ///< wheel rotation [rad]
-  double wheel_centre_z_m = 0.0;     ///< wheel-centre height [m]
-  double vertical_velocity_m_s = 0.0;///< wheel-centre vertical speed [m/s]
-  double suspended_mass_z_m = 0.0;   ///< suspended-mass coordinate [m]
-  double spring_force_N = 0.0;       ///< force of the suspension on the suspended mass, +z [N]
-  double slip = 0.0;                 ///< s = 1 - v/(ω R_eff) [-]
-  double slip_velocity_m_s = 0.0;    ///< v_j = ω R_eff - v [m/s]
-  double sinkage_m = 0.0;            ///< surface - (z_c - rim radius) [m], > 0 = below surface
-  double drawbar_pull_N = 0.0;       ///< DP = -(carriage force on the rig along x) [N]
-  double drawbar_load_command_N = 0.0; ///< load commanded (constant/ramped modes), else 0 [N]
-  double driving_torque_Nm = 0.0;    ///< motor torque about the axle (+y), T [N m]
-  double traction_force_N = 0.0;     ///< F_T = T / R_eff [N]
-  double tractive_efficiency = 0.0;  ///< η = DP v / (T ω) [-]
-  double vertical_load_N = 0.0;      ///< weight of wheel + spindle + suspended mass [N]
+  WheelState wheel;                     ///< pose and twist at this step (state n)
+  ContactWrench contact;                ///< contact wrench at state n (about the centre, W)
+  double carriage_x_m = 0.0;            ///< carriage position [m]
+  double forward_velocity_m_s = 0.0;    ///< carriage = wheel-centre speed along x, v [m/s]
+  double omega_rad_s = 0.0;             ///< wheel angular speed about +y, ω [rad/s]
+  double theta_rad = 0.0;               ///< wheel rotation [rad]
+  double wheel_centre_z_m = 0.0;        ///< wheel-centre height [m]
+  double vertical_velocity_m_s = 0.0;   ///< wheel-centre vertical speed [m/s]
+  double suspended_mass_z_m = 0.0;      ///< suspended-mass coordinate [m]
+  double spring_force_N = 0.0;          ///< force of the suspension on the suspended mass, +z [N]
+  double slip = 0.0;                    ///< s = 1 - v/(ω R_eff) [-]
+  double slip_velocity_m_s = 0.0;       ///< v_j = ω R_eff - v [m/s]
+  double sinkage_m = 0.0;               ///< surface - (z_c - rim radius) [m], > 0 = below surface
+  double drawbar_pull_N = 0.0;          ///< DP = -(carriage force on the rig along x) [N]
+  double drawbar_load_command_N = 0.0;  ///< load commanded (constant/ramped modes), else 0 [N]
+  double driving_torque_Nm = 0.0;       ///< motor torque about the axle (+y), T [N m]
+  double traction_force_N = 0.0;        ///< F_T = T / R_eff [N]
+  double tractive_efficiency = 0.0;     ///< η = DP v / (T ω) [-]
+  double vertical_load_N = 0.0;         ///< weight of wheel + spindle + suspended mass [N]
   double spindle_support_force_N = 0.0; ///< holder force on the spindle, +z (release) [N]
-  double lateral_force_N = 0.0;      ///< contact force along y the rig holds [N]
-  double roll_torque_Nm = 0.0;       ///< contact torque about x (centre) the rig holds [N m]
-  double yaw_torque_Nm = 0.0;        ///< contact torque about z (centre) the rig holds [N m]
+  double lateral_force_N = 0.0;         ///< contact force along y the rig holds [N]
+  double roll_torque_Nm = 0.0;          ///< contact torque about x (centre) the rig holds [N m]
+  double yaw_torque_Nm = 0.0;           ///< contact torque about z (centre) the rig holds [N m]
 };
 
 class RigSimulation {
