@@ -42,6 +42,9 @@ constexpr int kDefaultSlots = 3;
 /// the particles' Rayleigh time and of the Hertz collision time of a particle hitting the wheel.
 constexpr double kMaxRayleighFraction = 0.3;
 constexpr double kMaxHertzFraction = 0.1;
+/// EEPA (edinburgh) damps with a coefficient that does not shrink with the overlap: the explicit
+/// update is unstable once γn dt / m approaches 1 (seen in both LIGGGHTS and this fix).
+constexpr double kMaxEepaDampingRatio = 1.0;
 
 struct WheelCosimState {
   std::string mesh_path;
@@ -476,6 +479,21 @@ void FixWheelCosim::check_timestep() {
     const double hertz = 2.87 * std::pow(mass_all[t] * mass_all[t] /
                                              (rmin_all[t] * Yeff * Yeff * v_impact),
                                          0.2);
+    if (s_->settings.normal == wheelsim::contact::NormalModel::Eepa) {
+      const double ratio =
+          wheelsim::contact::eepaNormalDamping(s_->pair[t], rmin_all[t], mass_all[t]) * dt /
+          mass_all[t];
+      if (ratio > wheelsim::kMaxEepaDampingRatio) {
+        char msg[512];
+        snprintf(msg, sizeof(msg),
+                 "time step %g s is too large for the eepa damping of particle type %d (radius "
+                 "%g m): gamma_n dt / m = %.3g must be <= %.2g; use timestep <= %g or "
+                 "'check_timestep off'",
+                 dt, t, rmin_all[t], ratio, wheelsim::kMaxEepaDampingRatio,
+                 dt * wheelsim::kMaxEepaDampingRatio / ratio);
+        error->fix_error(FLERR, this, msg);
+      }
+    }
     if (dt > wheelsim::kMaxRayleighFraction * rayleigh || dt > wheelsim::kMaxHertzFraction * hertz) {
       char msg[512];
       snprintf(msg, sizeof(msg),

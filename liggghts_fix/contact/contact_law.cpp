@@ -75,6 +75,17 @@ double adhesionStiffnessFromSurfaceEnergy(const PairConstants &pc, double d, dou
   return fMin / std::pow(deltaMin, pc.cex);
 }
 
+} // namespace
+
+double eepaNormalDamping(const PairConstants &pc, double R, double m) {
+  // Damping from ln e and the (overlap-independent) loading coefficient k1, as LIGGGHTS does.
+  const double kn = pc.dex == 1.0 ? 2.0 * pc.Yeff * R : 4.0 / 3.0 * pc.Yeff * std::sqrt(R);
+  const double piOverLogE = pc.logE == 0.0 ? HUGE_VAL : kPi / pc.logE;
+  return std::sqrt(4.0 * m * kn / (1.0 + piOverLogE * piOverLogE));
+}
+
+namespace {
+
 // --- model edinburgh (normal_model_edinburgh.h, NormalModel<EDINBURGH>::surfacesIntersect) ---
 NormalPart eepaNormal(const PairConstants &pc, double R, double m, double delta, double vn,
                       ContactHistory &h) {
@@ -89,9 +100,7 @@ NormalPart eepaNormal(const PairConstants &pc, double R, double m, double delta,
   }
   const double k1 = kn;
   const double k2 = kn * pc.kn2k1;
-  // Damping from ln e and the (overlap-independent) loading coefficient k1, as LIGGGHTS does.
-  const double piOverLogE = pc.logE == 0.0 ? HUGE_VAL : kPi / pc.logE;
-  const double gamman = std::sqrt(4.0 * m * kn / (1.0 + piOverLogE * piOverLogE));
+  const double gamman = eepaNormalDamping(pc, R, m);
   const double gammat = pc.settings.tangentialDamping ? gamman : 0.0;
 
   const double de = std::pow(delta, pc.dex);  // δ^n

@@ -164,6 +164,11 @@ Eigen::Vector3d relativeContactVelocity(const Eigen::Vector3d &vParticle,
                                         const Eigen::Vector3d &omega, const Eigen::Vector3d &vWall,
                                         const Eigen::Vector3d &n, double radius, double overlap);
 
+/// The normal damping coefficient γn [N·s/m] of `model edinburgh` for a particle of radius R [m]
+/// and mass m [kg] against the wheel: LIGGGHTS forms it from ln e and the loading coefficient k1
+/// (N/m^n), independent of the overlap. An explicit integrator needs γn dt / m well below 1.
+double eepaNormalDamping(const PairConstants &pc, double R, double m);
+
 /// Evaluates one contact. `updateHistory` is LIGGGHTS' `computeflag && shearupdate`: false in
 /// `setup()` (forces without advancing the history). Like LIGGGHTS, the EEPA overlap memory is
 /// written even when it is false. No allocation, no virtual call.
