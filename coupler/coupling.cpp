@@ -8,7 +8,8 @@ namespace wheelsim::coupler {
 namespace {
 
 /// Sends a Close; swallows every failure (the peer may be gone, which is why we close).
-void send_close_quietly(Transport& transport, CloseReason reason, const std::string& text) noexcept {
+void send_close_quietly(Transport &transport, CloseReason reason,
+                        const std::string &text) noexcept {
   try {
     transport.send_nowait(encode(Close::make(reason, text)));
   } catch (...) { // encode: only std::bad_alloc is possible
@@ -16,22 +17,21 @@ void send_close_quietly(Transport& transport, CloseReason reason, const std::str
 }
 
 /// Sends `bytes`, adding what was being sent to a failure's message (same exception type).
-void send_message(Transport& transport, const Bytes& bytes, const std::string& what) {
+void send_message(Transport &transport, const Bytes &bytes, const std::string &what) {
   try {
     transport.send(bytes);
-  } catch (const TimeoutError& e) {
+  } catch (const TimeoutError &e) {
     throw TimeoutError("sending " + what + ": " + e.what());
-  } catch (const CouplingError& e) {
+  } catch (const CouplingError &e) {
     throw CouplingError("sending " + what + ": " + e.what());
   }
 }
 
-PeerClosedError peer_closed(const Transport& transport, const Bytes& bytes,
-                            const std::string& awaiting) {
+PeerClosedError peer_closed(const Transport &transport, const Bytes &bytes,
+                            const std::string &awaiting) {
   const Close close = decode_close(bytes);
   return PeerClosedError(transport.peer_name() + " closed the coupling while we awaited " +
-                             awaiting + " (" + to_string(close.reason) +
-                             "): " + close.message(),
+                             awaiting + " (" + to_string(close.reason) + "): " + close.message(),
                          close);
 }
 
@@ -39,7 +39,7 @@ bool same_time_step(double a, double b) {
   return std::fabs(a - b) <= kTimeStepRelativeTolerance * std::max(std::fabs(a), std::fabs(b));
 }
 
-std::string step_rule(const Hello& hello) {
+std::string step_rule(const Hello &hello) {
   return "start step " + std::to_string(hello.start_step) + ", exchange_every " +
          std::to_string(hello.exchange_every);
 }
@@ -62,27 +62,30 @@ CouplingClient::~CouplingClient() {
   }
 }
 
-bool CouplingClient::is_open() const { return state_ == State::AwaitWrench || state_ == State::AwaitPose; }
+bool CouplingClient::is_open() const {
+  return state_ == State::AwaitWrench || state_ == State::AwaitPose;
+}
 
-void CouplingClient::abandon(CloseReason reason, const std::string& text) noexcept {
+void CouplingClient::abandon(CloseReason reason, const std::string &text) noexcept {
   send_close_quietly(*transport_, reason, text);
   state_ = State::Closed;
 }
 
-Welcome CouplingClient::connect(const Hello& hello) {
+Welcome CouplingClient::connect(const Hello &hello) {
   if (state_ != State::Idle) {
-    throw CouplingError("CouplingClient::connect: called twice; one client object runs one session");
+    throw CouplingError(
+        "CouplingClient::connect: called twice; one client object runs one session");
   }
   const Bytes hello_bytes = encode(hello); // validates; throws ProtocolError naming the field
   hello_ = hello;
   state_ = State::Closed; // until the Welcome is accepted
   send_message(*transport_, hello_bytes, "Hello");
-  const std::string awaiting = "Welcome (reply to Hello for start step " +
-                               std::to_string(hello.start_step) + ")";
+  const std::string awaiting =
+      "Welcome (reply to Hello for start step " + std::to_string(hello.start_step) + ")";
   Bytes bytes;
   try {
     bytes = transport_->receive(timeouts_.handshake, awaiting);
-  } catch (const TimeoutError& e) {
+  } catch (const TimeoutError &e) {
     abandon(CloseReason::Timeout, e.what());
     throw;
   }
@@ -94,18 +97,18 @@ Welcome CouplingClient::connect(const Hello& hello) {
     }
     welcome = decode_welcome(bytes);
     if (!same_time_step(welcome.dt_s, hello.dt_s)) {
-      throw ProtocolError("Welcome.dt_s: time step mismatch: client dt = " +
-                          format_number(hello.dt_s) + " s, server dt = " +
-                          format_number(welcome.dt_s) + " s");
+      throw ProtocolError(
+          "Welcome.dt_s: time step mismatch: client dt = " + format_number(hello.dt_s) +
+          " s, server dt = " + format_number(welcome.dt_s) + " s");
     }
     if (welcome.start_step != hello.start_step) {
       throw ProtocolError("Welcome.start_step: the server accepted step " +
                           std::to_string(welcome.start_step) + ", the client starts at step " +
                           std::to_string(hello.start_step));
     }
-  } catch (const PeerClosedError&) {
+  } catch (const PeerClosedError &) {
     throw;
-  } catch (const ProtocolError& e) {
+  } catch (const ProtocolError &e) {
     abandon(CloseReason::ProtocolError, e.what());
     throw;
   }
@@ -114,7 +117,7 @@ Welcome CouplingClient::connect(const Hello& hello) {
   return welcome;
 }
 
-void CouplingClient::send_wrench(const Wrench& wrench) {
+void CouplingClient::send_wrench(const Wrench &wrench) {
   if (state_ != State::AwaitWrench) {
     throw CouplingError(std::string("CouplingClient::send_wrench: ") +
                         (state_ == State::AwaitPose
@@ -131,7 +134,7 @@ void CouplingClient::send_wrench(const Wrench& wrench) {
   Bytes bytes;
   try {
     bytes = encode(wrench);
-  } catch (const ProtocolError& e) {
+  } catch (const ProtocolError &e) {
     abandon(CloseReason::Error, std::string("client sent an invalid wrench: ") + e.what());
     throw;
   }
@@ -147,7 +150,7 @@ Pose CouplingClient::receive_pose(std::int64_t expected_step) {
   Bytes bytes;
   try {
     bytes = transport_->receive(timeouts_.step, awaiting);
-  } catch (const TimeoutError& e) {
+  } catch (const TimeoutError &e) {
     abandon(CloseReason::Timeout, e.what());
     throw;
   }
@@ -163,9 +166,9 @@ Pose CouplingClient::receive_pose(std::int64_t expected_step) {
                           std::to_string(expected_step) + " from " + transport_->peer_name() +
                           ", got step " + std::to_string(pose.step));
     }
-  } catch (const PeerClosedError&) {
+  } catch (const PeerClosedError &) {
     throw;
-  } catch (const ProtocolError& e) {
+  } catch (const ProtocolError &e) {
     abandon(CloseReason::ProtocolError, e.what());
     throw;
   }
@@ -174,7 +177,7 @@ Pose CouplingClient::receive_pose(std::int64_t expected_step) {
   return pose;
 }
 
-void CouplingClient::close(CloseReason reason, const std::string& text) {
+void CouplingClient::close(CloseReason reason, const std::string &text) {
   if (is_open()) {
     abandon(reason, text);
   }
@@ -201,7 +204,7 @@ bool CouplingServer::is_open() const {
   return state_ == State::AwaitWrench || state_ == State::AwaitPose;
 }
 
-void CouplingServer::abandon(CloseReason reason, const std::string& text) noexcept {
+void CouplingServer::abandon(CloseReason reason, const std::string &text) noexcept {
   send_close_quietly(*transport_, reason, text);
   state_ = State::Closed;
 }
@@ -212,7 +215,8 @@ Hello CouplingServer::accept(double expected_dt_s) {
   }
   if (!std::isfinite(expected_dt_s) || !(expected_dt_s > 0.0)) {
     throw CouplingError("CouplingServer::accept: the server's time step must be finite and > 0 s, "
-                        "got " + format_number(expected_dt_s));
+                        "got " +
+                        format_number(expected_dt_s));
   }
   state_ = State::Closed; // until the Hello is accepted
   const Bytes bytes = transport_->receive(timeouts_.handshake, "Hello");
@@ -223,15 +227,15 @@ Hello CouplingServer::accept(double expected_dt_s) {
     }
     hello = decode_hello(bytes);
     if (!same_time_step(hello.dt_s, expected_dt_s)) {
-      throw ProtocolError("Hello.dt_s: time step mismatch: client dt = " +
-                          format_number(hello.dt_s) + " s, server dt = " +
-                          format_number(expected_dt_s) +
-                          " s; use the same time step on both sides (the deck's timestep and the "
-                          "rig config's [run] dt)");
+      throw ProtocolError(
+          "Hello.dt_s: time step mismatch: client dt = " + format_number(hello.dt_s) +
+          " s, server dt = " + format_number(expected_dt_s) +
+          " s; use the same time step on both sides (the deck's timestep and the "
+          "rig config's [run] dt)");
     }
-  } catch (const PeerClosedError&) {
+  } catch (const PeerClosedError &) {
     throw;
-  } catch (const ProtocolError& e) {
+  } catch (const ProtocolError &e) {
     abandon(CloseReason::ProtocolError, e.what());
     throw;
   }
@@ -240,16 +244,15 @@ Hello CouplingServer::accept(double expected_dt_s) {
   return hello;
 }
 
-void CouplingServer::welcome(const Welcome& welcome) {
+void CouplingServer::welcome(const Welcome &welcome) {
   if (state_ != State::AwaitWelcome) {
     throw CouplingError("CouplingServer::welcome: no Hello accepted (call accept first, once)");
   }
   if (welcome.start_step != hello_.start_step || !same_time_step(welcome.dt_s, hello_.dt_s)) {
     throw CouplingError("CouplingServer::welcome: the Welcome must echo the Hello: start step " +
                         std::to_string(welcome.start_step) + " vs " +
-                        std::to_string(hello_.start_step) + ", dt " +
-                        format_number(welcome.dt_s) + " s vs " + format_number(hello_.dt_s) +
-                        " s");
+                        std::to_string(hello_.start_step) + ", dt " + format_number(welcome.dt_s) +
+                        " s vs " + format_number(hello_.dt_s) + " s");
   }
   Welcome message = welcome;
   message.protocol_version = kProtocolVersion;
@@ -269,7 +272,7 @@ std::variant<Wrench, Close> CouplingServer::receive() {
   Bytes bytes;
   try {
     bytes = transport_->receive(timeouts_.step, awaiting);
-  } catch (const TimeoutError& e) {
+  } catch (const TimeoutError &e) {
     abandon(CloseReason::Timeout, e.what());
     throw;
   }
@@ -281,33 +284,32 @@ std::variant<Wrench, Close> CouplingServer::receive() {
     const Wrench wrench = decode_wrench(bytes);
     if (wrench.step != next_wrench_step_) {
       throw ProtocolError("Wrench.step: step mismatch: expected the Wrench for step " +
-                          std::to_string(next_wrench_step_) + " (" + step_rule(hello_) +
-                          ") from " + transport_->peer_name() + ", got step " +
-                          std::to_string(wrench.step));
+                          std::to_string(next_wrench_step_) + " (" + step_rule(hello_) + ") from " +
+                          transport_->peer_name() + ", got step " + std::to_string(wrench.step));
     }
     pose_step_ = wrench.step + hello_.exchange_every;
     state_ = State::AwaitPose;
     return wrench;
-  } catch (const ProtocolError& e) {
+  } catch (const ProtocolError &e) {
     abandon(CloseReason::ProtocolError, e.what());
     throw;
   }
 }
 
-void CouplingServer::send_pose(const Pose& pose) {
+void CouplingServer::send_pose(const Pose &pose) {
   if (state_ != State::AwaitPose) {
     throw CouplingError("CouplingServer::send_pose: no Wrench is waiting for its Pose");
   }
   if (pose.step != pose_step_) {
     throw CouplingError("CouplingServer::send_pose: the reply to the Wrench of step " +
                         std::to_string(pose_step_ - hello_.exchange_every) +
-                        " must be the Pose for step " + std::to_string(pose_step_) +
-                        ", got step " + std::to_string(pose.step));
+                        " must be the Pose for step " + std::to_string(pose_step_) + ", got step " +
+                        std::to_string(pose.step));
   }
   Bytes bytes;
   try {
     bytes = encode(pose);
-  } catch (const ProtocolError& e) {
+  } catch (const ProtocolError &e) {
     abandon(CloseReason::Error, std::string("server computed an invalid pose: ") + e.what());
     throw;
   }
@@ -316,7 +318,7 @@ void CouplingServer::send_pose(const Pose& pose) {
   state_ = State::AwaitWrench;
 }
 
-void CouplingServer::close(CloseReason reason, const std::string& text) {
+void CouplingServer::close(CloseReason reason, const std::string &text) {
   if (is_open() || state_ == State::AwaitWelcome) {
     abandon(reason, text);
   }

@@ -20,7 +20,7 @@ namespace wheelsim::coupler {
 /// The peer sent Close where another message was expected (or during the handshake).
 class PeerClosedError : public CouplingError {
 public:
-  PeerClosedError(const std::string& what, const Close& close)
+  PeerClosedError(const std::string &what, const Close &close)
       : CouplingError(what), close_(close) {}
   CloseReason reason() const { return close_.reason; }
   /// The peer's text, e.g. "time step mismatch: client dt = 1e-05 s, server dt = 2e-05 s".
@@ -50,32 +50,32 @@ public:
   explicit CouplingClient(std::unique_ptr<Transport> transport, Timeouts timeouts = {});
   /// If the session is open, sends Close{aborted} (best effort, never throws).
   ~CouplingClient();
-  CouplingClient(const CouplingClient&) = delete;
-  CouplingClient& operator=(const CouplingClient&) = delete;
+  CouplingClient(const CouplingClient &) = delete;
+  CouplingClient &operator=(const CouplingClient &) = delete;
 
   /// Sends Hello, waits (timeouts.handshake) for Welcome. Throws PeerClosedError with the
   /// server's reason if it refuses (version, dt), ProtocolError if the Welcome is malformed or
   /// disagrees with the Hello (version, dt, start step), TimeoutError if no answer.
-  Welcome connect(const Hello& hello);
+  Welcome connect(const Hello &hello);
   /// Sends the wrench of step `wrench.step`, which must be the next exchange step
   /// (start_step + k * exchange_every) and follow the previous receive_pose.
-  void send_wrench(const Wrench& wrench);
+  void send_wrench(const Wrench &wrench);
   /// Waits (timeouts.step) for the Pose of `expected_step` (= last wrench step + exchange_every).
   /// A Pose for another step is a ProtocolError naming both steps; a Close is a PeerClosedError
   /// carrying the rig's reason.
   Pose receive_pose(std::int64_t expected_step);
   /// Sends Close{reason, text} if the session is open; then the session is closed. Best effort:
   /// never throws (a peer that is gone cannot be told).
-  void close(CloseReason reason = CloseReason::Finished, const std::string& text = "finished");
+  void close(CloseReason reason = CloseReason::Finished, const std::string &text = "finished");
 
   bool is_open() const;
-  const Hello& hello() const { return hello_; }
-  Transport& transport() { return *transport_; }
+  const Hello &hello() const { return hello_; }
+  Transport &transport() { return *transport_; }
 
 private:
   enum class State { Idle, AwaitWrench, AwaitPose, Closed };
   /// Tells the peer why (Close, best effort) and marks the session closed; the caller throws.
-  void abandon(CloseReason reason, const std::string& text) noexcept;
+  void abandon(CloseReason reason, const std::string &text) noexcept;
   std::unique_ptr<Transport> transport_;
   Timeouts timeouts_;
   State state_ = State::Idle;
@@ -95,8 +95,8 @@ public:
   explicit CouplingServer(std::unique_ptr<Transport> transport, Timeouts timeouts = {});
   /// If the session is open, sends Close{aborted} (best effort, never throws).
   ~CouplingServer();
-  CouplingServer(const CouplingServer&) = delete;
-  CouplingServer& operator=(const CouplingServer&) = delete;
+  CouplingServer(const CouplingServer &) = delete;
+  CouplingServer &operator=(const CouplingServer &) = delete;
 
   /// Waits (timeouts.handshake) for the client's Hello and validates it: protocol version and
   /// dt (relative tolerance kTimeStepRelativeTolerance) against `expected_dt_s`. On a mismatch or
@@ -104,23 +104,23 @@ public:
   /// ProtocolError naming both values ("client speaks protocol 2, server 1").
   Hello accept(double expected_dt_s);
   /// Replies to the Hello. `welcome.start_step` and `welcome.dt_s` must equal the Hello's.
-  void welcome(const Welcome& welcome);
+  void welcome(const Welcome &welcome);
   /// Waits (timeouts.step) for the next Wrench, or a Close (the client finished or failed: the
   /// session is then closed). A Wrench for an unexpected step is a ProtocolError naming both.
   std::variant<Wrench, Close> receive();
   /// Replies to the last Wrench; `pose.step` must be that wrench's step + exchange_every.
-  void send_pose(const Pose& pose);
+  void send_pose(const Pose &pose);
   /// Sends Close{reason, text} if the session is open. Best effort: never throws.
-  void close(CloseReason reason = CloseReason::Finished, const std::string& text = "finished");
+  void close(CloseReason reason = CloseReason::Finished, const std::string &text = "finished");
 
   bool is_open() const;
-  const Hello& hello() const { return hello_; }
-  Transport& transport() { return *transport_; }
+  const Hello &hello() const { return hello_; }
+  Transport &transport() { return *transport_; }
 
 private:
   enum class State { AwaitHello, AwaitWelcome, AwaitWrench, AwaitPose, Closed };
   /// Tells the peer why (Close, best effort) and marks the session closed; the caller throws.
-  void abandon(CloseReason reason, const std::string& text) noexcept;
+  void abandon(CloseReason reason, const std::string &text) noexcept;
   std::unique_ptr<Transport> transport_;
   Timeouts timeouts_;
   State state_ = State::AwaitHello;

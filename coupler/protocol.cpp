@@ -11,11 +11,11 @@ namespace {
 
 constexpr std::uint32_t kMagicByteSwapped = 0x57534350u;
 
-std::string field_name(const char* message, const char* field) {
+std::string field_name(const char *message, const char *field) {
   return std::string(message) + "." + field;
 }
 
-void check_finite(const char* message, const char* field, double value) {
+void check_finite(const char *message, const char *field, double value) {
   if (!std::isfinite(value)) {
     throw ProtocolError(field_name(message, field) + ": must be a finite number, got " +
                         format_number(value));
@@ -23,7 +23,7 @@ void check_finite(const char* message, const char* field, double value) {
 }
 
 template <std::size_t N>
-void check_finite(const char* message, const char* field, const std::array<double, N>& values) {
+void check_finite(const char *message, const char *field, const std::array<double, N> &values) {
   for (std::size_t i = 0; i < N; ++i) {
     if (!std::isfinite(values[i])) {
       throw ProtocolError(field_name(message, field) + "[" + std::to_string(i) +
@@ -32,7 +32,7 @@ void check_finite(const char* message, const char* field, const std::array<doubl
   }
 }
 
-void check_unit_quaternion(const char* message, const char* field, const Quat& q) {
+void check_unit_quaternion(const char *message, const char *field, const Quat &q) {
   check_finite(message, field, q);
   const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
   if (!(std::fabs(norm - 1.0) <= kQuaternionNormTolerance)) {
@@ -43,14 +43,13 @@ void check_unit_quaternion(const char* message, const char* field, const Quat& q
   }
 }
 
-void check_step(const char* message, const char* field, std::int64_t step) {
+void check_step(const char *message, const char *field, std::int64_t step) {
   if (step < 0) {
-    throw ProtocolError(field_name(message, field) + ": must be >= 0, got " +
-                        std::to_string(step));
+    throw ProtocolError(field_name(message, field) + ": must be >= 0, got " + std::to_string(step));
   }
 }
 
-void check_time_step(const char* message, double dt_s) {
+void check_time_step(const char *message, double dt_s) {
   check_finite(message, "dt_s", dt_s);
   if (!(dt_s > 0.0)) {
     throw ProtocolError(field_name(message, "dt_s") + ": time step must be > 0 s, got " +
@@ -58,14 +57,14 @@ void check_time_step(const char* message, double dt_s) {
   }
 }
 
-void check_state(const char* message, const WheelState& state) {
+void check_state(const char *message, const WheelState &state) {
   check_finite(message, "state.p_WC_W", state.p_WC_W);
   check_unit_quaternion(message, "state.q_WB", state.q_WB);
   check_finite(message, "state.v_WC_W", state.v_WC_W);
   check_finite(message, "state.w_WB_W", state.w_WB_W);
 }
 
-template <typename Payload> Bytes pack(MessageType type, std::uint32_t version, const Payload& p) {
+template <typename Payload> Bytes pack(MessageType type, std::uint32_t version, const Payload &p) {
   const MessageHeader header{kMagic, version, static_cast<std::uint32_t>(type),
                              static_cast<std::uint32_t>(sizeof(Payload))};
   Bytes bytes(sizeof(MessageHeader) + sizeof(Payload));
@@ -74,7 +73,7 @@ template <typename Payload> Bytes pack(MessageType type, std::uint32_t version, 
   return bytes;
 }
 
-MessageHeader read_header(const Bytes& bytes, const char* expected) {
+MessageHeader read_header(const Bytes &bytes, const char *expected) {
   MessageHeader header{};
   if (bytes.size() < sizeof header) {
     throw ProtocolError(std::string(expected) + ": message is " + std::to_string(bytes.size()) +
@@ -99,8 +98,8 @@ MessageHeader read_header(const Bytes& bytes, const char* expected) {
 
 /// Header checks for a message of type `T` sent by `sender` to `receiver`; then copies the payload.
 template <typename Payload>
-Payload unpack(const Bytes& bytes, MessageType type, const char* sender, const char* receiver,
-               bool check_version, std::uint32_t* version_out = nullptr) {
+Payload unpack(const Bytes &bytes, MessageType type, const char *sender, const char *receiver,
+               bool check_version, std::uint32_t *version_out = nullptr) {
   const std::string name = to_string(type);
   const MessageHeader header = read_header(bytes, name.c_str());
   if (check_version && header.version != kProtocolVersion) {
@@ -110,17 +109,17 @@ Payload unpack(const Bytes& bytes, MessageType type, const char* sender, const c
   }
   if (header.type != static_cast<std::uint32_t>(type)) {
     throw ProtocolError("expected a " + name + " message, got " +
-                        to_string(static_cast<MessageType>(header.type)) + " (header.type = " +
-                        std::to_string(header.type) + ")");
+                        to_string(static_cast<MessageType>(header.type)) +
+                        " (header.type = " + std::to_string(header.type) + ")");
   }
   const std::size_t expected_size = sizeof(MessageHeader) + sizeof(Payload);
   if (header.payload_bytes != sizeof(Payload) || bytes.size() != expected_size) {
-    throw ProtocolError(name + ": message is " + std::to_string(bytes.size()) +
-                        " bytes with header.payload_bytes = " +
-                        std::to_string(header.payload_bytes) + ", expected " +
-                        std::to_string(expected_size) + " bytes (" +
-                        std::to_string(sizeof(MessageHeader)) + "-byte header + " +
-                        std::to_string(sizeof(Payload)) + "-byte payload)");
+    throw ProtocolError(
+        name + ": message is " + std::to_string(bytes.size()) +
+        " bytes with header.payload_bytes = " + std::to_string(header.payload_bytes) +
+        ", expected " + std::to_string(expected_size) + " bytes (" +
+        std::to_string(sizeof(MessageHeader)) + "-byte header + " +
+        std::to_string(sizeof(Payload)) + "-byte payload)");
   }
   Payload payload;
   std::memcpy(&payload, bytes.data() + sizeof(MessageHeader), sizeof payload);
@@ -173,7 +172,7 @@ std::string format_number(double value) {
   return std::string(buf, result.ptr);
 }
 
-Close Close::make(CloseReason reason, const std::string& message) {
+Close Close::make(CloseReason reason, const std::string &message) {
   Close close;
   close.reason = reason;
   const std::size_t n = std::min(message.size(), kTextBytes - 1);
@@ -182,20 +181,20 @@ Close Close::make(CloseReason reason, const std::string& message) {
 }
 
 std::string Close::message() const {
-  const auto* end = static_cast<const char*>(std::memchr(text.data(), '\0', text.size()));
+  const auto *end = static_cast<const char *>(std::memchr(text.data(), '\0', text.size()));
   return std::string(text.data(), end != nullptr ? end : text.data() + text.size());
 }
 
 // --- validation ---
 
-void validate(const Hello& m) {
+void validate(const Hello &m) {
   if (m.exchange_every < 1) {
     throw ProtocolError("Hello.exchange_every: must be >= 1 (exchange every N steps), got " +
                         std::to_string(m.exchange_every));
   }
   check_step("Hello", "start_step", m.start_step);
   check_time_step("Hello", m.dt_s);
-  const auto* nul = static_cast<const char*>(std::memchr(m.units.data(), '\0', m.units.size()));
+  const auto *nul = static_cast<const char *>(std::memchr(m.units.data(), '\0', m.units.size()));
   const std::string units(m.units.data(), nul != nullptr ? nul : m.units.data() + m.units.size());
   if (nul == nullptr || units != kUnitsSI) {
     throw ProtocolError("Hello.units: must be \"si\" (the only unit system), got \"" + units +
@@ -206,13 +205,13 @@ void validate(const Hello& m) {
   check_unit_quaternion("Hello", "q_WB", m.q_WB);
 }
 
-void validate(const Welcome& m) {
+void validate(const Welcome &m) {
   check_step("Welcome", "start_step", m.start_step);
   check_time_step("Welcome", m.dt_s);
   check_state("Welcome", m.state);
 }
 
-void validate(const Wrench& m) {
+void validate(const Wrench &m) {
   check_step("Wrench", "step", m.step);
   check_finite("Wrench", "time_s", m.time_s);
   check_finite("Wrench", "f_C_W", m.f_C_W);
@@ -222,12 +221,12 @@ void validate(const Wrench& m) {
   }
 }
 
-void validate(const Pose& m) {
+void validate(const Pose &m) {
   check_step("Pose", "step", m.step);
   check_state("Pose", m.state);
 }
 
-void validate(const Close& m) {
+void validate(const Close &m) {
   // Any reason code is accepted (a newer peer may know more); the text must be terminated.
   if (std::memchr(m.text.data(), '\0', m.text.size()) == nullptr) {
     throw ProtocolError("Close.text: must be NUL-terminated within " +
@@ -237,30 +236,30 @@ void validate(const Close& m) {
 
 // --- encode ---
 
-Bytes encode(const Hello& m) {
+Bytes encode(const Hello &m) {
   validate(m);
   return pack(MessageType::Hello, m.protocol_version, m);
 }
-Bytes encode(const Welcome& m) {
+Bytes encode(const Welcome &m) {
   validate(m);
   return pack(MessageType::Welcome, m.protocol_version, m);
 }
-Bytes encode(const Wrench& m) {
+Bytes encode(const Wrench &m) {
   validate(m);
   return pack(MessageType::Wrench, kProtocolVersion, m);
 }
-Bytes encode(const Pose& m) {
+Bytes encode(const Pose &m) {
   validate(m);
   return pack(MessageType::Pose, kProtocolVersion, m);
 }
-Bytes encode(const Close& m) {
+Bytes encode(const Close &m) {
   validate(m);
   return pack(MessageType::Close, kProtocolVersion, m);
 }
 
 // --- decode ---
 
-MessageType peek_type(const Bytes& bytes) {
+MessageType peek_type(const Bytes &bytes) {
   const MessageHeader header = read_header(bytes, "message");
   if (header.payload_bytes != bytes.size() - sizeof(MessageHeader)) {
     throw ProtocolError("message: " + std::to_string(bytes.size()) +
@@ -270,7 +269,7 @@ MessageType peek_type(const Bytes& bytes) {
   return static_cast<MessageType>(header.type);
 }
 
-Hello decode_hello(const Bytes& bytes) {
+Hello decode_hello(const Bytes &bytes) {
   std::uint32_t version = 0;
   Hello m = unpack<Hello>(bytes, MessageType::Hello, "client", "server", true, &version);
   m.protocol_version = version;
@@ -278,7 +277,7 @@ Hello decode_hello(const Bytes& bytes) {
   return m;
 }
 
-Welcome decode_welcome(const Bytes& bytes) {
+Welcome decode_welcome(const Bytes &bytes) {
   std::uint32_t version = 0;
   Welcome m = unpack<Welcome>(bytes, MessageType::Welcome, "server", "client", true, &version);
   m.protocol_version = version;
@@ -286,19 +285,19 @@ Welcome decode_welcome(const Bytes& bytes) {
   return m;
 }
 
-Wrench decode_wrench(const Bytes& bytes) {
+Wrench decode_wrench(const Bytes &bytes) {
   Wrench m = unpack<Wrench>(bytes, MessageType::Wrench, "client", "server", true);
   validate(m);
   return m;
 }
 
-Pose decode_pose(const Bytes& bytes) {
+Pose decode_pose(const Bytes &bytes) {
   Pose m = unpack<Pose>(bytes, MessageType::Pose, "server", "client", true);
   validate(m);
   return m;
 }
 
-Close decode_close(const Bytes& bytes) {
+Close decode_close(const Bytes &bytes) {
   Close m = unpack<Close>(bytes, MessageType::Close, "peer", "we", false);
   validate(m);
   return m;

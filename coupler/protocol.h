@@ -46,7 +46,8 @@
 namespace wheelsim::coupler {
 
 #if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
-#error "wheelsim coupling protocol: the wire format is host order and supported on little-endian hosts only"
+#error                                                                                             \
+    "wheelsim coupling protocol: the wire format is host order and supported on little-endian hosts only"
 #endif
 
 /// Protocol version. Bump it on any change of a struct, a field's meaning or the message order.
@@ -145,10 +146,10 @@ static_assert(sizeof(Hello) == 4 + 4 + 8 + 8 + 8 + 3 * 8 + 3 * 8 + 4 * 8);
 
 /// Pose and twist of the wheel at one step.
 struct WheelState {
-  Vec3 p_WC_W{};                  ///< wheel-centre position [m], world frame
-  Quat q_WB{1.0, 0.0, 0.0, 0.0};  ///< wheel orientation, unit quaternion (w, x, y, z), B in W
-  Vec3 v_WC_W{};                  ///< wheel-centre velocity [m/s], world frame
-  Vec3 w_WB_W{};                  ///< wheel angular velocity [rad/s], world frame
+  Vec3 p_WC_W{};                 ///< wheel-centre position [m], world frame
+  Quat q_WB{1.0, 0.0, 0.0, 0.0}; ///< wheel orientation, unit quaternion (w, x, y, z), B in W
+  Vec3 v_WC_W{};                 ///< wheel-centre velocity [m/s], world frame
+  Vec3 w_WB_W{};                 ///< wheel angular velocity [rad/s], world frame
 };
 static_assert(sizeof(WheelState) == 13 * 8);
 
@@ -156,7 +157,7 @@ static_assert(sizeof(WheelState) == 13 * 8);
 struct Welcome {
   /// Protocol version the server speaks (header; decode fills it from there).
   std::uint32_t protocol_version = kProtocolVersion;
-  std::uint32_t reserved = 0;  ///< 0; keeps the doubles 8-byte aligned
+  std::uint32_t reserved = 0; ///< 0; keeps the doubles 8-byte aligned
   /// Step the server accepts as the start; equals Hello::start_step.
   std::int64_t start_step = 0;
   /// Time step [s] of the server; equals Hello::dt_s.
@@ -192,7 +193,7 @@ struct Close {
   std::array<char, kTextBytes> text{};
 
   /// A Close with `reason` and `message` (cut to fit).
-  static Close make(CloseReason reason, const std::string& message);
+  static Close make(CloseReason reason, const std::string &message);
   std::string message() const; ///< text up to the NUL
 };
 static_assert(sizeof(Close) == 4 + 4 + Close::kTextBytes);
@@ -206,27 +207,28 @@ static_assert(std::is_trivially_copyable_v<MessageHeader> && std::is_trivially_c
 // ProtocolError like decode_*. decode_* check, in this order: size >= header, magic, version
 // (except Close), type, payload size, then every field: finite numbers, unit quaternions, ranges.
 
-Bytes encode(const Hello& message);
-Bytes encode(const Welcome& message);
-Bytes encode(const Wrench& message);
-Bytes encode(const Pose& message);
-Bytes encode(const Close& message);
+Bytes encode(const Hello &message);
+Bytes encode(const Welcome &message);
+Bytes encode(const Wrench &message);
+Bytes encode(const Pose &message);
+Bytes encode(const Close &message);
 
 /// Type of a message after checking size, magic and the header's payload size (not the version).
-MessageType peek_type(const Bytes& bytes);
+MessageType peek_type(const Bytes &bytes);
 
-Hello decode_hello(const Bytes& bytes);     ///< version mismatch: "client speaks protocol 2, server 1"
-Welcome decode_welcome(const Bytes& bytes); ///< version mismatch: "server speaks protocol 2, client 1"
-Wrench decode_wrench(const Bytes& bytes);
-Pose decode_pose(const Bytes& bytes);
-Close decode_close(const Bytes& bytes);     ///< any version
+Hello decode_hello(const Bytes &bytes); ///< version mismatch: "client speaks protocol 2, server 1"
+Welcome
+decode_welcome(const Bytes &bytes); ///< version mismatch: "server speaks protocol 2, client 1"
+Wrench decode_wrench(const Bytes &bytes);
+Pose decode_pose(const Bytes &bytes);
+Close decode_close(const Bytes &bytes); ///< any version
 
 /// Validation alone (what encode and decode run).
-void validate(const Hello& message);
-void validate(const Welcome& message);
-void validate(const Wrench& message);
-void validate(const Pose& message);
-void validate(const Close& message);
+void validate(const Hello &message);
+void validate(const Welcome &message);
+void validate(const Wrench &message);
+void validate(const Pose &message);
+void validate(const Close &message);
 
 /// Shortest text that reads back as the same double ("1e-05", "0.1", "nan").
 std::string format_number(double value);

@@ -20,17 +20,17 @@ public:
   virtual ~Transport() = default;
   /// Queue one whole message for the peer. Throws TimeoutError if the message cannot be handed
   /// over within the transport's send timeout (no peer connected), CouplingError on failure.
-  virtual void send(const std::vector<std::uint8_t>& message) = 0;
+  virtual void send(const std::vector<std::uint8_t> &message) = 0;
   /// The next whole message from the peer. Throws TimeoutError after `timeout` with the message
   /// "no <awaiting> from <peer_name()> within <timeout>", e.g.
   /// "no Pose for step 1200 from the rig (tcp://127.0.0.1:5555) within 30 s".
   virtual std::vector<std::uint8_t> receive(std::chrono::milliseconds timeout,
-                                            const std::string& awaiting) = 0;
+                                            const std::string &awaiting) = 0;
   /// Who is at the other end, for messages: "the rig (ipc:///tmp/run/rig.sock)".
   virtual std::string peer_name() const = 0;
   /// Queue a message without blocking at all; false if it could not be queued (no peer). Used for
   /// the best-effort Close on failures, so that telling a dead peer costs no time.
-  virtual bool send_nowait(const std::vector<std::uint8_t>& message) noexcept {
+  virtual bool send_nowait(const std::vector<std::uint8_t> &message) noexcept {
     try {
       send(message);
       return true;
@@ -44,7 +44,7 @@ public:
 std::string format_duration(std::chrono::milliseconds duration);
 
 /// The TimeoutError every transport throws: "no <awaiting> from <peer> within <timeout>".
-TimeoutError receive_timeout(const std::string& awaiting, const std::string& peer,
+TimeoutError receive_timeout(const std::string &awaiting, const std::string &peer,
                              std::chrono::milliseconds timeout);
 
 // --- in-process loopback ---
@@ -54,8 +54,8 @@ TimeoutError receive_timeout(const std::string& awaiting, const std::string& pee
 /// destroyed end is not reported to the other: like a dead process, it is noticed by a timeout.
 /// Sends never block. `first_peer_name` is how the first end names its peer (the second end).
 std::pair<std::unique_ptr<Transport>, std::unique_ptr<Transport>>
-make_loopback_pair(const std::string& first_peer_name = "the rig (loopback)",
-                   const std::string& second_peer_name = "LIGGGHTS (loopback)");
+make_loopback_pair(const std::string &first_peer_name = "the rig (loopback)",
+                   const std::string &second_peer_name = "LIGGGHTS (loopback)");
 
 // --- ZeroMQ ---
 
@@ -79,24 +79,24 @@ struct ZmqOptions {
 class ZmqTransport final : public Transport {
 public:
   /// Server side: bind `endpoint`. `peer_label` names the connecting peer ("LIGGGHTS").
-  static std::unique_ptr<ZmqTransport> bind(const std::string& endpoint,
-                                            const std::string& peer_label = "LIGGGHTS",
-                                            const ZmqOptions& options = {});
+  static std::unique_ptr<ZmqTransport> bind(const std::string &endpoint,
+                                            const std::string &peer_label = "LIGGGHTS",
+                                            const ZmqOptions &options = {});
   /// Client side: connect to `endpoint` (succeeds before the server exists; messages queue).
-  static std::unique_ptr<ZmqTransport> connect(const std::string& endpoint,
-                                               const std::string& peer_label = "the rig",
-                                               const ZmqOptions& options = {});
+  static std::unique_ptr<ZmqTransport> connect(const std::string &endpoint,
+                                               const std::string &peer_label = "the rig",
+                                               const ZmqOptions &options = {});
   ~ZmqTransport() override;
-  ZmqTransport(const ZmqTransport&) = delete;
-  ZmqTransport& operator=(const ZmqTransport&) = delete;
+  ZmqTransport(const ZmqTransport &) = delete;
+  ZmqTransport &operator=(const ZmqTransport &) = delete;
 
-  void send(const std::vector<std::uint8_t>& message) override;
+  void send(const std::vector<std::uint8_t> &message) override;
   std::vector<std::uint8_t> receive(std::chrono::milliseconds timeout,
-                                    const std::string& awaiting) override;
+                                    const std::string &awaiting) override;
   std::string peer_name() const override;
-  bool send_nowait(const std::vector<std::uint8_t>& message) noexcept override;
+  bool send_nowait(const std::vector<std::uint8_t> &message) noexcept override;
   /// The endpoint as bound or connected (a "*" port resolved to the actual port).
-  const std::string& endpoint() const;
+  const std::string &endpoint() const;
 
 private:
   struct Impl;
@@ -107,8 +107,8 @@ private:
 /// The endpoint a server binds to after applying the rules above ("tcp://:5555" ->
 /// "tcp://127.0.0.1:5555"); throws CouplingError naming the endpoint and what to write instead.
 /// Sets *non_loopback when it is a tcp address off the loopback interface.
-std::string normalize_bind_endpoint(const std::string& endpoint, bool* non_loopback = nullptr);
+std::string normalize_bind_endpoint(const std::string &endpoint, bool *non_loopback = nullptr);
 /// Same checks for a client (any tcp host may be connected to).
-std::string normalize_connect_endpoint(const std::string& endpoint);
+std::string normalize_connect_endpoint(const std::string &endpoint);
 
 } // namespace wheelsim::coupler

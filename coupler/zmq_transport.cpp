@@ -14,17 +14,15 @@ namespace wheelsim::coupler {
 
 namespace {
 
-constexpr const char* kIpcPrefix = "ipc://";
-constexpr const char* kTcpPrefix = "tcp://";
+constexpr const char *kIpcPrefix = "ipc://";
+constexpr const char *kTcpPrefix = "tcp://";
 constexpr std::size_t kMaxIpcPath = sizeof(sockaddr_un{}.sun_path) - 1;
-constexpr const char* kEndpointHelp =
+constexpr const char *kEndpointHelp =
     "write ipc:///path/to/socket (same machine) or tcp://127.0.0.1:PORT";
 
-bool starts_with(const std::string& s, const char* prefix) {
-  return s.rfind(prefix, 0) == 0;
-}
+bool starts_with(const std::string &s, const char *prefix) { return s.rfind(prefix, 0) == 0; }
 
-bool is_loopback_host(const std::string& host) {
+bool is_loopback_host(const std::string &host) {
   if (host == "localhost" || host == "::1" || host == "[::1]") {
     return true;
   }
@@ -44,7 +42,7 @@ struct TcpAddress {
   std::string port;
 };
 
-TcpAddress split_tcp(const std::string& endpoint, bool allow_wildcard_port) {
+TcpAddress split_tcp(const std::string &endpoint, bool allow_wildcard_port) {
   const std::string rest = endpoint.substr(std::char_traits<char>::length(kTcpPrefix));
   const auto colon = rest.rfind(':');
   if (colon == std::string::npos) {
@@ -69,7 +67,7 @@ TcpAddress split_tcp(const std::string& endpoint, bool allow_wildcard_port) {
   return address;
 }
 
-void check_ipc(const std::string& endpoint, bool binding) {
+void check_ipc(const std::string &endpoint, bool binding) {
   const std::string path = endpoint.substr(std::char_traits<char>::length(kIpcPrefix));
   if (path.empty()) {
     throw CouplingError("coupling endpoint \"" + endpoint + "\": empty path; " + kEndpointHelp);
@@ -92,7 +90,7 @@ void check_ipc(const std::string& endpoint, bool binding) {
 
 } // namespace
 
-std::string normalize_bind_endpoint(const std::string& endpoint, bool* non_loopback) {
+std::string normalize_bind_endpoint(const std::string &endpoint, bool *non_loopback) {
   if (non_loopback != nullptr) {
     *non_loopback = false;
   }
@@ -114,7 +112,7 @@ std::string normalize_bind_endpoint(const std::string& endpoint, bool* non_loopb
                       kEndpointHelp);
 }
 
-std::string normalize_connect_endpoint(const std::string& endpoint) {
+std::string normalize_connect_endpoint(const std::string &endpoint) {
   if (starts_with(endpoint, kIpcPrefix)) {
     check_ipc(endpoint, false);
     return endpoint;
@@ -135,7 +133,7 @@ struct ZmqTransport::Impl {
   std::chrono::milliseconds send_timeout{0};
   int receive_timeout_ms = -2; ///< the value set on the socket (-2: not yet set)
 
-  Impl(const std::string& peer_label, const ZmqOptions& options)
+  Impl(const std::string &peer_label, const ZmqOptions &options)
       : peer(peer_label), send_timeout(options.send_timeout) {
     socket.set(zmq::sockopt::linger, static_cast<int>(options.linger.count()));
     socket.set(zmq::sockopt::sndtimeo, static_cast<int>(options.send_timeout.count()));
@@ -145,9 +143,9 @@ struct ZmqTransport::Impl {
 ZmqTransport::ZmqTransport(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 ZmqTransport::~ZmqTransport() = default;
 
-std::unique_ptr<ZmqTransport> ZmqTransport::bind(const std::string& endpoint,
-                                                 const std::string& peer_label,
-                                                 const ZmqOptions& options) {
+std::unique_ptr<ZmqTransport> ZmqTransport::bind(const std::string &endpoint,
+                                                 const std::string &peer_label,
+                                                 const ZmqOptions &options) {
   bool non_loopback = false;
   const std::string address = normalize_bind_endpoint(endpoint, &non_loopback);
   if (non_loopback) {
@@ -164,7 +162,7 @@ std::unique_ptr<ZmqTransport> ZmqTransport::bind(const std::string& endpoint,
   }
   try {
     impl->socket.bind(address);
-  } catch (const zmq::error_t& e) {
+  } catch (const zmq::error_t &e) {
     throw CouplingError("cannot bind the coupling endpoint " + address + ": " + e.what() +
                         (e.num() == EADDRINUSE
                              ? " (another process, e.g. a second wheel-rig, uses it; choose "
@@ -175,9 +173,9 @@ std::unique_ptr<ZmqTransport> ZmqTransport::bind(const std::string& endpoint,
   return std::unique_ptr<ZmqTransport>(new ZmqTransport(std::move(impl)));
 }
 
-std::unique_ptr<ZmqTransport> ZmqTransport::connect(const std::string& endpoint,
-                                                    const std::string& peer_label,
-                                                    const ZmqOptions& options) {
+std::unique_ptr<ZmqTransport> ZmqTransport::connect(const std::string &endpoint,
+                                                    const std::string &peer_label,
+                                                    const ZmqOptions &options) {
   const std::string address = normalize_connect_endpoint(endpoint);
   auto impl = std::make_unique<Impl>(peer_label, options);
   if (address.find('[') != std::string::npos) {
@@ -185,14 +183,14 @@ std::unique_ptr<ZmqTransport> ZmqTransport::connect(const std::string& endpoint,
   }
   try {
     impl->socket.connect(address);
-  } catch (const zmq::error_t& e) {
+  } catch (const zmq::error_t &e) {
     throw CouplingError("cannot connect to the coupling endpoint " + address + ": " + e.what());
   }
   impl->endpoint = address;
   return std::unique_ptr<ZmqTransport>(new ZmqTransport(std::move(impl)));
 }
 
-void ZmqTransport::send(const Bytes& message) {
+void ZmqTransport::send(const Bytes &message) {
   for (;;) {
     try {
       if (!impl_->socket.send(zmq::buffer(message), zmq::send_flags::none)) {
@@ -200,7 +198,7 @@ void ZmqTransport::send(const Bytes& message) {
                            format_duration(impl_->send_timeout) + ": no peer connected");
       }
       return;
-    } catch (const zmq::error_t& e) {
+    } catch (const zmq::error_t &e) {
       if (e.num() != EINTR) {
         throw CouplingError("sending to " + peer_name() + " failed: " + e.what());
       }
@@ -208,7 +206,7 @@ void ZmqTransport::send(const Bytes& message) {
   }
 }
 
-bool ZmqTransport::send_nowait(const Bytes& message) noexcept {
+bool ZmqTransport::send_nowait(const Bytes &message) noexcept {
   try {
     return static_cast<bool>(impl_->socket.send(zmq::buffer(message), zmq::send_flags::dontwait));
   } catch (...) {
@@ -216,7 +214,7 @@ bool ZmqTransport::send_nowait(const Bytes& message) noexcept {
   }
 }
 
-Bytes ZmqTransport::receive(std::chrono::milliseconds timeout, const std::string& awaiting) {
+Bytes ZmqTransport::receive(std::chrono::milliseconds timeout, const std::string &awaiting) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   // The full timeout on the first try keeps the socket option unchanged between calls (no
   // setsockopt per exchange); after an EINTR only the rest of the time is waited.
@@ -231,9 +229,9 @@ Bytes ZmqTransport::receive(std::chrono::milliseconds timeout, const std::string
       if (!impl_->socket.recv(message, zmq::recv_flags::none)) {
         throw receive_timeout(awaiting, peer_name(), timeout);
       }
-      const auto* data = static_cast<const std::uint8_t*>(message.data());
+      const auto *data = static_cast<const std::uint8_t *>(message.data());
       return Bytes(data, data + message.size());
-    } catch (const zmq::error_t& e) {
+    } catch (const zmq::error_t &e) {
       if (e.num() != EINTR) {
         throw CouplingError("receiving " + awaiting + " from " + peer_name() +
                             " failed: " + e.what());
@@ -244,10 +242,8 @@ Bytes ZmqTransport::receive(std::chrono::milliseconds timeout, const std::string
   }
 }
 
-std::string ZmqTransport::peer_name() const {
-  return impl_->peer + " (" + impl_->endpoint + ")";
-}
+std::string ZmqTransport::peer_name() const { return impl_->peer + " (" + impl_->endpoint + ")"; }
 
-const std::string& ZmqTransport::endpoint() const { return impl_->endpoint; }
+const std::string &ZmqTransport::endpoint() const { return impl_->endpoint; }
 
 } // namespace wheelsim::coupler

@@ -43,7 +43,7 @@ void serve(std::unique_ptr<Transport> transport) {
     if (std::holds_alternative<Close>(message)) {
       return;
     }
-    const Wrench& w = std::get<Wrench>(message);
+    const Wrench &w = std::get<Wrench>(message);
     pose.step = w.step + hello.exchange_every;
     pose.state.v_WC_W = {1e-3 * w.f_C_W[0], 0.0, 0.0};
     server.send_pose(pose);
@@ -78,7 +78,7 @@ std::vector<double> drive(std::unique_ptr<Transport> transport, long warmup, lon
 }
 
 /// One measurement: server in a child process (or a thread), client here.
-std::vector<double> measure(const std::string& bind_endpoint, bool threads, long warmup, long n) {
+std::vector<double> measure(const std::string &bind_endpoint, bool threads, long warmup, long n) {
   if (threads) {
     auto server_transport = ZmqTransport::bind(bind_endpoint);
     const std::string endpoint = server_transport->endpoint();
@@ -105,7 +105,7 @@ std::vector<double> measure(const std::string& bind_endpoint, bool threads, long
       }
       ::close(fds[1]);
       serve(std::move(transport));
-    } catch (const std::exception& e) {
+    } catch (const std::exception &e) {
       std::fprintf(stderr, "bench-coupler-latency (rig process): %s\n", e.what());
       status = 1;
     }
@@ -140,7 +140,7 @@ double percentile(std::vector<double> sorted, double p) {
 
 } // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char **argv) {
   CLI::App app{"Round-trip latency of one coupler Wrench -> Pose exchange (target <= 30 µs)"};
   long n = 100000;
   long warmup = 10000;
@@ -148,10 +148,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> transports{"ipc", "tcp"};
   app.add_option("-n,--exchanges", n, "timed exchanges per transport")->check(CLI::PositiveNumber);
   app.add_option("--warmup", warmup, "untimed exchanges first")->check(CLI::NonNegativeNumber);
-  app.add_flag("--threads", threads, "client and server in two threads of one process "
-                                     "(default: two processes)");
-  app.add_option("--transport", transports, "ipc and/or tcp")
-      ->check(CLI::IsMember({"ipc", "tcp"}));
+  app.add_flag("--threads", threads,
+               "client and server in two threads of one process "
+               "(default: two processes)");
+  app.add_option("--transport", transports, "ipc and/or tcp")->check(CLI::IsMember({"ipc", "tcp"}));
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -165,7 +165,7 @@ int main(int argc, char** argv) {
                 threads ? "two threads" : "two processes", n, warmup, kTargetUs);
     std::printf("%-28s %10s %10s %10s %14s %14s\n", "transport", "median µs", "p99 µs", "max µs",
                 "median/target", "p99/target");
-    for (const std::string& transport : transports) {
+    for (const std::string &transport : transports) {
       const std::string endpoint =
           transport == "ipc" ? "ipc://" + dir + "/rig.sock" : "tcp://127.0.0.1:*";
       std::vector<double> us = measure(endpoint, threads, warmup, n);
@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
     }
     std::error_code ignored;
     std::filesystem::remove_all(dir, ignored);
-  } catch (const std::exception& e) {
+  } catch (const std::exception &e) {
     std::fprintf(stderr, "bench-coupler-latency: %s\n", e.what());
     return 1;
   }

@@ -37,7 +37,7 @@ inline Hello sample_hello(std::int64_t start_step = 100, std::uint32_t every = 1
 
 /// The state the fake rig reports for `step` after the wrench `w` (every field depends on both,
 /// so a value swapped or lost in transit is seen).
-inline WheelState rig_state(std::int64_t step, const Wrench& w) {
+inline WheelState rig_state(std::int64_t step, const Wrench &w) {
   WheelState s;
   const double angle = 1e-3 * static_cast<double>(step);
   s.p_WC_W = {0.1 + 1e-6 * static_cast<double>(step), w.f_C_W[1], 0.144 - 1e-3 * w.f_C_W[2]};
@@ -69,7 +69,7 @@ struct RigResult {
 /// Fake rig: accept, welcome with the client's pose, answer every wrench with rig_state.
 /// `stop_after` >= 0: return after that many wrenches without answering the last one (caller then
 /// cuts the link or lets the objects die).
-inline RigResult run_fake_rig(CouplingServer& server, double dt_s, std::int64_t stop_after = -1) {
+inline RigResult run_fake_rig(CouplingServer &server, double dt_s, std::int64_t stop_after = -1) {
   RigResult result;
   result.hello = server.accept(dt_s);
   Welcome welcome;
@@ -81,12 +81,12 @@ inline RigResult run_fake_rig(CouplingServer& server, double dt_s, std::int64_t 
   server.welcome(welcome);
   for (;;) {
     auto message = server.receive();
-    if (auto* close = std::get_if<Close>(&message)) {
+    if (auto *close = std::get_if<Close>(&message)) {
       result.close = *close;
       result.got_close = true;
       return result;
     }
-    const Wrench& w = std::get<Wrench>(message);
+    const Wrench &w = std::get<Wrench>(message);
     const Wrench expected = sample_wrench(w.step);
     result.all_wrenches_match =
         result.all_wrenches_match && std::memcmp(&w, &expected, sizeof w) == 0;
@@ -94,13 +94,14 @@ inline RigResult run_fake_rig(CouplingServer& server, double dt_s, std::int64_t 
     if (stop_after >= 0 && result.wrenches >= stop_after) {
       return result;
     }
-    server.send_pose(Pose{w.step + result.hello.exchange_every, rig_state(w.step + result.hello.exchange_every, w)});
+    server.send_pose(Pose{w.step + result.hello.exchange_every,
+                          rig_state(w.step + result.hello.exchange_every, w)});
   }
 }
 
 /// Fake LIGGGHTS: connect, `exchanges` Wrench -> Pose round trips checking every Pose, close.
 /// Returns the number of poses that matched rig_state exactly.
-inline std::int64_t run_fake_liggghts(CouplingClient& client, const Hello& hello,
+inline std::int64_t run_fake_liggghts(CouplingClient &client, const Hello &hello,
                                       std::int64_t exchanges, bool close_at_end = true) {
   const Welcome welcome = client.connect(hello);
   std::int64_t matches = 0;
@@ -164,12 +165,12 @@ class CuttableTransport final : public Transport {
 public:
   explicit CuttableTransport(std::unique_ptr<Transport> inner) : inner_(std::move(inner)) {}
   void cut() { cut_ = true; }
-  void send(const Bytes& message) override {
+  void send(const Bytes &message) override {
     if (!cut_) {
       inner_->send(message);
     }
   }
-  Bytes receive(std::chrono::milliseconds timeout, const std::string& awaiting) override {
+  Bytes receive(std::chrono::milliseconds timeout, const std::string &awaiting) override {
     if (cut_) {
       std::this_thread::sleep_for(timeout);
       throw receive_timeout(awaiting, peer_name(), timeout);
@@ -184,17 +185,17 @@ private:
 };
 
 /// The exception `f` throws, as (type matched, message); fails the test if nothing is thrown.
-template <typename Error, typename F> std::string message_of(F&& f) {
+template <typename Error, typename F> std::string message_of(F &&f) {
   try {
     f();
-  } catch (const Error& e) {
+  } catch (const Error &e) {
     return e.what();
   }
   return "<no exception thrown>";
 }
 
 /// Milliseconds `f` took (exceptions pass through: wrap an expected one in message_of).
-template <typename F> double elapsed_ms_of(F&& f) {
+template <typename F> double elapsed_ms_of(F &&f) {
   const auto t0 = std::chrono::steady_clock::now();
   f();
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

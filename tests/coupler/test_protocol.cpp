@@ -17,11 +17,11 @@ namespace {
 constexpr std::size_t kHeader = sizeof(MessageHeader);
 
 /// Overwrite the double at byte `offset` of the payload.
-void poke_double(Bytes& bytes, std::size_t payload_offset, double value) {
+void poke_double(Bytes &bytes, std::size_t payload_offset, double value) {
   std::memcpy(bytes.data() + kHeader + payload_offset, &value, sizeof value);
 }
 
-void poke_u32(Bytes& bytes, std::size_t offset, std::uint32_t value) {
+void poke_u32(Bytes &bytes, std::size_t offset, std::uint32_t value) {
   std::memcpy(bytes.data() + offset, &value, sizeof value);
 }
 
@@ -101,8 +101,7 @@ TEST(CouplerProtocol, BadMagicIsRejected) {
   EXPECT_THAT(message_of<ProtocolError>([&] { decode_wrench(bytes); }),
               HasSubstr("Wrench: header.magic is 0x12345678"));
   poke_u32(bytes, 0, 0x57534350u); // "WSCP" from a big-endian host
-  EXPECT_THAT(message_of<ProtocolError>([&] { decode_wrench(bytes); }),
-              HasSubstr("byte order"));
+  EXPECT_THAT(message_of<ProtocolError>([&] { decode_wrench(bytes); }), HasSubstr("byte order"));
 }
 
 TEST(CouplerProtocol, NanFieldIsNamed) {
@@ -180,7 +179,8 @@ TEST(CouplerProtocol, VersionMismatchNamesBothVersions) {
 }
 
 TEST(CouplerProtocol, CloseIsReadableFromAnyVersion) {
-  Bytes bytes = encode(Close::make(CloseReason::ProtocolError, "client speaks protocol 1, server 9"));
+  Bytes bytes =
+      encode(Close::make(CloseReason::ProtocolError, "client speaks protocol 1, server 9"));
   poke_u32(bytes, offsetof(MessageHeader, version), 9);
   const Close close = decode_close(bytes);
   EXPECT_EQ(close.message(), "client speaks protocol 1, server 9");

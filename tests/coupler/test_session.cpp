@@ -64,7 +64,7 @@ TEST(CouplerSession, VersionMismatchIsReportedOnBothSides) {
   CloseReason reason = CloseReason::Finished;
   try {
     client.connect(hello);
-  } catch (const PeerClosedError& e) {
+  } catch (const PeerClosedError &e) {
     client_error = e.what();
     reason = e.reason();
   }
@@ -77,7 +77,7 @@ TEST(CouplerSession, VersionMismatchIsReportedOnBothSides) {
 
 TEST(CouplerSession, ServerOfAnotherVersionIsRejectedByTheClient) {
   LoopbackSession s;
-  Transport& rig = *s.server_transport;
+  Transport &rig = *s.server_transport;
   CouplingClient client(std::move(s.client_transport), kShort);
   Welcome welcome;
   welcome.protocol_version = 3;
@@ -102,7 +102,7 @@ TEST(CouplerSession, TimeStepMismatchIsReportedOnBothSides) {
   const std::string client_error =
       message_of<PeerClosedError>([&] { client.connect(sample_hello()); });
   rig_thread.join();
-  for (const std::string& m : {server_error, client_error}) {
+  for (const std::string &m : {server_error, client_error}) {
     EXPECT_THAT(m, HasSubstr("time step mismatch: client dt = 1e-05 s, server dt = 2e-05 s"));
   }
 }
@@ -120,10 +120,10 @@ TEST(CouplerSession, SilentServerTimesOutNamingPeerAndWelcome) {
   LoopbackSession s; // the server end exists but nobody answers
   CouplingClient client(std::move(s.client_transport), kShort);
   std::string m;
-  const double ms = elapsed_ms_of([&] {
-    m = message_of<TimeoutError>([&] { client.connect(sample_hello(100)); });
-  });
-  EXPECT_EQ(m, "no Welcome (reply to Hello for start step 100) from the rig (loopback) within 0.3 s");
+  const double ms = elapsed_ms_of(
+      [&] { m = message_of<TimeoutError>([&] { client.connect(sample_hello(100)); }); });
+  EXPECT_EQ(m,
+            "no Welcome (reply to Hello for start step 100) from the rig (loopback) within 0.3 s");
   EXPECT_GE(ms, 300.0);
   EXPECT_LE(ms, 300.0 + kMarginMs);
 }
@@ -142,7 +142,7 @@ TEST(CouplerSession, SilentClientTimesOutNamingPeerAndHello) {
 TEST(CouplerSession, RigThatVanishesMidRunIsATimeoutOnTheClient) {
   LoopbackSession s;
   auto cuttable = std::make_unique<CuttableTransport>(std::move(s.server_transport));
-  CuttableTransport* cut = cuttable.get();
+  CuttableTransport *cut = cuttable.get();
   Background rig_thread([&] {
     CouplingServer server(std::move(cuttable), kShort);
     run_fake_rig(server, kDt, 10); // answers 9 wrenches, then "crashes" on the 10th
@@ -150,8 +150,9 @@ TEST(CouplerSession, RigThatVanishesMidRunIsATimeoutOnTheClient) {
   });
   CouplingClient client(std::move(s.client_transport), kShort);
   std::string m;
-  const double ms = elapsed_ms_of(
-      [&] { m = message_of<TimeoutError>([&] { run_fake_liggghts(client, sample_hello(100), 50); }); });
+  const double ms = elapsed_ms_of([&] {
+    m = message_of<TimeoutError>([&] { run_fake_liggghts(client, sample_hello(100), 50); });
+  });
   rig_thread.join();
   EXPECT_EQ(m, "no Pose for step 110 from the rig (loopback) within 0.3 s");
   EXPECT_LE(ms, 300.0 + kMarginMs);
@@ -162,11 +163,10 @@ TEST(CouplerSession, ClientThatVanishesMidRunIsATimeoutOnTheServer) {
   LoopbackSession s;
   CouplingServer server(std::move(s.server_transport), kShort);
   std::string server_error;
-  Background rig_thread([&] {
-    server_error = message_of<TimeoutError>([&] { run_fake_rig(server, kDt); });
-  });
+  Background rig_thread(
+      [&] { server_error = message_of<TimeoutError>([&] { run_fake_rig(server, kDt); }); });
   {
-    CuttableTransport* cut = nullptr;
+    CuttableTransport *cut = nullptr;
     auto cuttable = std::make_unique<CuttableTransport>(std::move(s.client_transport));
     cut = cuttable.get();
     CouplingClient client(std::move(cuttable), kShort);
@@ -195,7 +195,7 @@ TEST(CouplerSession, CloseFromTheRigCarriesItsReason) {
   try {
     client.receive_pose(101);
     ADD_FAILURE() << "no PeerClosedError";
-  } catch (const PeerClosedError& e) {
+  } catch (const PeerClosedError &e) {
     EXPECT_EQ(e.reason(), CloseReason::Error);
     EXPECT_EQ(e.peer_text(), "error: spring stiffness became negative");
     EXPECT_THAT(e.what(), HasSubstr("the rig (loopback) closed the coupling while we awaited "
@@ -207,7 +207,7 @@ TEST(CouplerSession, CloseFromTheRigCarriesItsReason) {
 
 TEST(CouplerSession, PoseForAnotherStepIsReportedWithBothSteps) {
   LoopbackSession s;
-  Transport& rig = *s.server_transport;
+  Transport &rig = *s.server_transport;
   CouplingClient client(std::move(s.client_transport), kShort);
   Welcome w;
   w.start_step = 100;
@@ -227,7 +227,7 @@ TEST(CouplerSession, PoseForAnotherStepIsReportedWithBothSteps) {
 
 TEST(CouplerSession, WrenchForAnotherStepIsReportedByTheServer) {
   LoopbackSession s;
-  Transport& liggghts = *s.client_transport;
+  Transport &liggghts = *s.client_transport;
   CouplingServer server(std::move(s.server_transport), kShort);
   liggghts.send(encode(sample_hello(100, 4)));
   server.accept(kDt);
@@ -262,7 +262,7 @@ TEST(CouplerSession, ClientRefusesToSendOutOfStepOrInvalidWrench) {
 
 TEST(CouplerSession, MalformedPoseIsRejectedAndThePeerTold) {
   LoopbackSession s;
-  Transport& rig = *s.server_transport;
+  Transport &rig = *s.server_transport;
   CouplingClient client(std::move(s.client_transport), kShort);
   Welcome w;
   w.start_step = 100;

@@ -35,13 +35,13 @@ public:
     std::error_code ignored;
     std::filesystem::remove_all(path_, ignored);
   }
-  std::string endpoint(const std::string& name) const { return "ipc://" + path_ + "/" + name; }
+  std::string endpoint(const std::string &name) const { return "ipc://" + path_ + "/" + name; }
 
 private:
   std::string path_;
 };
 
-void round_trip(const std::string& bind_endpoint) {
+void round_trip(const std::string &bind_endpoint) {
   auto server_transport = ZmqTransport::bind(bind_endpoint);
   const std::string endpoint = server_transport->endpoint();
   CouplingServer server(std::move(server_transport), kShort);
@@ -59,7 +59,7 @@ void round_trip(const std::string& bind_endpoint) {
 /// Runs `child` in a forked process; `child` ends with die(), which kills the process with
 /// SIGKILL while its objects are alive (no destructor, no Close: a crashed peer). An exception
 /// exits with status 3. Call before this process opens its own ZeroMQ sockets.
-pid_t fork_child(const std::function<void()>& child) {
+pid_t fork_child(const std::function<void()> &child) {
   const pid_t pid = ::fork();
   if (pid == 0) {
     try {
@@ -146,9 +146,8 @@ TEST(CouplerZmq, KilledRigIsATimeoutOnTheClient) {
     client.connect(sample_hello(100));
     for (std::int64_t step = 100;; ++step) {
       client.send_wrench(sample_wrench(step));
-      ms = elapsed_ms_of([&] {
-        m = message_of<TimeoutError>([&] { client.receive_pose(step + 1); });
-      });
+      ms = elapsed_ms_of(
+          [&] { m = message_of<TimeoutError>([&] { client.receive_pose(step + 1); }); });
       if (m.find("<no exception") == std::string::npos) {
         break;
       }
@@ -237,9 +236,8 @@ TEST(CouplerZmq, ClosingNeverHangsOnAMissingPeer) {
 
   auto server = ZmqTransport::bind(dir.endpoint("rig.sock"), "LIGGGHTS", ZmqOptions{200ms, 200ms});
   std::string m;
-  const double send_ms = elapsed_ms_of([&] {
-    m = message_of<TimeoutError>([&] { server->send(encode(sample_wrench(1))); });
-  });
+  const double send_ms = elapsed_ms_of(
+      [&] { m = message_of<TimeoutError>([&] { server->send(encode(sample_wrench(1))); }); });
   EXPECT_THAT(m, HasSubstr("could not hand a message to LIGGGHTS (" + dir.endpoint("rig.sock") +
                            ") within 0.2 s: no peer connected"));
   EXPECT_GE(send_ms, 200.0);
