@@ -46,8 +46,7 @@
 namespace wheelsim::coupler {
 
 #if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
-#error                                                                                             \
-    "wheelsim coupling protocol: the wire format is host order and supported on little-endian hosts only"
+#error "wheelsim coupling protocol: host-order wire format, little-endian hosts only"
 #endif
 
 /// Protocol version. Bump it on any change of a struct, a field's meaning or the message order.
