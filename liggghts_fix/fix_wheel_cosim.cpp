@@ -3,6 +3,8 @@
 
 #include "contact_law.h"
 #include "contact_slots.h"
+#include "coupled_motion.h"
+#include "coupler/protocol.h"
 #include "prescribed_motion.h"
 #include "wheel_motion.h"
 #include "wheel_surface_vtk.h"
@@ -58,8 +60,12 @@ struct WheelCosimState {
   std::vector<contact::Material> material;  // by type
 
   WheelState state;
+  std::int64_t state_step = -1; // the step `state` belongs to
   std::unique_ptr<WheelMotion> motion;
-  PrescribedMotion *prescribed = nullptr;
+  PrescribedMotion *prescribed = nullptr; // the motion, if prescribed
+  CoupledMotion *coupled = nullptr;       // the motion, if coupled
+  bool motion_is_coupled = false;
+  CoupledMotion::Settings coupled_settings;
   std::array<std::string, 6> motion_args{{"0", "0", "0", "0", "0", "0"}};
   std::array<int, 6> motion_variable{{-1, -1, -1, -1, -1, -1}};
   std::array<double, 6> motion_constant{{0, 0, 0, 0, 0, 0}};
@@ -139,9 +145,15 @@ FixWheelCosim::FixWheelCosim(LAMMPS *lmp, int narg, char **arg)
   std::string description = "prescribed: v = (" + s_->motion_args[0] + ", " + s_->motion_args[1] +
                             ", " + s_->motion_args[2] + ") m/s, omega = (" + s_->motion_args[3] +
                             ", " + s_->motion_args[4] + ", " + s_->motion_args[5] + ") rad/s";
-  auto prescribed = std::make_unique<wheelsim::PrescribedMotion>(v, w, description);
-  s_->prescribed = prescribed.get();
-  s_->motion = std::move(prescribed);
+  if (s_->motion_is_coupled) {
+    auto coupled = std::make_unique<wheelsim::CoupledMotion>(s_->coupled_settings, world);
+    s_->coupled = coupled.get();
+    s_->motion = std::move(coupled);
+  } else {
+    auto prescribed = std::make_unique<wheelsim::PrescribedMotion>(v, w, description);
+    s_->prescribed = prescribed.get();
+    s_->motion = std::move(prescribed);
+  }
 
   if (s_->vtk_every > 0) {
     s_->triangle_normal_force_sum.assign(mesh.triangles.size(), 0.0);
@@ -317,10 +329,38 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
         }
         iarg += 8;
       } else if (std::strcmp(arg[iarg + 1], "coupled") == 0) {
-        bad_argument("'motion coupled' (the wheel-rig coupling) is not available in this build "
-                     "yet; use 'motion prescribed vx vy vz wx wy wz'");
+        need(iarg + 1, 1, "an endpoint (ipc://PATH or tcp://127.0.0.1:PORT) after 'coupled'");
+        s_->motion_is_coupled = true;
+        s_->coupled_settings.endpoint = arg[iarg + 2];
+        if (s_->coupled_settings.endpoint.compare(0, 6, "ipc://") != 0 &&
+            s_->coupled_settings.endpoint.compare(0, 6, "tcp://") != 0)
+          bad_argument("motion coupled: endpoint '%s' must start with ipc:// or tcp://",
+                       arg[iarg + 2]);
+        iarg += 3;
+        // optional sub-keywords of 'motion coupled'
+        while (iarg + 1 < narg) {
+          if (std::strcmp(arg[iarg], "timeout") == 0) {
+            const double t = number(iarg + 1, "motion coupled timeout", "a time > 0 [s]");
+            if (t <= 0.0)
+              bad_argument("motion coupled: 'timeout' expects a time > 0 s, got %s",
+                           arg[iarg + 1]);
+            s_->coupled_settings.step_timeout_s = t;
+            s_->coupled_settings.handshake_timeout_s = std::max(t, 60.0);
+          } else if (std::strcmp(arg[iarg], "exchange_every") == 0) {
+            const double n = number(iarg + 1, "motion coupled exchange_every", "an integer >= 1");
+            if (n < 1 || n != std::floor(n))
+              bad_argument("motion coupled: 'exchange_every' expects an integer >= 1, got %s",
+                           arg[iarg + 1]);
+            s_->coupled_settings.exchange_every = static_cast<int>(n);
+          } else {
+            break;
+          }
+          iarg += 2;
+        }
+        continue;
       } else {
-        bad_argument("keyword 'motion' expects 'prescribed', got '%s'", arg[iarg + 1]);
+        bad_argument("keyword 'motion' expects 'prescribed' or 'coupled', got '%s'",
+                     arg[iarg + 1]);
       }
     } else if (std::strcmp(key, "vtk") == 0) {
       need(iarg, 2, "N PREFIX (write the wheel surface every N steps to PREFIX_<step>.vtk)");
@@ -351,7 +391,7 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
 }
 
 int FixWheelCosim::setmask() {
-  return INITIAL_INTEGRATE | POST_FORCE | END_OF_STEP;
+  return POST_FORCE | END_OF_STEP;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -462,11 +502,14 @@ void FixWheelCosim::check_timestep() {
   MPI_Allreduce(mass_at_rmin.data(), mass_all.data(), ntypes + 1, MPI_DOUBLE, MPI_MAX, world);
   double vmax_all = 0.0;
   MPI_Allreduce(&vmax, &vmax_all, 1, MPI_DOUBLE, MPI_MAX, world);
-  const Eigen::Vector3d &vw = s_->prescribed->velocity_m_s();
-  const double v_impact = std::max(
-      vmax_all + vw.norm() +
-          s_->prescribed->angular_velocity_rad_s().norm() * s_->index->bounding_radius_m(),
-      1e-3); // a resting bed still needs a finite impact speed for the Hertz estimate
+  // The wheel's twist: prescribed values now, or the last known state when coupled.
+  const Eigen::Vector3d vw =
+      s_->prescribed ? s_->prescribed->velocity_m_s() : s_->state.velocity_m_s;
+  const Eigen::Vector3d ww = s_->prescribed ? s_->prescribed->angular_velocity_rad_s()
+                                            : s_->state.angular_velocity_rad_s;
+  const double v_impact =
+      std::max(vmax_all + vw.norm() + ww.norm() * s_->index->bounding_radius_m(),
+               1e-3); // a resting bed still needs a finite impact speed for the Hertz estimate
   const double dt = update->dt;
   for (int t = 1; t <= ntypes; ++t) {
     if (rmin_all[t] > 1e299 || t == wheel_type_)
@@ -510,9 +553,19 @@ void FixWheelCosim::check_timestep() {
 /* ---------------------------------------------------------------------- */
 
 void FixWheelCosim::setup(int /*vflag*/) {
-  s_->state.velocity_m_s = s_->prescribed->velocity_m_s();
-  s_->state.angular_velocity_rad_s = s_->prescribed->angular_velocity_rad_s();
+  if (s_->prescribed) {
+    s_->state.velocity_m_s = s_->prescribed->velocity_m_s();
+    s_->state.angular_velocity_rad_s = s_->prescribed->angular_velocity_rad_s();
+  } else if (!s_->coupled->connected()) {
+    try {
+      s_->state = s_->coupled->connect(s_->state, update->ntimestep, update->dt);
+    } catch (const std::exception &e) {
+      coupling_failed(e);
+    }
+  }
+  s_->state_step = update->ntimestep;
   compute_contacts(false);
+  report_wrench(); // the first exchange step's wrench (later setups: already sent)
   if (first_setup_) {
     first_setup_ = false;
     // Particles already overlapping the wheel when the first run starts get a kick.
@@ -536,22 +589,45 @@ void FixWheelCosim::setup(int /*vflag*/) {
     write_vtk();
 }
 
-void FixWheelCosim::initial_integrate(int /*vflag*/) {
-  s_->state = s_->motion->next_state(s_->state, update->ntimestep, update->dt);
-}
-
 void FixWheelCosim::post_force(int /*vflag*/) {
+  // The pose of this step is asked for as late as possible: a coupled rig computes it while
+  // LIGGGHTS integrated the particles and computed the pair forces.
+  if (update->ntimestep > s_->state_step) {
+    try {
+      s_->state = s_->motion->next_state(s_->state, update->ntimestep, update->dt);
+    } catch (const std::exception &e) {
+      coupling_failed(e);
+    }
+    s_->state_step = update->ntimestep;
+  }
   compute_contacts(update->setupflag == 0);
 }
 
 void FixWheelCosim::end_of_step() {
+  report_wrench();
+  if (s_->vtk_every > 0 && update->ntimestep % s_->vtk_every == 0)
+    write_vtk();
+}
+
+void FixWheelCosim::report_wrench() {
   wheelsim::WheelWrench wrench;
   wrench.force_N = Eigen::Vector3d(vector_[0], vector_[1], vector_[2]);
   wrench.torque_Nm = Eigen::Vector3d(vector_[3], vector_[4], vector_[5]);
   wrench.contacts = static_cast<long>(vector_[6]);
-  s_->motion->wrench_computed(update->ntimestep, update->get_cur_time(), wrench);
-  if (s_->vtk_every > 0 && update->ntimestep % s_->vtk_every == 0)
-    write_vtk();
+  try {
+    s_->motion->wrench_computed(update->ntimestep, update->get_cur_time(), wrench);
+  } catch (const std::exception &e) {
+    coupling_failed(e);
+  }
+}
+
+void FixWheelCosim::coupling_failed(const std::exception &e) {
+  // Seen on rank 0 only (it alone talks to the rig): a one-rank error, which ends all ranks.
+  char msg[1024];
+  snprintf(msg, sizeof(msg), "fix wheel/cosim %s: coupling with the rig failed at step %ld: %s",
+           id, static_cast<long>(update->ntimestep), e.what());
+  error->one(FLERR, msg);
+  std::abort(); // not reached: error->one ends the run
 }
 
 void FixWheelCosim::reset_dt() {
@@ -794,6 +870,7 @@ void FixWheelCosim::restart(char *buf) {
   st.orientation = Eigen::Quaterniond(list[4], list[5], list[6], list[7]).normalized();
   st.velocity_m_s = Eigen::Vector3d(list[8], list[9], list[10]);
   st.angular_velocity_rad_s = Eigen::Vector3d(list[11], list[12], list[13]);
+  s_->state_step = -1; // setup() marks the pose as that of the restart step
   first_setup_ = false; // particles touching a wheel restored mid-run are not an error
   if (comm->me == 0) {
     char line[256];

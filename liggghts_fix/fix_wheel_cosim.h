@@ -26,6 +26,7 @@ FixStyle(wheel/cosim,FixWheelCosim)
 
 #include "fix.h"
 
+#include <exception>
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,7 +45,6 @@ public:
   int setmask() override;
   void init() override;
   void setup(int vflag) override;
-  void initial_integrate(int vflag) override;
   void post_force(int vflag) override;
   void end_of_step() override;
   void reset_dt() override;
@@ -75,6 +75,8 @@ private:
   void check_timestep();
   void compute_contacts(bool update_history);
   void write_vtk();
+  void report_wrench();                                      // to the motion source
+  [[noreturn]] void coupling_failed(const std::exception &e); // error->one on rank 0
   [[noreturn]] void bad_argument(const char *fmt, ...);
 
   std::unique_ptr<wheelsim::WheelCosimState> s_;
