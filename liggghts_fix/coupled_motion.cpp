@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace wheelsim {
@@ -107,7 +108,7 @@ bool CoupledMotion::is_exchange_step(std::int64_t step) const {
 
 void CoupledMotion::wrench_computed(std::int64_t step, double time_s,
                                     const WheelWrench &wrench) {
-  if (!connected_ || step <= last_sent_step_ || !is_exchange_step(step))
+  if (!connected_ || rig_finished_ || step <= last_sent_step_ || !is_exchange_step(step))
     return;
   last_sent_step_ = step;
   if (rank_ != 0)
@@ -125,11 +126,29 @@ void CoupledMotion::wrench_computed(std::int64_t step, double time_s,
 
 WheelState CoupledMotion::next_state(const WheelState &now, std::int64_t next_step,
                                      double dt_s) {
-  if (!is_exchange_step(next_step))
-    return advance_pose(now, now.velocity_m_s, now.angular_velocity_rad_s, dt_s); // hold
+  const WheelState held = advance_pose(now, now.velocity_m_s, now.angular_velocity_rad_s, dt_s);
+  if (rig_finished_ || !is_exchange_step(next_step))
+    return held; // zero-order hold
   WheelState state = now;
-  if (rank_ == 0)
-    state = from_wire(client_->receive_pose(next_step).state);
+  int finished = 0;
+  if (rank_ == 0) {
+    try {
+      state = from_wire(client_->receive_pose(next_step).state);
+    } catch (const coupler::PeerClosedError &e) {
+      if (e.reason() != coupler::CloseReason::Finished)
+        throw;
+      finished = 1;
+      std::printf("fix wheel/cosim: the rig finished (%s) at step %lld; the wheel keeps its last "
+                  "twist until the run ends\n",
+                  e.peer_text().c_str(), static_cast<long long>(next_step));
+    }
+  }
+  MPI_Bcast(&finished, 1, MPI_INT, 0, world_);
+  if (finished) {
+    rig_finished_ = true;
+    connected_ = false;
+    return held;
+  }
   return broadcast(state);
 }
 

@@ -42,6 +42,9 @@ public:
   /// `start_step`. `initial` is the fix's pose (origin), sent as the client's proposal.
   WheelState connect(const WheelState &initial, std::int64_t start_step, double dt_s);
   bool connected() const { return connected_; }
+  /// True once the rig ended the session with Close{finished} (its test phase is over): the
+  /// wheel then keeps its last twist (zero-order hold) until the deck's run ends.
+  bool rig_finished() const { return rig_finished_; }
   void wrench_computed(std::int64_t step, double time_s, const WheelWrench &wrench) override;
   WheelState next_state(const WheelState &now, std::int64_t next_step, double dt_s) override;
   /// Ends the session with Close{finished} (rank 0; no-op if not connected).
@@ -55,6 +58,7 @@ private:
   MPI_Comm world_;
   int rank_ = 0;
   bool connected_ = false;
+  bool rig_finished_ = false;
   std::int64_t start_step_ = 0;
   std::int64_t last_sent_step_ = -1;
   std::unique_ptr<coupler::CouplingClient> client_; // rank 0 only

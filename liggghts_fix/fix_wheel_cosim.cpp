@@ -161,7 +161,7 @@ FixWheelCosim::FixWheelCosim(LAMMPS *lmp, int narg, char **arg)
   }
 
   vector_flag = 1;
-  size_vector = 10;
+  size_vector = 11;
   global_freq = 1;
   extvector = 0;
   peratom_flag = 1;
@@ -171,7 +171,7 @@ FixWheelCosim::FixWheelCosim(LAMMPS *lmp, int narg, char **arg)
   restart_peratom = 1;
   create_attribute = 1;
   nevery = 1;
-  std::fill(vector_, vector_ + 10, 0.0);
+  std::fill(vector_, vector_ + 11, 0.0);
 
   grow_arrays(atom->nmax);
   atom->add_callback(0);
@@ -556,7 +556,7 @@ void FixWheelCosim::setup(int /*vflag*/) {
   if (s_->prescribed) {
     s_->state.velocity_m_s = s_->prescribed->velocity_m_s();
     s_->state.angular_velocity_rad_s = s_->prescribed->angular_velocity_rad_s();
-  } else if (!s_->coupled->connected()) {
+  } else if (!s_->coupled->connected() && !s_->coupled->rig_finished()) {
     try {
       s_->state = s_->coupled->connect(s_->state, update->ntimestep, update->dt);
     } catch (const std::exception &e) {
@@ -742,6 +742,7 @@ void FixWheelCosim::compute_contacts(bool update_history) {
   vector_[7] = centre.x();
   vector_[8] = centre.y();
   vector_[9] = centre.z();
+  vector_[10] = s_->coupled && s_->coupled->rig_finished() ? 1.0 : 0.0;
 }
 
 double FixWheelCosim::compute_vector(int i) {

@@ -9,8 +9,9 @@
    coupled rig in the coupling issue). Full syntax, outputs and restart behaviour:
    docs/fix-wheel-cosim.md.
 
-   Global vector (10): 1-3 contact force on the wheel [N], 4-6 contact torque on the wheel about
-   its centre [N m], 7 number of particle-wheel contacts, 8-10 wheel centre [m]. World frame.
+   Global vector (11): 1-3 contact force on the wheel [N], 4-6 contact torque on the wheel about
+   its centre [N m], 7 number of particle-wheel contacts, 8-10 wheel centre [m], 11 = 1 once a
+   coupled rig has finished (else 0). World frame.
    Per-atom array (3 columns): contact force of the wheel on each particle [N].
 
    The FixStyle block is in the form LIGGGHTS' Make.sh expects (docs/building.md). */
@@ -85,7 +86,7 @@ private:
   int history_columns_; // nslots_ * kSlotDoubles
   double **history_;    // per atom: nslots_ slots of kSlotDoubles doubles
   double **contact_force_; // per atom: force of the wheel on the particle [N]
-  double vector_[10];   // the global vector, reduced over ranks
+  double vector_[11];   // the global vector, reduced over ranks
   bool first_setup_;    // warn about initial overlaps only once
 };
 

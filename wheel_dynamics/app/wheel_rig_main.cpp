@@ -7,7 +7,8 @@
 //             [--surface-height Z] [--quiet]
 //
 // Exit status: 0 finished, 1 error (the message names the side and what failed), 2 bad command
-// line or config, 130 interrupted. The run file is closed (readable) in every case.
+// line or config. The run file is closed on every error; a signal ends the process at once and
+// the file keeps what was flushed (every [output] flush_interval recorded steps).
 #include "progress.h"
 #include "run_recorder.h"
 
@@ -22,31 +23,18 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <variant>
+#include <vector>
 
 namespace {
 
 using namespace wheelsim;
-
-std::atomic<int> g_signal{0};
-extern "C" void on_signal(int signal_number) { g_signal = signal_number; }
-
-struct Interrupted : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-void check_interrupt() {
-  if (g_signal != 0)
-    throw Interrupted("interrupted by signal " + std::to_string(g_signal.load()));
-}
 
 std::chrono::milliseconds millis(double seconds) {
   return std::chrono::milliseconds(static_cast<long long>(seconds * 1000.0));
@@ -84,15 +72,109 @@ struct Sink {
 void run_flat(rig::RigSimulation &sim, Sink &sink) {
   rig::FlatGround ground = rig::make_flat_ground(sim.config(), sim.wheel());
   while (!sim.finished()) {
-    check_interrupt();
     const rig::RigOutputs &o = sim.advance(ground.contact(sim.wheel_state(), sim.time_s()));
     sink(o, 1.0);
   }
 }
 
+/// What moves the wheel in a DEM run: the rig (normal use) or a fixed twist (--kinematic).
+class DemDriver {
+public:
+  virtual ~DemDriver() = default;
+  /// Called once with LIGGGHTS' Hello; returns the wheel state (world frame) for its start step.
+  virtual coupler::WheelState start(const coupler::Hello &hello) = 0;
+  /// Advances one step with the wrench of the current step; returns the new state.
+  virtual coupler::WheelState advance(const rig::ContactWrench &wrench, double contacts) = 0;
+  virtual bool finished() const = 0;
+  virtual std::string where() const = 0; ///< "t = ... s (phase)" for messages
+};
+
+/// The rig. Its x and y are measured from the wheel's initial position in LIGGGHTS' box.
+class RigDriver : public DemDriver {
+public:
+  RigDriver(rig::RigSimulation &sim, Sink &sink) : sim_(sim), sink_(sink) {}
+  coupler::WheelState start(const coupler::Hello &hello) override {
+    offset_ = Eigen::Vector3d(hello.p_WC_W[0], hello.p_WC_W[1], 0.0);
+    sink_.step_offset = hello.start_step;
+    return to_wire(sim_.wheel_state(), offset_);
+  }
+  coupler::WheelState advance(const rig::ContactWrench &wrench, double contacts) override {
+    sink_(sim_.advance(wrench), contacts);
+    return to_wire(sim_.wheel_state(), offset_);
+  }
+  bool finished() const override { return sim_.finished(); }
+  std::string where() const override {
+    std::ostringstream out;
+    out << "t = " << sim_.time_s() << " s (" << rig::to_string(sim_.phase()) << " phase)";
+    return out.str();
+  }
+
+private:
+  rig::RigSimulation &sim_;
+  Sink &sink_;
+  Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();
+};
+
+/// --kinematic: the wheel follows a fixed twist from LIGGGHTS' initial pose, integrated as fix
+/// wheel/cosim's `motion prescribed` does (p += v dt; q <- exp(w dt) q), so a coupled run can be
+/// compared with a prescribed one. Records the pose and the contact wrench only.
+class KinematicDriver : public DemDriver {
+public:
+  KinematicDriver(const Eigen::Vector3d &v, const Eigen::Vector3d &w, double dt,
+                  runfile::RunFile &file)
+      : v_(v), w_(w), dt_(dt), position_(&file.observable("wheel/position", "m", 3)),
+        orientation_(&file.observable("wheel/orientation", "1", 4)),
+        force_(&file.observable("contact/force", "N", 3)),
+        torque_(&file.observable("contact/torque", "N m", 3)),
+        count_(&file.observable("contact/count", "1", 1)) {}
+  coupler::WheelState start(const coupler::Hello &hello) override {
+    p_ = Eigen::Vector3d(hello.p_WC_W[0], hello.p_WC_W[1], hello.p_WC_W[2]);
+    q_ = Eigen::Quaterniond(hello.q_WB[0], hello.q_WB[1], hello.q_WB[2], hello.q_WB[3]);
+    step_ = hello.start_step;
+    return wire();
+  }
+  coupler::WheelState advance(const rig::ContactWrench &wrench, double contacts) override {
+    const double t = step_ * dt_;
+    const double p[3] = {p_.x(), p_.y(), p_.z()}, q[4] = {q_.w(), q_.x(), q_.y(), q_.z()};
+    const double f[3] = {wrench.force_N.x(), wrench.force_N.y(), wrench.force_N.z()};
+    const double tq[3] = {wrench.torque_Nm.x(), wrench.torque_Nm.y(), wrench.torque_Nm.z()};
+    position_->append(step_, t, p);
+    orientation_->append(step_, t, q);
+    force_->append(step_, t, f);
+    torque_->append(step_, t, tq);
+    count_->append(step_, t, contacts);
+    p_ += v_ * dt_;
+    const double angle = w_.norm() * dt_;
+    if (angle > 0.0)
+      q_ = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, w_.normalized())) * q_).normalized();
+    ++step_;
+    return wire();
+  }
+  bool finished() const override { return false; } // until LIGGGHTS closes
+  std::string where() const override { return "step " + std::to_string(step_); }
+
+private:
+  coupler::WheelState wire() const {
+    coupler::WheelState s;
+    for (int k = 0; k < 3; ++k) {
+      s.p_WC_W[k] = p_[k];
+      s.v_WC_W[k] = v_[k];
+      s.w_WB_W[k] = w_[k];
+    }
+    s.q_WB = {q_.w(), q_.x(), q_.y(), q_.z()};
+    return s;
+  }
+  Eigen::Vector3d v_, w_;
+  double dt_;
+  runfile::TimeSeries *position_, *orientation_, *force_, *torque_, *count_;
+  Eigen::Vector3d p_ = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond q_ = Eigen::Quaterniond::Identity();
+  std::int64_t step_ = 0;
+};
+
 /// The remote DEM terrain: LIGGGHTS' fix wheel/cosim connects to us.
-void run_dem(rig::RigSimulation &sim, Sink &sink, runfile::RunFile &file, bool quiet) {
-  const rig::TerrainConfig &terrain = sim.config().terrain;
+void run_dem(const rig::RigConfig &config, DemDriver &driver, runfile::RunFile &file, bool quiet) {
+  const rig::TerrainConfig &terrain = config.terrain;
   coupler::Timeouts timeouts;
   timeouts.step = millis(terrain.timeout_s);
   timeouts.handshake = std::max(timeouts.step, millis(60.0));
@@ -101,33 +183,26 @@ void run_dem(rig::RigSimulation &sim, Sink &sink, runfile::RunFile &file, bool q
   if (!quiet)
     std::printf("wheel-rig: waiting for LIGGGHTS at %s (%.0f s)\n", terrain.endpoint.c_str(),
                 timeouts.handshake.count() / 1000.0);
-  const coupler::Hello hello = server.accept(sim.config().run.dt_s);
-  // The rig's x and y are measured from the wheel's initial position in LIGGGHTS' box.
-  const Eigen::Vector3d offset(hello.p_WC_W[0], hello.p_WC_W[1], 0.0);
+  const coupler::Hello hello = server.accept(config.run.dt_s);
   const int every = static_cast<int>(hello.exchange_every);
-  sink.step_offset = hello.start_step;
   file.set_parameter("coupling/start_step", static_cast<std::int64_t>(hello.start_step), "1");
   file.set_parameter("coupling/exchange_every", static_cast<std::int64_t>(every), "1");
   file.set_parameter("coupling/dt", hello.dt_s, "s");
   file.set_parameter("coupling/endpoint", terrain.endpoint);
-  file.set_parameter("coupling/x_offset", offset.x(), "m");
-  file.set_parameter("coupling/y_offset", offset.y(), "m");
   coupler::Welcome welcome;
   welcome.start_step = hello.start_step;
   welcome.dt_s = hello.dt_s;
-  welcome.state = to_wire(sim.wheel_state(), offset);
+  welcome.state = driver.start(hello);
   server.welcome(welcome);
   if (!quiet)
     std::printf("wheel-rig: LIGGGHTS connected (start step %lld, dt %g s, exchange every %d)\n",
                 static_cast<long long>(hello.start_step), hello.dt_s, every);
   for (;;) {
-    check_interrupt();
     auto message = server.receive();
     if (const auto *close = std::get_if<coupler::Close>(&message)) {
       if (close->reason == coupler::CloseReason::Finished) {
         if (!quiet)
-          std::printf("wheel-rig: LIGGGHTS finished its run at t = %.4f s (%s phase)\n",
-                      sim.time_s(), rig::to_string(sim.phase()));
+          std::printf("wheel-rig: LIGGGHTS finished its run at %s\n", driver.where().c_str());
         return;
       }
       throw std::runtime_error("LIGGGHTS closed the coupling (" + to_string(close->reason) +
@@ -137,19 +212,17 @@ void run_dem(rig::RigSimulation &sim, Sink &sink, runfile::RunFile &file, bool q
     rig::ContactWrench wrench;
     wrench.force_N = Eigen::Vector3d(w.f_C_W[0], w.f_C_W[1], w.f_C_W[2]);
     wrench.torque_Nm = Eigen::Vector3d(w.t_C_W[0], w.t_C_W[1], w.t_C_W[2]);
-    for (int k = 0; k < every && !sim.finished(); ++k)
-      sink(sim.advance(wrench), static_cast<double>(w.n_contacts));
-    if (sim.finished()) {
-      std::ostringstream text;
-      text << "finished: the rig's test phase ended at t = " << sim.time_s() << " s";
-      server.close(coupler::CloseReason::Finished, text.str());
-      if (!quiet)
-        std::printf("wheel-rig: %s; told LIGGGHTS to stop\n", text.str().c_str());
-      return;
-    }
     coupler::Pose pose;
     pose.step = w.step + every;
-    pose.state = to_wire(sim.wheel_state(), offset);
+    for (int k = 0; k < every && !driver.finished(); ++k)
+      pose.state = driver.advance(wrench, static_cast<double>(w.n_contacts));
+    if (driver.finished()) {
+      const std::string text = "finished: the rig's test phase ended at " + driver.where();
+      server.close(coupler::CloseReason::Finished, text);
+      if (!quiet)
+        std::printf("wheel-rig: %s; told LIGGGHTS to stop\n", text.c_str());
+      return;
+    }
     server.send_pose(pose);
   }
 }
@@ -162,6 +235,7 @@ int main(int argc, char **argv) {
   std::string config_path, out_path, endpoint;
   std::optional<double> surface_height;
   bool quiet = false;
+  std::vector<double> kinematic;
   app.add_option("--config", config_path, "rig configuration (TOML)")->required();
   app.add_option("--out", out_path, "HDF5 run file (default: [output] file of the config)");
   app.add_option("--endpoint", endpoint,
@@ -169,12 +243,13 @@ int main(int argc, char **argv) {
   app.add_option("--surface-height", surface_height,
                  "undisturbed soil surface height [m] (overrides [terrain] surface_height)");
   app.add_flag("--quiet", quiet, "no progress lines");
+  app.add_option("--kinematic", kinematic,
+                 "DEM test mode: the wheel follows the fixed twist vx vy vz [m/s] wx wy wz "
+                 "[rad/s] (world frame) from LIGGGHTS' initial pose; the rig model is not used")
+      ->expected(6);
   app.set_version_flag("--version", std::string(WHEELSIM_VERSION) + " (git " +
                                         WHEELSIM_GIT_REVISION + ")");
   CLI11_PARSE(app, argc, argv);
-
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
 
   rig::RigConfig config;
   try {
@@ -221,18 +296,25 @@ int main(int argc, char **argv) {
     rig::RunRecorder recorder(*file);
     rig::ProgressLine progress(quiet ? 0.0 : config.output.progress_interval_s, stdout);
     Sink sink{recorder, progress, sim, std::max(1LL, config.output.every), 0};
-    if (config.terrain.type == rig::TerrainType::dem)
-      run_dem(sim, sink, *file, quiet);
-    else
+    if (!kinematic.empty()) {
+      if (config.terrain.type != rig::TerrainType::dem)
+        throw rig::RigConfigError("--kinematic needs terrain.type = \"dem\"");
+      KinematicDriver driver(Eigen::Vector3d(kinematic[0], kinematic[1], kinematic[2]),
+                             Eigen::Vector3d(kinematic[3], kinematic[4], kinematic[5]),
+                             config.run.dt_s, *file);
+      file->set_parameter("kinematic_twist", command.str());
+      run_dem(config, driver, *file, quiet);
+    } else if (config.terrain.type == rig::TerrainType::dem) {
+      RigDriver driver(sim, sink);
+      run_dem(config, driver, *file, quiet);
+    } else {
       run_flat(sim, sink);
+    }
     for (const std::string &w : sim.warnings())
       std::fprintf(stderr, "wheel-rig: warning: %s\n", w.c_str());
     if (!quiet)
       std::printf("wheel-rig: done at t = %.4f s; run file %s\n", sim.time_s(),
                   config.output.file.c_str());
-  } catch (const Interrupted &e) {
-    std::fprintf(stderr, "wheel-rig: %s; run file closed\n", e.what());
-    status = 130;
   } catch (const std::exception &e) {
     std::fprintf(stderr, "wheel-rig: error: %s\n", e.what());
     status = 1;
