@@ -26,7 +26,12 @@ coupler::WheelState to_wire(const WheelState &s) {
 WheelState from_wire(const coupler::WheelState &w) {
   WheelState s;
   s.position_m = Eigen::Vector3d(w.p_WC_W[0], w.p_WC_W[1], w.p_WC_W[2]);
-  s.orientation = Eigen::Quaterniond(w.q_WB[0], w.q_WB[1], w.q_WB[2], w.q_WB[3]).normalized();
+  s.orientation = Eigen::Quaterniond(w.q_WB[0], w.q_WB[1], w.q_WB[2], w.q_WB[3]);
+  // The rig sends unit quaternions (checked to 1e-6 by the protocol). Renormalise only if it is
+  // visibly off: renormalising a unit quaternion changes its last bits, and the coupled run is
+  // tested to reproduce the prescribed one exactly.
+  if (std::abs(s.orientation.squaredNorm() - 1.0) > 1e-12)
+    s.orientation.normalize();
   s.velocity_m_s = Eigen::Vector3d(w.v_WC_W[0], w.v_WC_W[1], w.v_WC_W[2]);
   s.angular_velocity_rad_s = Eigen::Vector3d(w.w_WB_W[0], w.w_WB_W[1], w.w_WB_W[2]);
   return s;
@@ -83,7 +88,7 @@ WheelState CoupledMotion::connect(const WheelState &initial, std::int64_t start_
     timeouts.handshake = millis(settings_.handshake_timeout_s);
     timeouts.step = millis(settings_.step_timeout_s);
     client_ = std::make_unique<coupler::CouplingClient>(
-        coupler::ZmqTransport::connect(settings_.endpoint, "the rig (" + settings_.endpoint + ")"),
+        coupler::ZmqTransport::connect(settings_.endpoint, "the rig"),
         timeouts);
     coupler::Hello hello;
     hello.exchange_every = static_cast<std::uint32_t>(settings_.exchange_every);

@@ -1,0 +1,226 @@
+#!/usr/bin/python3
+"""ctest driver for the coupled runs (real wheel-rig, real LIGGGHTS, real ZeroMQ sockets).
+
+  run_cosim_case.py MODE --root REPO --build BUILD --bed BED.restart --work DIR [--np N]
+
+MODE
+  compare        the coupled run (scripts/wheel-cosim, rig --kinematic with a fixed twist) and
+                 the same deck with motion prescribed give the same thermo rows (force, torque,
+                 contacts, centre) to --tol relative, step by step.
+  kill_rig       the rig is SIGKILLed mid-run: LIGGGHTS must stop with an error naming the rig
+                 and the awaited Pose within its timeout (+ margin).
+  kill_liggghts  LIGGGHTS is SIGKILLed mid-run: the rig must stop with an error naming LIGGGHTS
+                 and the awaited Wrench within its timeout (+ margin), and its run file must read
+                 back (h5py) with the rows of its last flush.
+  launcher_fail  scripts/wheel-cosim with a rig config that the rig rejects exits non-zero and
+                 shows the rig's message.
+"""
+import argparse
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+
+TIMEOUT_S = 3.0   # coupling timeout used by the fault tests [s]
+MARGIN_S = 10.0   # process start-up and MPI shutdown allowance on a loaded 2-core machine [s]
+
+
+def rig_config(a, name, **changes):
+    """A copy of inputs/rigs/ci_small_wheel.toml with some values changed (key = value lines)."""
+    text = open(os.path.join(a.root, "inputs", "rigs", "ci_small_wheel.toml")).read()
+    for key, value in changes.items():
+        text, n = re.subn(rf"(?m)^{key}\s*=.*$", f"{key} = {value}", text)
+        if n != 1:
+            raise SystemExit(f"run_cosim_case: key {key} not found once in the rig config")
+    path = os.path.join(a.work, name)
+    open(path, "w").write(text)
+    return path
+
+
+def mpirun(a):
+    cmd = ["mpirun", "-np", str(a.np), "--oversubscribe"]
+    if os.geteuid() == 0:
+        cmd.append("--allow-run-as-root")
+    return cmd
+
+
+def thermo_rows(text):
+    rows = {}
+    for line in text.splitlines():
+        f = line.split()
+        if len(f) == 11 and f[0].isdigit() and f[1].isdigit():
+            rows[int(f[0])] = [float(x) for x in f[2:]]
+    return rows
+
+
+def compare(a):
+    twist = "0.1125 0 -0.2 0 1.5 0"
+    deck = os.path.join(a.root, "tests", "cosim", "in.motion_compare")
+    rig = rig_config(a, "rig.toml", duration="100.0")
+    coupled = subprocess.run(
+        [os.path.join(a.root, "scripts", "wheel-cosim"), "--rig", rig, "--bed", a.bed,
+         "--deck", deck, "--np", str(a.np), "--work", os.path.join(a.work, "coupled"),
+         "--kinematic", twist, "--", "-var", "motion", "coupled", "-var", "steps", str(a.steps)],
+        capture_output=True, text=True, timeout=600)
+    if coupled.returncode != 0:
+        print(coupled.stdout[-3000:], coupled.stderr[-3000:])
+        print("run_cosim_case: coupled run failed FAIL")
+        return 1
+    coupled_rows = thermo_rows(open(os.path.join(a.work, "coupled", "liggghts.log")).read())
+    dt = re.search(r"dt (\S+) s", coupled.stdout).group(1)
+    prescribed = subprocess.run(
+        mpirun(a) + [os.path.join(a.build, "bin", "liggghts-wheel"), "-in", deck, "-log", "none",
+                     "-var", "inputs_dir", os.path.join(a.root, "inputs"), "-var", "restart", a.bed,
+                     "-var", "mesh", os.path.join(a.build, "meshes", "test_small.stl"),
+                     "-var", "motion", "prescribed", "-var", "dt", dt, "-var", "steps",
+                     str(a.steps)],
+        capture_output=True, text=True, timeout=600, cwd=a.work)
+    if prescribed.returncode != 0:
+        print(prescribed.stdout[-3000:], prescribed.stderr[-3000:])
+        print("run_cosim_case: prescribed run failed FAIL")
+        return 1
+    prescribed_rows = thermo_rows(prescribed.stdout)
+    steps = sorted(set(coupled_rows) & set(prescribed_rows))
+    if len(steps) < a.steps:
+        print(f"run_cosim_case: only {len(steps)} common thermo rows FAIL")
+        return 1
+    worst, worst_step, contacts = 0.0, None, 0
+    for s in steps:
+        c, p = coupled_rows[s], prescribed_rows[s]
+        contacts = max(contacts, p[6])
+        for i in range(len(c)):
+            scale = max(abs(p[i]), 1e-3 if i < 6 else 1e-6)
+            d = abs(c[i] - p[i]) / scale
+            if d > worst:
+                worst, worst_step = d, s
+    ok = worst <= a.tol and contacts >= 20  # the wheel must really be in the bed
+    print(f"run_cosim_case: {len(steps)} steps, up to {contacts:.0f} contacts; max relative "
+          f"difference {worst:.3e} (step {worst_step}); tolerance {a.tol} "
+          f"{'PASS' if ok else 'FAIL'}")
+    return 0 if ok else 1
+
+
+def start_pair(a, rig, steps):
+    """Starts the rig and LIGGGHTS (not through the launcher, to kill them one by one)."""
+    endpoint = "ipc://" + os.path.join(a.work, "rig.sock")
+    vars_text = open(a.bed + ".vars").read()
+    surface = re.search(r"variable bed_depth index (\S+)", vars_text).group(1)
+    rig_log = open(os.path.join(a.work, "rig.log"), "w")
+    rig_proc = subprocess.Popen(
+        [os.path.join(a.build, "bin", "wheel-rig"), "--config", rig, "--endpoint", endpoint,
+         "--surface-height", surface, "--out", os.path.join(a.work, "run.h5")],
+        stdout=rig_log, stderr=subprocess.STDOUT)
+    lmp_log = open(os.path.join(a.work, "liggghts.log"), "w")
+    deck = os.path.join(a.root, "inputs", "examples", "in.wheel_coupled")
+    lmp_proc = subprocess.Popen(
+        mpirun(a) + [os.path.join(a.build, "bin", "liggghts-wheel"), "-in", deck, "-log", "none",
+                     "-var", "inputs_dir", os.path.join(a.root, "inputs"), "-var", "restart",
+                     a.bed, "-var", "mesh", os.path.join(a.build, "meshes", "test_small.stl"),
+                     "-var", "endpoint", endpoint, "-var", "timeout", str(TIMEOUT_S),
+                     "-var", "dt", "4.89543219523472e-05", "-var", "output_every", "0"],
+        stdout=lmp_log, stderr=subprocess.STDOUT, cwd=a.work, start_new_session=True)
+    return rig_proc, lmp_proc
+
+
+def wait_for_progress(path, pattern, limit_s):
+    t0 = time.time()
+    while time.time() - t0 < limit_s:
+        if os.path.exists(path) and re.search(pattern, open(path).read()):
+            return True
+        time.sleep(0.2)
+    return False
+
+
+def kill_rig(a):
+    rig = rig_config(a, "rig.toml", timeout=TIMEOUT_S, progress_interval="0.5",
+                     flush_interval="200")
+    rig_proc, lmp_proc = start_pair(a, rig, 100000)
+    if not wait_for_progress(os.path.join(a.work, "rig.log"), r"t = 0\.0[2-9]", 120):
+        rig_proc.kill(); os.killpg(lmp_proc.pid, signal.SIGKILL)
+        print("run_cosim_case: the coupled run did not start FAIL")
+        return 1
+    rig_proc.send_signal(signal.SIGKILL)
+    t_kill = time.time()
+    try:
+        rc = lmp_proc.wait(timeout=TIMEOUT_S + MARGIN_S)
+    except subprocess.TimeoutExpired:
+        os.killpg(lmp_proc.pid, signal.SIGKILL)
+        print(f"run_cosim_case: LIGGGHTS still running {TIMEOUT_S + MARGIN_S} s after the rig "
+              "died FAIL")
+        return 1
+    elapsed = time.time() - t_kill
+    log = open(os.path.join(a.work, "liggghts.log")).read()
+    m = re.search(r"ERROR[^\n]*coupling with the rig failed[^\n]*", log)
+    ok = rc != 0 and m is not None and "Pose" in m.group(0) and "the rig" in m.group(0)
+    print(f"run_cosim_case: LIGGGHTS exited {rc} {elapsed:.1f} s after the rig was killed "
+          f"(timeout {TIMEOUT_S} s): {m.group(0) if m else 'no coupling error message'} "
+          f"{'PASS' if ok else 'FAIL'}")
+    return 0 if ok else 1
+
+
+def kill_liggghts(a):
+    rig = rig_config(a, "rig.toml", timeout=TIMEOUT_S, progress_interval="0.5",
+                     flush_interval="200")
+    rig_proc, lmp_proc = start_pair(a, rig, 100000)
+    if not wait_for_progress(os.path.join(a.work, "rig.log"), r"t = 0\.0[2-9]", 120):
+        rig_proc.kill(); os.killpg(lmp_proc.pid, signal.SIGKILL)
+        print("run_cosim_case: the coupled run did not start FAIL")
+        return 1
+    os.killpg(lmp_proc.pid, signal.SIGKILL)  # mpirun and every rank
+    lmp_proc.wait()
+    t_kill = time.time()
+    try:
+        rc = rig_proc.wait(timeout=TIMEOUT_S + MARGIN_S)
+    except subprocess.TimeoutExpired:
+        rig_proc.kill()
+        print("run_cosim_case: the rig still running after LIGGGHTS died FAIL")
+        return 1
+    elapsed = time.time() - t_kill
+    log = open(os.path.join(a.work, "rig.log")).read()
+    m = re.search(r"wheel-rig: error:[^\n]*", log)
+    ok = rc != 0 and m is not None and "LIGGGHTS" in m.group(0) and "Wrench" in m.group(0)
+    import h5py
+    with h5py.File(os.path.join(a.work, "run.h5"), "r") as f:
+        steps = f["observables/slip/step"][:]
+        rows = int((steps >= 0).sum())
+        creator = f["h5md/creator"].attrs["name"]
+    ok = ok and rows >= 200
+    print(f"run_cosim_case: the rig exited {rc} {elapsed:.1f} s after LIGGGHTS was killed "
+          f"(timeout {TIMEOUT_S} s): {m.group(0) if m else 'no error message'}; run file by "
+          f"{creator!s} reads back with {rows} rows {'PASS' if ok else 'FAIL'}")
+    return 0 if ok else 1
+
+
+def launcher_fail(a):
+    rig = rig_config(a, "rig.toml", spring_k="-3.0")
+    r = subprocess.run(
+        [os.path.join(a.root, "scripts", "wheel-cosim"), "--rig", rig, "--bed", a.bed, "--deck",
+         os.path.join(a.root, "inputs", "examples", "in.wheel_coupled"), "--work",
+         os.path.join(a.work, "run")], capture_output=True, text=True, timeout=300)
+    text = r.stdout + r.stderr
+    ok = r.returncode != 0 and "spring_k must be > 0 N/m, got -3" in text and "FAILED" in text
+    print(text[-1500:])
+    print(f"run_cosim_case: launcher exit {r.returncode} {'PASS' if ok else 'FAIL'}")
+    return 0 if ok else 1
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("mode", choices=["compare", "kill_rig", "kill_liggghts", "launcher_fail"])
+    p.add_argument("--root", required=True)
+    p.add_argument("--build", required=True)
+    p.add_argument("--bed", required=True)
+    p.add_argument("--work", required=True)
+    p.add_argument("--np", type=int, default=1)
+    p.add_argument("--steps", type=int, default=400)
+    p.add_argument("--tol", type=float, default=1e-9)
+    a = p.parse_args()
+    os.makedirs(a.work, exist_ok=True)
+    return {"compare": compare, "kill_rig": kill_rig, "kill_liggghts": kill_liggghts,
+            "launcher_fail": launcher_fail}[a.mode](a)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
