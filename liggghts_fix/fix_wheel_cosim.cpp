@@ -245,6 +245,23 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
   using wheelsim::contact::NormalModel;
   using wheelsim::contact::RollingModel;
   using wheelsim::contact::Switch;
+  // The on/off keywords: LIGGGHTS' contact-model switches and check_timestep.
+  bool limit_force = false;
+  auto on_off_keyword = [&](const char *key) -> bool * {
+    if (std::strcmp(key, "tangential_damping") == 0)
+      return &s_->settings.tangentialDamping;
+    if (std::strcmp(key, "limitForce") == 0)
+      return &limit_force; // a tri-state in ContactSettings: mapped after parsing the value
+    if (std::strcmp(key, "fixKc") == 0)
+      return &s_->settings.fixKc;
+    if (std::strcmp(key, "tangential_reduce") == 0)
+      return &s_->settings.tangentialReduce;
+    if (std::strcmp(key, "torsionTorque") == 0)
+      return &s_->settings.torsionTorque;
+    if (std::strcmp(key, "check_timestep") == 0)
+      return &s_->check_timestep;
+    return nullptr;
+  };
   int iarg = 7;
   while (iarg < narg) {
     const char *key = arg[iarg];
@@ -296,25 +313,11 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
       if (std::strcmp(arg[iarg + 1], "history") != 0)
         bad_argument("keyword 'tangential' supports only 'history', got '%s'", arg[iarg + 1]);
       iarg += 2;
-    } else if (std::strcmp(key, "tangential_damping") == 0) {
+    } else if (bool *flag = on_off_keyword(key)) {
       need(iarg, 1, "on or off");
-      s_->settings.tangentialDamping = on_off(iarg);
-      iarg += 2;
-    } else if (std::strcmp(key, "limitForce") == 0) {
-      need(iarg, 1, "on or off");
-      s_->settings.limitForce = on_off(iarg) ? Switch::On : Switch::Off;
-      iarg += 2;
-    } else if (std::strcmp(key, "fixKc") == 0) {
-      need(iarg, 1, "on or off");
-      s_->settings.fixKc = on_off(iarg);
-      iarg += 2;
-    } else if (std::strcmp(key, "tangential_reduce") == 0) {
-      need(iarg, 1, "on or off");
-      s_->settings.tangentialReduce = on_off(iarg);
-      iarg += 2;
-    } else if (std::strcmp(key, "torsionTorque") == 0) {
-      need(iarg, 1, "on or off");
-      s_->settings.torsionTorque = on_off(iarg);
+      *flag = on_off(iarg);
+      if (std::strcmp(key, "limitForce") == 0)
+        s_->settings.limitForce = limit_force ? Switch::On : Switch::Off;
       iarg += 2;
     } else if (std::strcmp(key, "motion") == 0) {
       need(iarg, 1, "prescribed vx vy vz wx wy wz");
@@ -376,10 +379,6 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
       if (n < 2 || n > 4 || n != std::floor(n))
         bad_argument("keyword 'slots' expects an integer 2..4, got '%s'", arg[iarg + 1]);
       nslots_ = static_cast<int>(n);
-      iarg += 2;
-    } else if (std::strcmp(key, "check_timestep") == 0) {
-      need(iarg, 1, "on or off");
-      s_->check_timestep = on_off(iarg);
       iarg += 2;
     } else {
       bad_argument("unknown keyword '%s'; expected one of scale, origin, model, tangential, "
