@@ -62,7 +62,8 @@ def compare(a):
     coupled = subprocess.run(
         [os.path.join(a.root, "scripts", "wheel-cosim"), "--rig", rig, "--bed", a.bed,
          "--deck", deck, "--np", str(a.np), "--work", os.path.join(a.work, "coupled"),
-         "--kinematic", twist, "--", "-var", "motion", "coupled", "-var", "steps", str(a.steps)],
+         "--kinematic", twist, "--", "-var", "motion", "coupled", "-var", "steps", str(a.steps),
+         "-var", "exchange_every", str(a.exchange_every)],
         capture_output=True, text=True, timeout=600)
     if coupled.returncode != 0:
         print(coupled.stdout[-3000:], coupled.stderr[-3000:])
@@ -216,6 +217,7 @@ def main():
     p.add_argument("--np", type=int, default=1)
     p.add_argument("--steps", type=int, default=400)
     p.add_argument("--tol", type=float, default=1e-9)
+    p.add_argument("--exchange-every", type=int, default=1)
     a = p.parse_args()
     os.makedirs(a.work, exist_ok=True)
     return {"compare": compare, "kill_rig": kill_rig, "kill_liggghts": kill_liggghts,
