@@ -236,6 +236,7 @@ int main(int argc, char **argv) {
   std::optional<double> surface_height;
   bool quiet = false;
   std::vector<double> kinematic;
+  std::vector<std::string> parameters;
   app.add_option("--config", config_path, "rig configuration (TOML)")->required();
   app.add_option("--out", out_path, "HDF5 run file (default: [output] file of the config)");
   app.add_option("--endpoint", endpoint,
@@ -247,6 +248,9 @@ int main(int argc, char **argv) {
                  "DEM test mode: the wheel follows the fixed twist vx vy vz [m/s] wx wy wz "
                  "[rad/s] (world frame) from LIGGGHTS' initial pose; the rig model is not used")
       ->expected(6);
+  app.add_option("--parameter", parameters,
+                 "KEY=VALUE stored as /parameters/KEY of the run file (repeatable; the launcher "
+                 "records the LIGGGHTS side: deck, command line, bed, soil, mesh and its hash)");
   app.set_version_flag("--version", std::string(WHEELSIM_VERSION) + " (git " +
                                         WHEELSIM_GIT_REVISION + ")");
   CLI11_PARSE(app, argc, argv);
@@ -292,6 +296,12 @@ int main(int argc, char **argv) {
     file->set_parameter("wheel/rim_radius", sim.wheel().rim_radius_m, "m");
     file->set_parameter("wheel/source", sim.wheel().source);
     file->set_parameter("terrain/surface_height", config.terrain.surface_height_m, "m");
+    for (const std::string &p : parameters) {
+      const auto eq = p.find('=');
+      if (eq == std::string::npos || eq == 0)
+        throw std::invalid_argument("--parameter expects KEY=VALUE, got '" + p + "'");
+      file->set_parameter(p.substr(0, eq), p.substr(eq + 1));
+    }
 
     rig::RunRecorder recorder(*file);
     rig::ProgressLine progress(quiet ? 0.0 : config.output.progress_interval_s, stdout);
@@ -302,7 +312,10 @@ int main(int argc, char **argv) {
       KinematicDriver driver(Eigen::Vector3d(kinematic[0], kinematic[1], kinematic[2]),
                              Eigen::Vector3d(kinematic[3], kinematic[4], kinematic[5]),
                              config.run.dt_s, *file);
-      file->set_parameter("kinematic_twist", command.str());
+      std::ostringstream twist;
+      for (double value : kinematic)
+        twist << (twist.tellp() > 0 ? " " : "") << value;
+      file->set_parameter("kinematic_twist", twist.str() + " (vx vy vz [m/s] wx wy wz [rad/s])");
       run_dem(config, driver, *file, quiet);
     } else if (config.terrain.type == rig::TerrainType::dem) {
       RigDriver driver(sim, sink);
@@ -312,9 +325,11 @@ int main(int argc, char **argv) {
     }
     for (const std::string &w : sim.warnings())
       std::fprintf(stderr, "wheel-rig: warning: %s\n", w.c_str());
-    if (!quiet)
+    if (!quiet && kinematic.empty())
       std::printf("wheel-rig: done at t = %.4f s; run file %s\n", sim.time_s(),
                   config.output.file.c_str());
+    else if (!quiet)
+      std::printf("wheel-rig: done (kinematic); run file %s\n", config.output.file.c_str());
   } catch (const std::exception &e) {
     std::fprintf(stderr, "wheel-rig: error: %s\n", e.what());
     status = 1;
