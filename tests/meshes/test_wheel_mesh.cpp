@@ -188,10 +188,11 @@ TEST(WheelMesh, CatalogueHasTheStudyWheels) {
   std::map<std::string, CatalogEntry> by_name;
   for (const auto &e : entries)
     by_name[e.name] = e;
-  ASSERT_EQ(entries.size(), 13u);
+  ASSERT_EQ(entries.size(), 14u);
   for (const char *n :
        {"wheel1", "wheel2", "wheel3", "wheel4", "wheel5", "wheel6", "wheel7", "wheel8",
-        "scm_size_1220", "scm_size_1420", "scm_size_1620", "smooth_1234", "test_small"}) {
+        "scm_size_1220", "scm_size_1420", "scm_size_1620", "smooth_1234", "test_small",
+        "test_smooth_wide"}) {
     EXPECT_EQ(by_name.count(n), 1u) << n;
   }
   const WheelSpec &w3 = by_name["wheel3"].spec;
@@ -200,6 +201,8 @@ TEST(WheelMesh, CatalogueHasTheStudyWheels) {
   EXPECT_EQ(w3.type, LugType::combined);
   EXPECT_DOUBLE_EQ(w3.lug_width_m, 0.040);
   EXPECT_TRUE(by_name["smooth_1234"].spec.smooth);
+  EXPECT_TRUE(by_name["test_smooth_wide"].spec.smooth);
+  EXPECT_DOUBLE_EQ(by_name["test_smooth_wide"].spec.width_m, 0.14);
   EXPECT_EQ(by_name["wheel5"].spec.type, LugType::straight);
   EXPECT_DOUBLE_EQ(by_name["scm_size_1620"].spec.centre_length_m, 0.120);
 }
