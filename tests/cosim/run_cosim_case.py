@@ -69,7 +69,7 @@ def compare(a):
         print(coupled.stdout[-3000:], coupled.stderr[-3000:])
         print("run_cosim_case: coupled run failed FAIL")
         return 1
-    coupled_rows = thermo_rows(open(os.path.join(a.work, "coupled", "liggghts.log")).read())
+    coupled_rows = thermo_rows(open(os.path.join(a.work, "coupled", "liggghts.log"), errors="replace").read())
     dt = re.search(r"dt (\S+) s", coupled.stdout).group(1)
     prescribed = subprocess.run(
         mpirun(a) + [os.path.join(a.build, "bin", "liggghts-wheel"), "-in", deck, "-log", "none",
@@ -128,7 +128,7 @@ def start_pair(a, rig, steps):
 def wait_for_progress(path, pattern, limit_s):
     t0 = time.time()
     while time.time() - t0 < limit_s:
-        if os.path.exists(path) and re.search(pattern, open(path).read()):
+        if os.path.exists(path) and re.search(pattern, open(path, errors="replace").read()):
             return True
         time.sleep(0.2)
     return False
@@ -152,7 +152,7 @@ def kill_rig(a):
               "died FAIL")
         return 1
     elapsed = time.time() - t_kill
-    log = open(os.path.join(a.work, "liggghts.log")).read()
+    log = open(os.path.join(a.work, "liggghts.log"), errors="replace").read()
     m = re.search(r"ERROR[^\n]*coupling with the rig failed[^\n]*", log)
     ok = rc != 0 and m is not None and "Pose" in m.group(0) and "the rig" in m.group(0)
     print(f"run_cosim_case: LIGGGHTS exited {rc} {elapsed:.1f} s after the rig was killed "
@@ -179,7 +179,7 @@ def kill_liggghts(a):
         print("run_cosim_case: the rig still running after LIGGGHTS died FAIL")
         return 1
     elapsed = time.time() - t_kill
-    log = open(os.path.join(a.work, "rig.log")).read()
+    log = open(os.path.join(a.work, "rig.log"), errors="replace").read()
     m = re.search(r"wheel-rig: error:[^\n]*", log)
     ok = rc != 0 and m is not None and "LIGGGHTS" in m.group(0) and "Wrench" in m.group(0)
     import h5py
