@@ -1,5 +1,7 @@
 #include "coupler/coupling.h"
 
+#include <exception>
+
 #include <cmath>
 #include <utility>
 
@@ -313,7 +315,27 @@ void CouplingServer::send_pose(const Pose &pose) {
     abandon(CloseReason::Error, std::string("server computed an invalid pose: ") + e.what());
     throw;
   }
-  send_message(*transport_, bytes, "Pose for step " + std::to_string(pose.step));
+  try {
+    send_message(*transport_, bytes, "Pose for step " + std::to_string(pose.step));
+  } catch (const CouplingError &) {
+    // A client that ends its run right after its last Wrench closes without waiting for this
+    // Pose; its Close is then already on the way. Report that as the client's Close, not as a
+    // failed send.
+    const std::exception_ptr send_failure = std::current_exception();
+    Bytes reply;
+    try {
+      reply = transport_->receive(std::chrono::seconds(1), "a Close after the last Wrench");
+    } catch (const CouplingError &) {
+      std::rethrow_exception(send_failure);
+    }
+    if (reply.size() < sizeof(MessageHeader) || peek_type(reply) != MessageType::Close)
+      std::rethrow_exception(send_failure);
+    state_ = State::Closed;
+    const Close close = decode_close(reply);
+    throw PeerClosedError(transport_->peer_name() + " closed the coupling after its last Wrench (" +
+                              to_string(close.reason) + "): " + close.message(),
+                          close);
+  }
   next_wrench_step_ = pose_step_;
   state_ = State::AwaitWrench;
 }

@@ -108,7 +108,9 @@ public:
   /// Waits (timeouts.step) for the next Wrench, or a Close (the client finished or failed: the
   /// session is then closed). A Wrench for an unexpected step is a ProtocolError naming both.
   std::variant<Wrench, Close> receive();
-  /// Replies to the last Wrench; `pose.step` must be that wrench's step + exchange_every.
+  /// Replies to the last Wrench; `pose.step` must be that wrench's step + exchange_every. If
+  /// the client is gone and its Close arrives (it ended its run after that Wrench), throws
+  /// PeerClosedError with the client's reason (Finished for a normal end).
   void send_pose(const Pose &pose);
   /// Sends Close{reason, text} if the session is open. Best effort: never throws.
   void close(CloseReason reason = CloseReason::Finished, const std::string &text = "finished");

@@ -79,6 +79,8 @@ struct WheelCosimState {
 
   std::vector<geometry::SurfaceContact> contacts; // query scratch
   long too_many_contacts = 0;                     // contacts dropped (> kMaxContacts...)
+  double contact_seconds = 0.0, motion_seconds = 0.0; // wall time in post_force this run
+  long timed_steps = 0;
   long slot_overflows = 0;                        // contacts without a free history slot
 };
 
@@ -591,6 +593,7 @@ void FixWheelCosim::setup(int /*vflag*/) {
 void FixWheelCosim::post_force(int /*vflag*/) {
   // The pose of this step is asked for as late as possible: a coupled rig computes it while
   // LIGGGHTS integrated the particles and computed the pair forces.
+  const double t0 = MPI_Wtime();
   if (update->ntimestep > s_->state_step) {
     try {
       s_->state = s_->motion->next_state(s_->state, update->ntimestep, update->dt);
@@ -599,7 +602,32 @@ void FixWheelCosim::post_force(int /*vflag*/) {
     }
     s_->state_step = update->ntimestep;
   }
+  const double t1 = MPI_Wtime();
   compute_contacts(update->setupflag == 0);
+  s_->motion_seconds += t1 - t0;
+  s_->contact_seconds += MPI_Wtime() - t1;
+  ++s_->timed_steps;
+}
+
+void FixWheelCosim::post_run() {
+  // The fix's own cost, for benchmarks: wall time in the contact loop (incl. the wrench
+  // reduction) and in the motion source (waiting for the rig when coupled), slowest rank.
+  double local[2] = {s_->contact_seconds, s_->motion_seconds}, slowest[2];
+  MPI_Reduce(local, slowest, 2, MPI_DOUBLE, MPI_MAX, 0, world);
+  if (comm->me == 0 && s_->timed_steps > 0) {
+    char line[256];
+    snprintf(line, sizeof(line),
+             "fix wheel/cosim %s: %ld steps, contacts %.4g s (%.1f us/step), motion %.4g s "
+             "(%.1f us/step)\n",
+             id, s_->timed_steps, slowest[0], 1e6 * slowest[0] / s_->timed_steps, slowest[1],
+             1e6 * slowest[1] / s_->timed_steps);
+    if (screen)
+      fputs(line, screen);
+    if (logfile)
+      fputs(line, logfile);
+  }
+  s_->contact_seconds = s_->motion_seconds = 0.0;
+  s_->timed_steps = 0;
 }
 
 void FixWheelCosim::end_of_step() {

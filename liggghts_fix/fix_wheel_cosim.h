@@ -48,6 +48,7 @@ public:
   void setup(int vflag) override;
   void post_force(int vflag) override;
   void end_of_step() override;
+  void post_run() override; // prints the fix's wall time of the run (benchmarks)
   void reset_dt() override;
 
   double compute_vector(int i) override;

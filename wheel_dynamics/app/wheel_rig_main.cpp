@@ -223,7 +223,15 @@ void run_dem(const rig::RigConfig &config, DemDriver &driver, runfile::RunFile &
         std::printf("wheel-rig: %s; told LIGGGHTS to stop\n", text.c_str());
       return;
     }
-    server.send_pose(pose);
+    try {
+      server.send_pose(pose);
+    } catch (const coupler::PeerClosedError &e) {
+      if (e.reason() != coupler::CloseReason::Finished)
+        throw;
+      if (!quiet) // LIGGGHTS ended its run after its last Wrench without waiting for this Pose
+        std::printf("wheel-rig: LIGGGHTS finished its run at %s\n", driver.where().c_str());
+      return;
+    }
   }
 }
 
