@@ -134,14 +134,24 @@ def wait_for_progress(path, pattern, limit_s):
     return False
 
 
-def kill_rig(a):
+def start_running_pair(a):
+    """Starts the rig and LIGGGHTS with the fault tests' short timeout and waits until the run is
+    under way; returns (rig, liggghts) processes, or None (both stopped) if it never started."""
     rig = rig_config(a, "rig.toml", timeout=TIMEOUT_S, progress_interval="0.5",
                      flush_interval="200")
     rig_proc, lmp_proc = start_pair(a, rig, 100000)
     if not wait_for_progress(os.path.join(a.work, "rig.log"), r"t = 0\.0[2-9]", 120):
         rig_proc.kill(); os.killpg(lmp_proc.pid, signal.SIGKILL)
         print("run_cosim_case: the coupled run did not start FAIL")
+        return None
+    return rig_proc, lmp_proc
+
+
+def kill_rig(a):
+    pair = start_running_pair(a)
+    if pair is None:
         return 1
+    rig_proc, lmp_proc = pair
     rig_proc.send_signal(signal.SIGKILL)
     t_kill = time.time()
     try:
@@ -162,13 +172,10 @@ def kill_rig(a):
 
 
 def kill_liggghts(a):
-    rig = rig_config(a, "rig.toml", timeout=TIMEOUT_S, progress_interval="0.5",
-                     flush_interval="200")
-    rig_proc, lmp_proc = start_pair(a, rig, 100000)
-    if not wait_for_progress(os.path.join(a.work, "rig.log"), r"t = 0\.0[2-9]", 120):
-        rig_proc.kill(); os.killpg(lmp_proc.pid, signal.SIGKILL)
-        print("run_cosim_case: the coupled run did not start FAIL")
+    pair = start_running_pair(a)
+    if pair is None:
         return 1
+    rig_proc, lmp_proc = pair
     os.killpg(lmp_proc.pid, signal.SIGKILL)  # mpirun and every rank
     lmp_proc.wait()
     t_kill = time.time()

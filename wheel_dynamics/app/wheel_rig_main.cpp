@@ -18,7 +18,7 @@
 #include "wheelsim/rig/rig_config.h"
 #include "wheelsim/rig/rig_simulation.h"
 #include "wheelsim/run_file/run_file.h"
-#include "wheelsim_rig_version.h"
+#include "wheelsim_version.h"
 
 #include <CLI/CLI.hpp>
 
@@ -71,10 +71,7 @@ struct Sink {
 /// The in-process flat ground.
 void run_flat(rig::RigSimulation &sim, Sink &sink) {
   rig::FlatGround ground = rig::make_flat_ground(sim.config(), sim.wheel());
-  while (!sim.finished()) {
-    const rig::RigOutputs &o = sim.advance(ground.contact(sim.wheel_state(), sim.time_s()));
-    sink(o, 1.0);
-  }
+  sim.run(ground, [&sink](const rig::RigOutputs &o) { sink(o, 1.0); });
 }
 
 /// What moves the wheel in a DEM run: the rig (normal use) or a fixed twist (--kinematic).
