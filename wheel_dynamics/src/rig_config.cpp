@@ -27,7 +27,9 @@ const std::vector<std::pair<std::string, std::vector<std::string>>> &schema() {
         "settle_window", "settle_min_time", "settle_max_time"}},
       {"terrain",
        {"type", "surface_height", "endpoint", "timeout", "soil", "grid_spacing", "grid_length",
-        "grid_width", "stiffness", "damping", "friction", "friction_model", "tangential_stiffness",
+        "grid_width", "normal_direction", "elastic_stiffness", "bulldozing",
+        "erosion_angle", "flow_factor", "erosion_iterations", "erosion_rings", "snapshot_times",
+        "snapshot_interval", "snapshot_fields", "stiffness", "damping", "friction", "friction_model", "tangential_stiffness",
         "tangential_damping", "slip_velocity_scale"}},
       {"output", {"file", "every", "flush_interval", "progress_interval"}},
   };
@@ -161,6 +163,55 @@ public:
     if (auto s = n->as_string())
       return s->get();
     fail(key, full(key) + " must be a string, got " + type_name(*n));
+  }
+
+  std::optional<bool> boolean(const std::string &key) const {
+    const toml::node *n = node(key);
+    if (!n)
+      return std::nullopt;
+    if (auto b = n->as_boolean())
+      return b->get();
+    fail(key, full(key) + " must be true or false, got " + type_name(*n));
+  }
+
+  /// An array of numbers (integers allowed), each finite.
+  std::optional<std::vector<double>> numbers(const std::string &key,
+                                             const std::string &unit) const {
+    const toml::node *n = node(key);
+    if (!n)
+      return std::nullopt;
+    const toml::array *a = n->as_array();
+    if (!a)
+      fail(key, full(key) + " must be an array of numbers in " + unit + ", got " + type_name(*n));
+    std::vector<double> out;
+    for (const toml::node &e : *a) {
+      if (auto i = e.as_integer())
+        out.push_back(static_cast<double>(i->get()));
+      else if (auto f = e.as_floating_point(); f && std::isfinite(f->get()))
+        out.push_back(f->get());
+      else
+        fail(key, full(key) + " must be an array of finite numbers in " + unit + ", got an "
+                  "element that is " + type_name(e));
+    }
+    return out;
+  }
+
+  std::optional<std::vector<std::string>> strings(const std::string &key) const {
+    const toml::node *n = node(key);
+    if (!n)
+      return std::nullopt;
+    const toml::array *a = n->as_array();
+    if (!a)
+      fail(key, full(key) + " must be an array of strings, got " + type_name(*n));
+    std::vector<std::string> out;
+    for (const toml::node &e : *a) {
+      if (auto str = e.as_string())
+        out.push_back(str->get());
+      else
+        fail(key, full(key) + " must be an array of strings, got an element that is " +
+                      type_name(e));
+    }
+    return out;
   }
 
   std::string choice(const std::string &key, const std::vector<std::string> &allowed,
@@ -467,9 +518,13 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
     const std::string type = t.choice("type", {"flat", "dem", "scm"}, std::nullopt);
     c.terrain.surface_height_m = t.number("surface_height", "m").value_or(0.0);
     const std::vector<std::string> dem_keys = {"endpoint", "timeout"};
-    const std::vector<std::string> scm_keys = {"soil", "grid_spacing", "grid_length", "grid_width"};
+    const std::vector<std::string> scm_keys = {
+        "soil",          "grid_spacing",       "grid_length",   "grid_width",
+        "normal_direction", "elastic_stiffness", "bulldozing",
+        "erosion_angle", "flow_factor",        "erosion_iterations", "erosion_rings",
+        "snapshot_times", "snapshot_interval", "snapshot_fields"};
+    // terrain.damping belongs to flat [N s/m] and scm [Pa s/m]
     const std::vector<std::string> flat_keys = {"stiffness",
-                                                "damping",
                                                 "friction",
                                                 "friction_model",
                                                 "tangential_stiffness",
@@ -479,6 +534,7 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
       c.terrain.type = TerrainType::dem;
       t.only_with(scm_keys, "type", type);
       t.only_with(flat_keys, "type", type);
+      t.only_with({"damping"}, "type", type);
       const auto ep = t.string("endpoint");
       if (!ep)
         p.fail(nullptr, "missing key 'terrain.endpoint': write e.g. terrain.endpoint = "
@@ -496,16 +552,64 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
       if (!soil || soil->empty())
         p.fail(nullptr, "missing key 'terrain.soil': the SCM soil file, e.g. terrain.soil = "
                         "\"inputs/scm/lete_sand.toml\"");
-      c.terrain.soil = resolve(*soil, base_dir);
-      c.terrain.grid_spacing_m =
+      ScmTerrainConfig &m = c.terrain.scm;
+      m.soil = resolve(*soil, base_dir);
+      m.grid_spacing_m =
           t.required(t.positive("grid_spacing", "m"), "grid_spacing", "grid node spacing in m");
-      c.terrain.grid_length_m =
-          t.required(t.positive("grid_length", "m"), "grid_length", "grid extent along x in m");
-      c.terrain.grid_width_m =
-          t.required(t.positive("grid_width", "m"), "grid_width", "grid extent along y in m");
-      if (c.terrain.grid_spacing_m > std::min(c.terrain.grid_length_m, c.terrain.grid_width_m))
-        t.fail("grid_spacing", "terrain.grid_spacing must be <= grid_length and grid_width, got " +
-                                   fmt(c.terrain.grid_spacing_m) + " m");
+      m.grid_length_m = t.positive("grid_length", "m");
+      m.grid_width_m = t.positive("grid_width", "m");
+      for (const char *extent : {"grid_length", "grid_width"})
+        if (const auto v = t.number(extent, "m"); v && *v < m.grid_spacing_m)
+          t.fail(extent, t.full(extent) + " must be >= terrain.grid_spacing (" +
+                             fmt(m.grid_spacing_m) + " m), got " + fmt(*v) + " m");
+      m.vertical_normal =
+          t.choice("normal_direction", {"surface", "vertical"}, std::string("surface")) ==
+          "vertical";
+      m.elastic_stiffness_Pa_m = t.positive("elastic_stiffness", "Pa/m");
+      m.damping_Pa_s_m = t.non_negative("damping", "Pa s/m"); // flat: N s/m
+      m.bulldozing = t.boolean("bulldozing").value_or(true);
+      if (!m.bulldozing)
+        for (const char *k : {"erosion_angle", "flow_factor", "erosion_iterations", "erosion_rings"})
+          if (t.has(k))
+            t.fail(k, t.full(k) + " is not used with terrain.bulldozing = false; remove it");
+      m.erosion_angle_deg =
+          t.checked("erosion_angle", "deg", "in (0, 90)", [](double v) { return v > 0 && v < 90; })
+              .value_or(m.erosion_angle_deg);
+      m.flow_factor = t.non_negative("flow_factor", "(fraction of the displaced volume)")
+                          .value_or(m.flow_factor);
+      m.erosion_iterations = t.integer("erosion_iterations", "sweeps per step")
+                                 .value_or(m.erosion_iterations);
+      if (m.erosion_iterations < 0)
+        t.fail("erosion_iterations", "terrain.erosion_iterations must be >= 0, got " +
+                                         std::to_string(m.erosion_iterations));
+      m.erosion_rings = t.integer("erosion_rings", "rings of nodes").value_or(m.erosion_rings);
+      if (m.erosion_rings < 1)
+        t.fail("erosion_rings",
+               "terrain.erosion_rings must be >= 1, got " + std::to_string(m.erosion_rings));
+      if (auto times = t.numbers("snapshot_times", "s")) {
+        for (double v : *times)
+          if (v < 0)
+            t.fail("snapshot_times", "terrain.snapshot_times must be >= 0 s, got " + fmt(v));
+        m.snapshot_times_s = *times;
+        std::sort(m.snapshot_times_s.begin(), m.snapshot_times_s.end());
+      }
+      m.snapshot_interval_s = t.non_negative("snapshot_interval", "s").value_or(0.0);
+      if (auto fields = t.strings("snapshot_fields")) {
+        const std::vector<std::string> allowed = {"height",          "sinkage",
+                                                  "plastic_sinkage", "pressure",
+                                                  "shear_stress",    "shear_displacement"};
+        for (const std::string &f : *fields)
+          if (std::find(allowed.begin(), allowed.end(), f) == allowed.end()) {
+            std::string msg = "terrain.snapshot_fields: unknown field \"" + f +
+                              "\"; expected some of height, sinkage, plastic_sinkage, pressure, "
+                              "shear_stress, shear_displacement";
+            const std::string cl = closest(f, allowed);
+            if (!cl.empty())
+              msg += "; did you mean \"" + cl + "\"?";
+            t.fail("snapshot_fields", msg);
+          }
+        m.snapshot_fields = *fields;
+      }
     } else {
       c.terrain.type = TerrainType::flat;
       t.only_with(dem_keys, "type", type);

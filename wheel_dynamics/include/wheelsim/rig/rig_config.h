@@ -70,17 +70,33 @@ struct RunConfig {
 };
 
 enum class TerrainType { flat, dem, scm };
+
+/// The SCM terrain's settings (terrain.type = "scm"); units in the names. docs/scm.md.
+struct ScmTerrainConfig {
+  std::string soil;                     ///< soil file (inputs/scm_soils/*.toml), resolved path
+  double grid_spacing_m = 0.0;          ///< Δ [m]
+  std::optional<double> grid_length_m;  ///< domain along x from -(rim radius) [m]; unset: unbounded
+  std::optional<double> grid_width_m;   ///< domain along y, centred on the wheel [m]; unset: unbounded
+  bool vertical_normal = false;         ///< normal_direction = "vertical" (Chrono) vs "surface"
+  std::optional<double> elastic_stiffness_Pa_m; ///< overrides the soil file's Ke [Pa/m]
+  std::optional<double> damping_Pa_s_m;         ///< overrides the soil file's damping R [Pa s/m]
+  bool bulldozing = true;
+  double erosion_angle_deg = 40.0;      ///< angle of repose [deg]
+  double flow_factor = 1.0;             ///< [-]
+  long long erosion_iterations = 3;
+  long long erosion_rings = 10;
+  std::vector<double> snapshot_times_s; ///< simulated times [s] of terrain snapshots
+  double snapshot_interval_s = 0.0;     ///< also one every this many s [s]; 0 = off
+  std::vector<std::string> snapshot_fields = {"height", "sinkage", "pressure", "shear_stress"};
+};
 struct TerrainConfig {
   TerrainType type = TerrainType::flat;
   double surface_height_m = 0.0;
   // dem
   std::string endpoint;
   double timeout_s = 60.0;
-  // scm (parsed and validated only)
-  std::string soil;
-  double grid_spacing_m = 0.0;
-  double grid_length_m = 0.0;
-  double grid_width_m = 0.0;
+  // scm (docs/scm.md): soil file, grid, model settings, snapshots
+  ScmTerrainConfig scm;
   // flat (radius and surface height are filled in from the wheel and surface_height)
   FlatGroundParameters flat;
 };
