@@ -1,7 +1,7 @@
 // Soft-soil parameters of the SCM terrain and of the Wong–Reece model (TERRAMECHANICS.md §1, §6).
 // Names follow Project Chrono's SCMTerrain (STYLE.md); units are SI, angles in radians in code
 // (degrees in soil files). The soil files (inputs/scm_soils/*.toml) and their loader are
-// documented in docs/scm.md.
+// documented in docs/scm-soils.md (loader: wheelsim/scm/soil_file.h).
 #pragma once
 
 #include <string>

@@ -1,0 +1,335 @@
+// The soil-file loader (docs/scm-soils.md). The error style follows the rig configuration
+// (wheel_dynamics/src/rig_config.cpp): "<file>:<line>: <message>", unknown keys with a
+// suggestion, range errors naming the key, the expected range with its unit and the value.
+#include "wheelsim/scm/soil_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <optional>
+#include <sstream>
+#include <utility>
+
+#include <toml++/toml.h>
+
+namespace wheelsim::scm {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// One value key: its table, name, unit (as written in messages) and what it is.
+struct KeySpec {
+  const char *table;
+  const char *key;
+  const char *unit;
+  const char *what;
+};
+
+// ---- the schema (docs/scm-soils.md lists the same, in this order) ----
+const std::vector<KeySpec> &value_keys() {
+  static const std::vector<KeySpec> k = {
+      {"bekker", "n", "", "sinkage exponent"},
+      {"bekker", "kc", "N/m^(n+1)", "cohesive modulus"},
+      {"bekker", "kphi", "N/m^(n+2)", "frictional modulus"},
+      {"mohr_coulomb", "cohesion", "Pa", "cohesion"},
+      {"mohr_coulomb", "friction_angle", "deg", "internal friction angle"},
+      {"janosi", "shear_modulus", "m", "shear deformation modulus K"},
+      {"scm", "elastic_stiffness", "Pa/m", "elastic unloading stiffness Ke"},
+      {"scm", "damping", "Pa s/m", "normal damping"},
+  };
+  return k;
+}
+const std::vector<std::string> &value_tables() {
+  static const std::vector<std::string> t = {"bekker", "mohr_coulomb", "janosi", "scm"};
+  return t;
+}
+const std::vector<std::string> &top_level_names() {
+  static const std::vector<std::string> t = {"name",   "description", "bekker", "mohr_coulomb",
+                                             "janosi", "scm",         "source"};
+  return t;
+}
+std::vector<std::string> keys_of(const std::string &table) {
+  std::vector<std::string> out;
+  for (const auto &k : value_keys())
+    if (table == k.table)
+      out.push_back(k.key);
+  return out;
+}
+
+std::size_t edit_distance(const std::string &a, const std::string &b) {
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+/// The closest of `candidates` to `word`, or "" if none is plausibly meant (same rule as the rig
+/// configuration: containment wins, else edit distance up to a third of the word, at least 2).
+std::string closest(const std::string &word, const std::vector<std::string> &candidates) {
+  std::string best;
+  std::size_t best_score = static_cast<std::size_t>(-1);
+  for (const auto &c : candidates) {
+    std::size_t score;
+    if (word.size() >= 3 &&
+        (c.find(word) != std::string::npos || word.find(c) != std::string::npos))
+      score = 0;
+    else {
+      const std::size_t d = edit_distance(word, c);
+      if (d > std::max<std::size_t>(2, word.size() / 3))
+        continue;
+      score = d;
+    }
+    if (score < best_score) {
+      best_score = score;
+      best = c;
+    }
+  }
+  return best;
+}
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+std::string join(const std::vector<std::string> &v) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    s += (i ? ", " : "") + v[i];
+  return s;
+}
+
+const char *type_name(const toml::node &n) {
+  switch (n.type()) {
+  case toml::node_type::string:
+    return "a string";
+  case toml::node_type::integer:
+    return "an integer";
+  case toml::node_type::floating_point:
+    return "a number";
+  case toml::node_type::boolean:
+    return "a boolean";
+  case toml::node_type::table:
+    return "a table";
+  case toml::node_type::array:
+    return "an array";
+  default:
+    return "a date/time";
+  }
+}
+
+class Parser {
+public:
+  explicit Parser(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const toml::node *where, const std::string &message) const {
+    std::ostringstream os;
+    os << source_;
+    if (where && where->source().begin.line > 0)
+      os << ':' << where->source().begin.line;
+    os << ": " << message;
+    throw SoilFileError(os.str());
+  }
+
+private:
+  std::string source_;
+};
+
+/// "unknown key 'a.b'; did you mean 'a.c'?" (or the list of keys of the table).
+std::string unknown_key_message(const std::string &prefix, const std::string &key,
+                                const std::vector<std::string> &known) {
+  std::string msg = "unknown key '" + prefix + key + "'";
+  const std::string c = closest(key, known);
+  if (!c.empty())
+    return msg + "; did you mean '" + prefix + c + "'?";
+  for (const auto &k : value_keys())
+    if (key == k.key && prefix != std::string(k.table) + ".")
+      return msg + "; '" + key + "' belongs in [" + k.table + "]";
+  return msg + "; the keys here are " + join(known);
+}
+
+void check_known_keys(const Parser &p, const toml::table &doc) {
+  for (const auto &[k, node] : doc) {
+    const std::string key(k.str());
+    const auto &names = top_level_names();
+    if (std::find(names.begin(), names.end(), key) == names.end()) {
+      std::string msg = "unknown " + std::string(node.is_table() ? "table [" + key + "]"
+                                                                 : "top-level key '" + key + "'");
+      std::string c = closest(key, names);
+      if (!c.empty())
+        msg += "; did you mean '" + c + "'?";
+      else {
+        for (const auto &vk : value_keys())
+          if (key == vk.key) {
+            c = vk.table;
+            break;
+          }
+        if (!c.empty())
+          msg += "; '" + key + "' belongs in [" + c + "]";
+        else
+          msg += "; a soil file has name, description and the tables [bekker], [mohr_coulomb], "
+                 "[janosi], [scm], [source]";
+      }
+      p.fail(&node, msg);
+    }
+    if (key == "name" || key == "description") {
+      if (!node.is_string())
+        p.fail(&node, "'" + key + "' must be a string, got " + type_name(node));
+      continue;
+    }
+    if (!node.is_table())
+      p.fail(&node, "'" + key + "' must be a table: write [" + key + "] and its keys below it");
+    if (key == "source") {
+      // [source.<table>] with the value keys of <table>, each a string.
+      for (const auto &[sk, snode] : *node.as_table()) {
+        const std::string sub(sk.str());
+        const auto &tables = value_tables();
+        if (std::find(tables.begin(), tables.end(), sub) == tables.end()) {
+          std::string msg = "unknown key 'source." + sub + "'";
+          const std::string c = closest(sub, tables);
+          msg += c.empty() ? "; [source] holds the tables [source.bekker], "
+                             "[source.mohr_coulomb], [source.janosi], [source.scm]"
+                           : "; did you mean [source." + c + "]?";
+          p.fail(&snode, msg);
+        }
+        if (!snode.is_table())
+          p.fail(&snode, "'source." + sub + "' must be a table: write [source." + sub +
+                             "] and, for each value of [" + sub + "], key = \"<its source>\"");
+        const auto known = keys_of(sub);
+        for (const auto &[vk, vnode] : *snode.as_table()) {
+          const std::string v(vk.str());
+          if (std::find(known.begin(), known.end(), v) == known.end())
+            p.fail(&vnode, unknown_key_message("source." + sub + ".", v, known));
+          if (!vnode.is_string())
+            p.fail(&vnode, "source." + sub + "." + v +
+                               " must be a string (where the value comes from), got " +
+                               type_name(vnode));
+        }
+      }
+      continue;
+    }
+    const auto known = keys_of(key);
+    for (const auto &[sk, snode] : *node.as_table()) {
+      const std::string sub(sk.str());
+      if (std::find(known.begin(), known.end(), sub) == known.end())
+        p.fail(&snode, unknown_key_message(key + ".", sub, known));
+    }
+  }
+}
+
+/// The number at table.key (integers accepted), or nullopt when absent.
+std::optional<double> number(const Parser &p, const toml::table &doc, const KeySpec &k) {
+  const toml::table *t = doc.get_as<toml::table>(k.table);
+  const toml::node *n = t ? t->get(k.key) : nullptr;
+  if (!n)
+    return std::nullopt;
+  const std::string full = std::string(k.table) + "." + k.key;
+  const std::string unit = *k.unit ? std::string(" in ") + k.unit : std::string();
+  double v;
+  if (auto i = n->as_integer())
+    v = static_cast<double>(i->get());
+  else if (auto f = n->as_floating_point())
+    v = f->get();
+  else
+    p.fail(n, full + " must be a number" + unit + ", got " + type_name(*n));
+  if (!std::isfinite(v))
+    p.fail(n, full + " must be a finite number" + unit + ", got " + fmt(v));
+  return v;
+}
+
+const KeySpec &spec(const char *table, const char *key) {
+  for (const auto &k : value_keys())
+    if (std::string(table) == k.table && std::string(key) == k.key)
+      return k;
+  throw std::logic_error("soil_file: no key " + std::string(table) + "." + key);
+}
+
+} // namespace
+
+std::vector<std::string> soil_file_keys() {
+  std::vector<std::string> out;
+  for (const auto &k : value_keys())
+    out.push_back(std::string(k.table) + "." + k.key);
+  return out;
+}
+
+SoilParameters parse_soil_file(const std::string &text, const std::string &source_name) {
+  const Parser p(source_name);
+  toml::table doc;
+  try {
+    doc = toml::parse(text, source_name);
+  } catch (const toml::parse_error &e) {
+    std::ostringstream os;
+    os << source_name << ':' << e.source().begin.line << ": TOML syntax error: " << e.description();
+    throw SoilFileError(os.str());
+  }
+  check_known_keys(p, doc);
+
+  // A required or optional number with its range check. `range` reads like "in (0, 2]".
+  auto get = [&](const char *table, const char *key, bool required, const char *range,
+                 const std::function<bool(double)> &ok) -> std::optional<double> {
+    const KeySpec &k = spec(table, key);
+    const auto v = number(p, doc, k);
+    const std::string full = std::string(table) + "." + key;
+    if (!v) {
+      if (required)
+        p.fail(doc.get(table), "missing key '" + full + "': write " + key + " = <" + k.what +
+                                   (*k.unit ? std::string(" in ") + k.unit : std::string()) +
+                                   ", " + range + "> under [" + table + "]");
+      return v;
+    }
+    if (!ok(*v)) {
+      const toml::table *t = doc.get_as<toml::table>(table);
+      p.fail(t->get(key), full + " must be " + range + (*k.unit ? " " : "") + k.unit + ", got " +
+                              fmt(*v));
+    }
+    return v;
+  };
+
+  SoilParameters s;
+  const toml::node *name = doc.get("name");
+  if (!name)
+    p.fail(nullptr, "missing key 'name': write name = \"<soil name>\" at the top of the file");
+  s.name = name->as_string()->get();
+  if (s.name.empty())
+    p.fail(name, "'name' must not be empty");
+
+  s.Bekker_n = *get("bekker", "n", true, "in (0, 2]", [](double v) { return v > 0 && v <= 2; });
+  s.Bekker_Kc = *get("bekker", "kc", true, ">= 0", [](double v) { return v >= 0; });
+  s.Bekker_Kphi = *get("bekker", "kphi", true, ">= 0", [](double v) { return v >= 0; });
+  if (!(s.Bekker_Kc + s.Bekker_Kphi > 0))
+    p.fail(doc.get_as<toml::table>("bekker")->get("kphi"),
+           "bekker.kc + bekker.kphi must be > 0 (the soil must resist sinkage), got kc = 0 "
+           "N/m^(n+1) and kphi = 0 N/m^(n+2)");
+  s.Mohr_cohesion = *get("mohr_coulomb", "cohesion", true, ">= 0", [](double v) { return v >= 0; });
+  s.Mohr_friction = *get("mohr_coulomb", "friction_angle", true, "in [0, 90)",
+                         [](double v) { return v >= 0 && v < 90; }) *
+                    kPi / 180.0;
+  s.Janosi_shear =
+      *get("janosi", "shear_modulus", true, "> 0", [](double v) { return v > 0; });
+  s.elastic_K = get("scm", "elastic_stiffness", false, "> 0", [](double v) {
+                  return v > 0;
+                }).value_or(s.elastic_K);
+  s.damping_R =
+      get("scm", "damping", false, ">= 0", [](double v) { return v >= 0; }).value_or(s.damping_R);
+  return s;
+}
+
+SoilParameters load_soil_file(const std::string &path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw SoilFileError(path + ": cannot open the soil file (see inputs/scm_soils/ for examples)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_soil_file(text.str(), path);
+}
+
+} // namespace wheelsim::scm
