@@ -1,0 +1,428 @@
+"""The sweep config (TOML): parsing, validation and the point matrix. Reference: docs/sweeps.md.
+
+Every error is a ConfigError whose message starts with the config file and names the key, e.g.
+`sweep.toml: unknown key 'slip'; did you mean 'slips'?` or `sweep.toml: wheels[1]: no mesh ...`.
+Relative paths in a config are relative to the file that holds them.
+"""
+
+import copy
+import difflib
+import math
+import os
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+TERRAINS = ("scm", "dem", "flat")
+TOP_KEYS = ("description", "terrain", "base", "override", "wheels", "soils", "slips", "dem")
+DEM_KEYS = ("np", "bed_np", "deck", "liggghts_args")
+# The rig config's tables and keys (docs/rig-config.md); [terrain] is passed through unchecked
+# because its keys depend on the terrain type (SCM adds keys). wheel-rig checks everything again.
+RIG_KEYS = {
+    "wheel": ("mesh", "mesh_scale", "mass", "inertia", "density", "effective_radius"),
+    "rig": ("spindle_mass", "suspended_mass", "vertical_load", "carriage_mass", "spring_k",
+            "spring_c", "gravity"),
+    "motor": ("omega", "torque", "ramp_time"),
+    "carriage": ("mode", "slip", "speed", "load", "load_start", "load_end", "ramp_time"),
+    "run": ("dt", "duration", "release_gap", "release_speed", "release_timeout",
+            "settle_velocity", "settle_window", "settle_min_time", "settle_max_time"),
+    "terrain": None,
+    "output": ("file", "every", "flush_interval", "progress_interval"),
+}
+WHEEL_ENTRY_KEYS = ("name", "mesh", "mesh_scale", "mass", "inertia", "density", "effective_radius")
+# inputs/in.soilbin variables a DEM bed recipe may set (docs/soil-bins.md); inputs_dir, out_dir
+# and restart_file are the driver's.
+SOILBIN_VARS = ("bin_length", "bin_width", "fill_height", "fill_solid_fraction", "insert_fraction",
+                "seed", "ke_threshold", "check_time", "max_settle_time", "compaction",
+                "plate_pressure", "plate_speed", "plate_time", "drop_height", "drop_stroke",
+                "drop_count", "drop_rest", "thermo_every", "steel_E", "steel_nu", "wall_mu",
+                "wheel_mu", "wall_kcoh", "wheel_kcoh_ratio")
+MESH_SUFFIXES = (".stl", ".obj", ".ply")
+LABEL_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
+
+
+class ConfigError(Exception):
+    """A bad sweep config; the message names the file and the key."""
+
+
+@dataclass
+class Wheel:
+    label: str
+    mesh: Path  # absolute
+    keys: dict  # further [wheel] keys of this entry (mass, inertia, ...)
+
+
+@dataclass
+class Soil:
+    label: str
+    terrain_keys: dict = field(default_factory=dict)  # scm/flat: [terrain] keys of this soil
+    soil_file: Path | None = None  # scm: the soil file
+    restart: Path | None = None  # dem: the bed restart (prepared if recipe is set)
+    recipe: dict | None = None  # dem: in.soilbin variables incl. soil; None = an existing bed
+
+
+@dataclass
+class Point:
+    index: int
+    wheel: Wheel
+    soil: Soil
+    slip: float
+    reldir: str  # wheel/soil/s<slip>, relative to the output directory
+    rig: dict  # the point's rig config
+
+
+@dataclass
+class Sweep:
+    path: Path
+    terrain: str
+    description: str
+    wheels: list
+    soils: list
+    slips: list
+    points: list
+    np: int = 1
+    bed_np: int = 1
+    deck: Path | None = None
+    liggghts_args: list = field(default_factory=list)
+
+
+def _suggest(key, allowed):
+    close = difflib.get_close_matches(key, allowed, n=1)
+    return f"; did you mean '{close[0]}'?" if close else f"; expected one of {', '.join(allowed)}"
+
+
+class _Ctx:
+    def __init__(self, path):
+        self.path = path
+        self.dir = path.parent
+
+    def err(self, msg):
+        return ConfigError(f"{self.path}: {msg}")
+
+    def check_keys(self, table, allowed, where):
+        for k in table:
+            if k not in allowed:
+                name = f"{where}.{k}" if where else k
+                raise self.err(f"unknown key '{name}'{_suggest(k, list(allowed))}")
+
+    def path_of(self, value, key, base_dir=None):
+        if not isinstance(value, str) or not value:
+            raise self.err(f"{key} must be a non-empty path string, got {value!r}")
+        p = Path(os.path.expanduser(value))
+        return p if p.is_absolute() else (base_dir or self.dir) / p
+
+    def existing(self, p, key, what):
+        if not p.is_file():
+            raise self.err(f"{key}: {what} '{p}' not found")
+        return p.resolve()
+
+    def number(self, v, key):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise self.err(f"{key} must be a finite number, got {v!r}")
+        return float(v)
+
+    def label(self, v, key):
+        if not isinstance(v, str) or not LABEL_RE.match(v):
+            raise self.err(f"{key} must be a name of letters, digits, '_', '.', '+', '-' "
+                           f"(used as a directory name), got {v!r}")
+        return v
+
+
+def _looks_like_path(s, suffixes):
+    return "/" in s or s.lower().endswith(suffixes)
+
+
+def _deep_merge(base, over):
+    out = copy.deepcopy(base)
+    for k, v in over.items():
+        if isinstance(v, dict) and isinstance(out.get(k), dict):
+            out[k] = _deep_merge(out[k], v)
+        else:
+            out[k] = copy.deepcopy(v)
+    return out
+
+
+def _check_rig_tables(ctx, doc, where):
+    """The rig tables of `doc` (base file or [override]); relative paths made absolute."""
+    if not isinstance(doc, dict):
+        raise ctx.err(f"{where} must be a table of rig-config tables")
+    for t, v in doc.items():
+        name = f"{where}.{t}" if where else t
+        if t not in RIG_KEYS:
+            raise ctx.err(f"unknown table '{name}'{_suggest(t, list(RIG_KEYS))}")
+        if not isinstance(v, dict):
+            raise ctx.err(f"'{name}' must be a table")
+        if RIG_KEYS[t] is not None:
+            ctx.check_keys(v, RIG_KEYS[t], name)
+    for t, k in (("wheel", "mesh"), ("terrain", "soil")):
+        if k in doc.get(t, {}):
+            doc[t][k] = str(ctx.path_of(doc[t][k], f"{where + '.' if where else ''}{t}.{k}")
+                            .resolve())
+    return doc
+
+
+def _load_toml(path, ctx_for_errors=None):
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except FileNotFoundError:
+        raise (ctx_for_errors.err(f"base: rig config '{path}' not found") if ctx_for_errors
+               else ConfigError(f"{path}: not found"))
+    except tomllib.TOMLDecodeError as e:
+        raise ConfigError(f"{path}: TOML syntax error: {e}")
+
+
+def _wheels(ctx, entries, terrain, build_dir):
+    if not isinstance(entries, list) or not entries:
+        raise ctx.err("wheels must be a non-empty array of wheel names, mesh paths or tables")
+    mesh_dir = build_dir / "meshes"
+    out = []
+    for i, e in enumerate(entries):
+        key = f"wheels[{i}]"
+        keys = {}
+        if isinstance(e, dict):
+            ctx.check_keys(e, WHEEL_ENTRY_KEYS, key)
+            keys = {k: v for k, v in e.items() if k not in ("name", "mesh")}
+            name = e.get("name")
+            mesh_spec = e.get("mesh", name)
+            if name is None and mesh_spec is None:
+                raise ctx.err(f"{key} needs 'name' (a catalogue wheel or a label) or 'mesh'")
+        elif isinstance(e, str) and e:
+            name, mesh_spec = None, e
+        else:
+            raise ctx.err(f"{key} must be a wheel name, a mesh path or a table, got {e!r}")
+        if not isinstance(mesh_spec, str) or not mesh_spec:
+            raise ctx.err(f"{key}.mesh must be a non-empty string, got {mesh_spec!r}")
+        if _looks_like_path(mesh_spec, MESH_SUFFIXES):
+            mesh = ctx.existing(ctx.path_of(mesh_spec, key), key, "mesh")
+        else:
+            mesh = mesh_dir / f"{mesh_spec}.stl"
+            if not mesh.is_file():
+                known = sorted(p.stem for p in mesh_dir.glob("*.stl")) if mesh_dir.is_dir() else []
+                hint = (f"known: {', '.join(known)}" if known else
+                        "build them with `cmake --build BUILD --target wheel_meshes`")
+                raise ctx.err(f"{key}: no catalogue wheel '{mesh_spec}' ({mesh} not found; {hint})")
+            mesh = mesh.resolve()
+        if terrain == "dem" and mesh.suffix.lower() != ".stl":
+            raise ctx.err(f"{key}: DEM runs need an STL mesh (LIGGGHTS reads STL), got '{mesh}'")
+        label = ctx.label(name if name is not None else Path(mesh_spec).stem,
+                          f"{key}.name" if name is not None else key)
+        out.append(Wheel(label, mesh, keys))
+    return out
+
+
+def _soils(ctx, entries, terrain, repo):
+    if entries is None:
+        if terrain == "flat":
+            return [Soil("flat")]
+        raise ctx.err(f"missing key 'soils' (required for terrain = \"{terrain}\")")
+    if not isinstance(entries, list) or not entries:
+        raise ctx.err("soils must be a non-empty array")
+    out = []
+    for i, e in enumerate(entries):
+        key = f"soils[{i}]"
+        if terrain == "flat":
+            if isinstance(e, str):
+                out.append(Soil(ctx.label(e, key)))
+            elif isinstance(e, dict):
+                if "name" not in e:
+                    raise ctx.err(f"{key} needs 'name'")
+                tk = {k: v for k, v in e.items() if k != "name"}
+                if "type" in tk:
+                    raise ctx.err(f"{key}.type: the terrain type is the top-level key 'terrain'")
+                out.append(Soil(ctx.label(e["name"], f"{key}.name"), terrain_keys=tk))
+            else:
+                raise ctx.err(f"{key} must be a label or a table of [terrain] keys, got {e!r}")
+        elif terrain == "scm":
+            if isinstance(e, str):
+                spec, name, tk = e, None, {}
+            elif isinstance(e, dict):
+                spec, name = e.get("soil", e.get("name")), e.get("name")
+                if spec is None:
+                    raise ctx.err(f"{key} needs 'soil' (a soil name or file) or 'name'")
+                tk = {k: v for k, v in e.items() if k not in ("name", "soil")}
+                if "type" in tk:
+                    raise ctx.err(f"{key}.type: the terrain type is the top-level key 'terrain'")
+            else:
+                raise ctx.err(f"{key} must be an SCM soil name, a soil file or a table, got {e!r}")
+            if not isinstance(spec, str) or not spec:
+                raise ctx.err(f"{key}.soil must be a non-empty string, got {spec!r}")
+            if _looks_like_path(spec, (".toml",)):
+                f = ctx.existing(ctx.path_of(spec, key), key, "SCM soil file")
+            else:
+                f = repo / "inputs" / "scm_soils" / f"{spec}.toml"
+                if not f.is_file():
+                    d = f.parent
+                    known = sorted(p.stem for p in d.glob("*.toml")) if d.is_dir() else []
+                    raise ctx.err(f"{key}: no SCM soil '{spec}' ({f} not found"
+                                  + (f"; known: {', '.join(known)})" if known else ")"))
+            label = ctx.label(name if name is not None else Path(spec).stem,
+                              f"{key}.name" if name is not None else key)
+            out.append(Soil(label, terrain_keys=tk, soil_file=f.resolve()))
+        else:  # dem
+            if isinstance(e, str):
+                p = ctx.path_of(e, key)
+                if not p.is_file():
+                    raise ctx.err(f"{key}: bed restart '{p}' not found (a soil name alone is not "
+                                  "a bed: give a recipe table, e.g. { soil = \"ci\", bin_length = "
+                                  "0.36, bin_width = 0.12, fill_height = 0.035 })")
+                if not Path(f"{p}.vars").is_file():
+                    raise ctx.err(f"{key}: '{p}.vars' not found (written by inputs/in.soilbin)")
+                out.append(Soil(ctx.label(p.stem, key), restart=p.resolve()))
+            elif isinstance(e, dict):
+                ctx.check_keys(e, ("name", "soil", "restart") + SOILBIN_VARS, key)
+                recipe = {k: v for k, v in e.items() if k not in ("name", "restart")}
+                for k, v in recipe.items():
+                    if isinstance(v, bool) or not isinstance(v, (int, float, str)):
+                        raise ctx.err(f"{key}.{k} must be a number or a string, got {v!r}")
+                restart = ctx.path_of(e["restart"], f"{key}.restart") if "restart" in e else None
+                if "soil" in e:
+                    soil_in = repo / "inputs" / "soils" / f"{e['soil']}.in"
+                    if not soil_in.is_file():
+                        raise ctx.err(f"{key}.soil: no DEM soil '{e['soil']}' ({soil_in} not found)")
+                    label = ctx.label(e.get("name", e["soil"]),
+                                      f"{key}.name" if "name" in e else f"{key}.soil")
+                    out.append(Soil(label, restart=restart, recipe=recipe))
+                else:
+                    if restart is None:
+                        raise ctx.err(f"{key} needs 'soil' (a bin recipe) or 'restart' (a bed)")
+                    if len(recipe):
+                        raise ctx.err(f"{key}: bin variables ({', '.join(recipe)}) need 'soil'")
+                    ctx.existing(restart, f"{key}.restart", "bed restart")
+                    if not Path(f"{restart}.vars").is_file():
+                        raise ctx.err(f"{key}.restart: '{restart}.vars' not found")
+                    label = ctx.label(e.get("name", restart.stem),
+                                      f"{key}.name" if "name" in e else f"{key}.restart")
+                    out.append(Soil(label, restart=restart.resolve()))
+            else:
+                raise ctx.err(f"{key} must be a bed restart path or a bin recipe table, got {e!r}")
+    return out
+
+
+def _slips(ctx, entries):
+    if not isinstance(entries, list) or not entries:
+        raise ctx.err("slips must be a non-empty array of numbers in [-1, 1]")
+    out = []
+    for i, v in enumerate(entries):
+        s = ctx.number(v, f"slips[{i}]")
+        if not -1.0 <= s <= 1.0:
+            raise ctx.err(f"slips[{i}] must be in [-1, 1], got {v!r}")
+        if s in out:
+            raise ctx.err(f"slips[{i}]: slip {v!r} appears twice")
+        out.append(s)
+    return out
+
+
+def slip_dirname(slip, slips):
+    """s0.300 style; more digits when three decimals do not tell the slips apart."""
+    for fmt in (".3f", ".6f", "r"):
+        names = {(repr(s) if fmt == "r" else format(s, fmt)) for s in slips}
+        if len(names) == len(slips):
+            return "s" + (repr(slip) if fmt == "r" else format(slip, fmt))
+    raise AssertionError("unreachable")
+
+
+def _unique(ctx, items, key):
+    seen = set()
+    for it in items:
+        if it.label in seen:
+            raise ctx.err(f"{key}: two entries are named '{it.label}' (give one a 'name')")
+        seen.add(it.label)
+
+
+def load(path, repo, build_dir):
+    """Parse and validate a sweep config; returns a Sweep with its points (wheel-major order)."""
+    path = Path(path).resolve()
+    ctx = _Ctx(path)
+    if not path.is_file():
+        raise ConfigError(f"{path}: sweep config not found")
+    doc = _load_toml(path)
+    ctx.check_keys(doc, TOP_KEYS, "")
+    for k in ("terrain", "wheels", "slips"):
+        if k not in doc:
+            raise ctx.err(f"missing key '{k}'")
+    terrain = doc["terrain"]
+    if terrain not in TERRAINS:
+        raise ctx.err(f"terrain must be one of {', '.join(TERRAINS)}, got {terrain!r}")
+    description = doc.get("description", "")
+    if not isinstance(description, str):
+        raise ctx.err("description must be a string")
+
+    # The base rig config: the file, then [override] on top.
+    rig = {}
+    if "base" in doc:
+        bpath = ctx.path_of(doc["base"], "base")
+        bctx = _Ctx(bpath.resolve())
+        rig = _check_rig_tables(bctx, _load_toml(bpath, ctx), "")
+    if "override" in doc:
+        rig = _deep_merge(rig, _check_rig_tables(ctx, copy.deepcopy(doc["override"]), "override"))
+    if not rig:
+        raise ctx.err("no rig config: give 'base' (a rig config file) and/or [override] tables")
+    base_type = rig.get("terrain", {}).get("type")
+    if base_type is not None and base_type != terrain:
+        raise ctx.err(f"terrain = \"{terrain}\" but the base rig config has terrain.type = "
+                      f"\"{base_type}\" (use a base for this terrain or set override.terrain.type)")
+    mode = rig.get("carriage", {}).get("mode")
+    if mode is not None and mode != "imposed_slip":
+        raise ctx.err(f"the base rig config has carriage.mode = \"{mode}\"; a slip sweep needs "
+                      "\"imposed_slip\"")
+    if terrain == "scm" and "soil" in rig.get("terrain", {}):
+        raise ctx.err("terrain.soil is set per point from 'soils'; remove it from the base/override")
+
+    sweep = Sweep(path=path, terrain=terrain, description=description,
+                  wheels=_wheels(ctx, doc["wheels"], terrain, build_dir),
+                  soils=_soils(ctx, doc.get("soils"), terrain, repo),
+                  slips=_slips(ctx, doc["slips"]), points=[])
+    _unique(ctx, sweep.wheels, "wheels")
+    _unique(ctx, sweep.soils, "soils")
+
+    if "dem" in doc:
+        if terrain != "dem":
+            raise ctx.err(f"[dem] is only used with terrain = \"dem\" (terrain is \"{terrain}\")")
+        dem = doc["dem"]
+        if not isinstance(dem, dict):
+            raise ctx.err("dem must be a table")
+        ctx.check_keys(dem, DEM_KEYS, "dem")
+    else:
+        dem = {}
+    if terrain == "dem":
+        for k in ("np", "bed_np"):
+            v = dem.get(k, dem.get("np", 1))
+            if isinstance(v, bool) or not isinstance(v, int) or v < 1:
+                raise ctx.err(f"dem.{k} must be an integer >= 1, got {v!r}")
+            setattr(sweep, k, v)
+        deck = (ctx.path_of(dem["deck"], "dem.deck") if "deck" in dem
+                else repo / "inputs" / "examples" / "in.wheel_coupled")
+        sweep.deck = ctx.existing(deck, "dem.deck", "LIGGGHTS deck")
+        args = dem.get("liggghts_args", [])
+        if not isinstance(args, list) or not all(isinstance(a, str) for a in args):
+            raise ctx.err("dem.liggghts_args must be an array of strings")
+        sweep.liggghts_args = args
+
+    # The points.
+    n = 0
+    for w in sweep.wheels:
+        for s in sweep.soils:
+            for slip in sweep.slips:
+                r = copy.deepcopy(rig)
+                wt = r.setdefault("wheel", {})
+                if "mass" in w.keys or "inertia" in w.keys:
+                    wt.pop("density", None)
+                if "density" in w.keys:
+                    wt.pop("mass", None)
+                    wt.pop("inertia", None)
+                wt.update(copy.deepcopy(w.keys))
+                wt["mesh"] = str(w.mesh)
+                c = r.setdefault("carriage", {})
+                c["mode"] = "imposed_slip"
+                c["slip"] = slip
+                t = r.setdefault("terrain", {})
+                t["type"] = terrain
+                t.update(copy.deepcopy(s.terrain_keys))
+                if s.soil_file is not None:
+                    t["soil"] = str(s.soil_file)
+                reldir = f"{w.label}/{s.label}/{slip_dirname(slip, sweep.slips)}"
+                sweep.points.append(Point(n, w, s, slip, reldir, r))
+                n += 1
+    return sweep

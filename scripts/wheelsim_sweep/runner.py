@@ -1,0 +1,391 @@
+"""Runs a sweep's points: concurrency, resume markers, DEM bed preparation, signals, manifest.
+
+Per point directory (OUT/<wheel>/<soil>/s<slip>/): rig.toml (the point's rig config), run.log
+(the child's output), run.part.h5 while running, run.h5 once it finished with exit status 0,
+done.json (written last, atomically; also for a failed point, with its exit status). A point is
+finished when done.json says exit status 0, its inputs hash matches and run.h5 exists.
+"""
+
+import csv
+import fcntl
+import hashlib
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import threading
+import time
+from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
+from pathlib import Path
+
+from . import toml_out
+
+RUN_FILE = "run.h5"
+PART_FILE = "run.part.h5"
+DONE_FILE = "done.json"
+KILL_GRACE_S = 5.0
+
+
+def _write_atomic(path, text):
+    tmp = path.with_name(path.name + ".tmp")
+    with open(tmp, "w") as f:
+        f.write(text)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+
+
+def _fmt_time(s):
+    if s < 60:
+        return f"{s:.1f} s"
+    if s < 3600:
+        return f"{int(s // 60)} min {int(s % 60)} s"
+    return f"{int(s // 3600)} h {int(s % 3600 // 60)} min"
+
+
+def _last_error(log):
+    try:
+        lines = Path(log).read_text(errors="replace").splitlines()
+    except OSError:
+        return ""
+    for line in reversed(lines):
+        if "error" in line.lower() or "failed" in line.lower():
+            return line.strip()
+    return lines[-1].strip() if lines else ""
+
+
+class Interrupted(Exception):
+    pass
+
+
+class Runner:
+    def __init__(self, sweep, out_dir, repo, build_dir, jobs, force=False, dry_run=False):
+        self.sweep = sweep
+        self.out = Path(out_dir).resolve()
+        self.repo = repo
+        self.build = build_dir
+        self.jobs = jobs
+        self.force = force
+        self.dry_run = dry_run
+        self.lock = threading.RLock()
+        self.procs = {}  # Popen -> True once we signalled it
+        self.stop_signal = None
+        self.status = {}  # point index -> done | failed | interrupted | pending
+        self.exit_status = {}
+
+    # ---- output ---------------------------------------------------------------------------------
+    def say(self, msg):
+        with self.lock:
+            print(msg, flush=True)
+
+    # ---- child processes ------------------------------------------------------------------------
+    def _run_child(self, cmd, log, cwd=None):
+        """Runs cmd in its own process group; returns its exit status or raises Interrupted."""
+        env = dict(os.environ, WHEELSIM_BUILD_DIR=str(self.build))
+        with open(log, "w") as f:
+            with self.lock:
+                if self.stop_signal is not None:
+                    raise Interrupted()
+                proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT,
+                                        stdin=subprocess.DEVNULL, cwd=cwd, env=env,
+                                        start_new_session=True)
+                self.procs[proc] = False
+            try:
+                rc = proc.wait()
+            finally:
+                with self.lock:
+                    killed = self.procs.pop(proc)
+        if killed:
+            raise Interrupted()
+        return rc
+
+    def _signal_children(self, sig):
+        with self.lock:
+            for proc in self.procs:
+                self.procs[proc] = True
+                try:
+                    os.killpg(proc.pid, sig)
+                except ProcessLookupError:
+                    pass
+
+    def _on_signal(self, signum, _frame):
+        if self.stop_signal is None:
+            self.stop_signal = signum
+            self.say(f"wheel-sweep: {signal.Signals(signum).name}: stopping the running points "
+                     "(they stay unfinished and re-run next time)")
+        self._signal_children(signal.SIGTERM)
+
+    # ---- points ---------------------------------------------------------------------------------
+    def point_dir(self, p):
+        return self.out / p.reldir
+
+    def bed_restart(self, soil):
+        if soil.restart is not None:
+            return soil.restart
+        name = soil.recipe["soil"]
+        return self.out / "beds" / soil.label / f"soilbin_{name}.restart"
+
+    def rig_text(self, p):
+        return toml_out.dumps(p.rig)
+
+    def command(self, p):
+        d = self.point_dir(p)
+        params = []
+        for k, v in (("wheel", p.wheel.label), ("soil", p.soil.label), ("slip", repr(p.slip)),
+                     ("terrain", self.sweep.terrain), ("config", str(self.sweep.path))):
+            params += ["--parameter", f"sweep/{k}={v}"]
+        if self.sweep.terrain == "dem":
+            cmd = [str(self.repo / "scripts" / "wheel-cosim"), "--rig", str(d / "rig.toml"),
+                   "--bed", str(self.bed_restart(p.soil)), "--deck", str(self.sweep.deck),
+                   "--np", str(self.sweep.np), "--out", str(d / PART_FILE),
+                   "--work", str(d / "cosim"), "--mesh", str(p.wheel.mesh)] + params
+            if self.sweep.liggghts_args:
+                cmd += ["--"] + self.sweep.liggghts_args
+            return cmd
+        return [str(self.build / "bin" / "wheel-rig"), "--config", str(d / "rig.toml"),
+                "--out", str(d / PART_FILE), "--quiet"] + params
+
+    def inputs_hash(self, p):
+        """What decides a point's result: its rig config and its run settings (not the out dir)."""
+        ident = {"rig": self.rig_text(p), "terrain": self.sweep.terrain, "wheel": p.wheel.label,
+                 "soil": p.soil.label, "slip": p.slip, "mesh": str(p.wheel.mesh)}
+        if self.sweep.terrain == "dem":
+            ident.update(bed=str(self.bed_restart(p.soil)), deck=str(self.sweep.deck),
+                         np=self.sweep.np, liggghts_args=self.sweep.liggghts_args)
+        return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
+
+    def finished(self, p):
+        """(True, "") when the point is finished with the same inputs, else (False, why)."""
+        d = self.point_dir(p)
+        try:
+            done = json.loads((d / DONE_FILE).read_text())
+        except FileNotFoundError:
+            return False, "not run" if not d.exists() else "unfinished"
+        except (OSError, ValueError):
+            return False, "unreadable done.json"
+        if done.get("exit_status") != 0:
+            return False, f"failed before (exit {done.get('exit_status')})"
+        if done.get("inputs_sha256") != self.inputs_hash(p):
+            return False, "inputs changed since it finished"
+        if not (d / RUN_FILE).is_file():
+            return False, f"{RUN_FILE} missing"
+        return True, ""
+
+    def describe(self, p):
+        return f"{p.wheel.label} {p.soil.label} s={p.slip:g}"
+
+    def run_point(self, p, counter):
+        d = self.point_dir(p)
+        d.mkdir(parents=True, exist_ok=True)
+        for name in (DONE_FILE, RUN_FILE, PART_FILE):
+            (d / name).unlink(missing_ok=True)
+        text = self.rig_text(p)
+        header = (f"written by wheel-sweep from {self.sweep.path}\npoint {p.reldir}: wheel "
+                  f"{p.wheel.label}, soil {p.soil.label}, slip {p.slip!r}, terrain "
+                  f"{self.sweep.terrain}\n")
+        _write_atomic(d / "rig.toml", toml_out.dumps(p.rig, header))
+        with self.lock:
+            counter["started"] += 1
+            k = counter["started"]
+        self.say(f"[started {k}/{counter['total']}] {self.describe(p)} ({p.reldir})")
+        t0 = time.monotonic()
+        try:
+            rc = self._run_child(self.command(p), d / "run.log", cwd=d)
+        except Interrupted:
+            self.status[p.index] = "interrupted"
+            with self.lock:
+                counter["finished"] += 1
+            self.say(f"[{counter['finished']}/{counter['total']}] {self.describe(p)} "
+                     f"interrupted after {_fmt_time(time.monotonic() - t0)}")
+            return
+        wall = time.monotonic() - t0
+        if rc == 0 and not (d / PART_FILE).is_file():
+            rc = 1  # an exit status 0 without a run file is a failure all the same
+            note = f"exited 0 but wrote no {PART_FILE}"
+        else:
+            note = ""
+        if rc == 0:
+            os.replace(d / PART_FILE, d / RUN_FILE)
+        done = {"wheel": p.wheel.label, "soil": p.soil.label, "slip": p.slip,
+                "terrain": self.sweep.terrain, "exit_status": rc,
+                "status": "done" if rc == 0 else "failed", "wall_time_s": round(wall, 3),
+                "run_file": RUN_FILE if rc == 0 else None, "inputs_sha256": self.inputs_hash(p)}
+        _write_atomic(d / DONE_FILE, json.dumps(done, indent=2) + "\n")
+        with self.lock:
+            self.status[p.index] = done["status"]
+            self.exit_status[p.index] = rc
+            counter["finished"] += 1
+            k = counter["finished"]
+            elapsed = time.monotonic() - counter["t0"]
+            left = counter["total"] - k
+            eta = f"; ETA {_fmt_time(elapsed / k * left)}" if left else ""
+        if rc == 0:
+            self.say(f"[{k}/{counter['total']}] {self.describe(p)} done in {_fmt_time(wall)}{eta}")
+        else:
+            why = note or _last_error(d / "run.log")
+            self.say(f"[{k}/{counter['total']}] {self.describe(p)} FAILED (exit {rc}) after "
+                     f"{_fmt_time(wall)}: {why} [log {d / 'run.log'}]{eta}")
+
+    # ---- DEM beds -------------------------------------------------------------------------------
+    def prepare_beds(self):
+        """Prepares each bin recipe's bed once (skipped when its restart exists)."""
+        for soil in self.sweep.soils:
+            if soil.recipe is None:
+                continue
+            restart = self.bed_restart(soil)
+            bdir = restart.parent
+            recipe_file = bdir / f"{restart.name}.recipe.json"
+            recipe_text = json.dumps(soil.recipe, sort_keys=True, indent=2) + "\n"
+            if restart.is_file() and Path(f"{restart}.vars").is_file():
+                if recipe_file.is_file() and recipe_file.read_text() != recipe_text:
+                    raise RuntimeError(f"bed '{soil.label}': {restart} exists but was prepared "
+                                       f"from another recipe ({recipe_file}); delete it or "
+                                       "rename the soil")
+                self.say(f"bed {soil.label}: reusing {restart}")
+                continue
+            if self.dry_run:
+                self.say(f"bed {soil.label}: would prepare {restart} (in.soilbin, "
+                         f"{self.sweep.bed_np} rank(s))")
+                continue
+            bdir.mkdir(parents=True, exist_ok=True)
+            part = bdir / f"{restart.stem}.part.restart"
+            for f in (part, Path(f"{part}.vars")):
+                f.unlink(missing_ok=True)
+            cmd = ["mpirun", "-np", str(self.sweep.bed_np)]
+            if os.geteuid() == 0:
+                cmd.append("--allow-run-as-root")
+            cmd += ["--oversubscribe", str(self.build / "bin" / "liggghts-wheel"),
+                    "-in", str(self.repo / "inputs" / "in.soilbin"),
+                    "-var", "inputs_dir", str(self.repo / "inputs")]
+            for k, v in soil.recipe.items():
+                cmd += ["-var", k, str(v)]
+            cmd += ["-var", "out_dir", str(bdir), "-var", "restart_file", str(part),
+                    "-log", str(bdir / "log.soilbin")]
+            self.say(f"bed {soil.label}: preparing {restart} ({self.sweep.bed_np} rank(s); "
+                     f"log {bdir / 'soilbin.log'})")
+            t0 = time.monotonic()
+            rc = self._run_child(cmd, bdir / "soilbin.log", cwd=bdir)
+            if rc != 0 or not part.is_file() or not Path(f"{part}.vars").is_file():
+                raise RuntimeError(f"bed '{soil.label}': in.soilbin failed (exit {rc}): "
+                                   f"{_last_error(bdir / 'soilbin.log')} [log {bdir / 'soilbin.log'}]")
+            _write_atomic(recipe_file, recipe_text)
+            os.replace(f"{part}.vars", f"{restart}.vars")
+            os.replace(part, restart)
+            self.say(f"bed {soil.label}: ready in {_fmt_time(time.monotonic() - t0)}")
+
+    # ---- the sweep ------------------------------------------------------------------------------
+    def write_manifest(self):
+        rows = []
+        for p in self.sweep.points:
+            st = self.status.get(p.index, "pending")
+            rows.append({"wheel": p.wheel.label, "soil": p.soil.label, "slip": repr(p.slip),
+                         "terrain": self.sweep.terrain, "status": st,
+                         "run_file": f"{p.reldir}/{RUN_FILE}" if st == "done" else "",
+                         "point_dir": p.reldir,
+                         "exit_status": self.exit_status.get(p.index, "")})
+        tmp = self.out / "manifest.csv.tmp"
+        with open(tmp, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+        os.replace(tmp, self.out / "manifest.csv")
+
+    def run(self):
+        sw = self.sweep
+        n = len(sw.points)
+        shape = f"{len(sw.wheels)} wheel(s) x {len(sw.soils)} soil(s) x {len(sw.slips)} slip(s)"
+        todo = []
+        for p in sw.points:
+            ok, why = self.finished(p)
+            if ok and not self.force:
+                self.status[p.index] = "done"
+                self.exit_status[p.index] = 0
+            else:
+                todo.append((p, "--force" if ok else why))
+        skipped = n - len(todo)
+        self.say(f"wheel-sweep: {sw.path.name}: terrain {sw.terrain}, {shape} = {n} point(s); "
+                 f"output {self.out}")
+        if self.dry_run:
+            return self._dry_run(todo)
+
+        self.out.mkdir(parents=True, exist_ok=True)
+        lock = open(self.out / ".wheel-sweep.lock", "w")
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            self.say(f"wheel-sweep: error: another wheel-sweep is running in {self.out}")
+            return 2
+        if sw.path != (self.out / "sweep.toml").resolve():
+            shutil.copyfile(sw.path, self.out / "sweep.toml")
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(sig, self._on_signal)
+        if skipped:
+            self.say(f"wheel-sweep: skipping {skipped} finished point(s) (--force re-runs them):")
+            for p in sw.points:
+                if self.status.get(p.index) == "done":
+                    self.say(f"    {self.describe(p)}: finished ({p.reldir}/{RUN_FILE})")
+        try:
+            if sw.terrain == "dem" and todo:
+                try:
+                    self.prepare_beds()
+                except RuntimeError as e:
+                    self.say(f"wheel-sweep: error: {e}")
+                    self.write_manifest()
+                    return 1
+            self._run_points(todo)
+        except Interrupted:
+            pass
+        self.write_manifest()
+        return self._summary(n, skipped, len(todo))
+
+    def _run_points(self, todo):
+        if not todo:
+            return
+        jobs = max(1, min(self.jobs, len(todo)))
+        self.say(f"wheel-sweep: running {len(todo)} point(s), {jobs} at a time")
+        counter = {"started": 0, "finished": 0, "total": len(todo), "t0": time.monotonic()}
+        with ThreadPoolExecutor(max_workers=jobs) as ex:
+            pending = {ex.submit(self.run_point, p, counter) for p, _ in todo}
+            kill_at = None
+            while pending:
+                done, pending = wait(pending, timeout=0.5, return_when=FIRST_COMPLETED)
+                for f in done:
+                    f.result()  # re-raise a bug in run_point
+                if self.stop_signal is not None:
+                    for f in pending:
+                        f.cancel()
+                    if kill_at is None:
+                        kill_at = time.monotonic() + KILL_GRACE_S
+                    elif time.monotonic() > kill_at:
+                        self._signal_children(signal.SIGKILL)
+
+    def _dry_run(self, todo):
+        runs = {p.index: why for p, why in todo}
+        if self.sweep.terrain == "dem" and todo:
+            self.prepare_beds()
+        for p in self.sweep.points:
+            if p.index in runs:
+                self.say(f"  would run {self.describe(p)} ({runs[p.index]}): {p.reldir}")
+                self.say("      " + " ".join(self.command(p)))
+            else:
+                self.say(f"  finished  {self.describe(p)}: {p.reldir}/{RUN_FILE}")
+        self.say(f"wheel-sweep: dry run: {len(todo)} point(s) to run, "
+                 f"{len(self.sweep.points) - len(todo)} finished; nothing written")
+        return 0
+
+    def _summary(self, n, skipped, ran):
+        counts = {}
+        for p in self.sweep.points:
+            st = self.status.get(p.index, "pending")
+            counts[st] = counts.get(st, 0) + 1
+        parts = [f"{counts.get('done', 0)} done ({skipped} skipped as finished)"]
+        for st in ("failed", "interrupted", "pending"):
+            if counts.get(st):
+                parts.append(f"{counts[st]} {st}")
+        self.say(f"wheel-sweep: {n} point(s): {', '.join(parts)}.")
+        self.say(f"wheel-sweep: output {self.out}; manifest {self.out / 'manifest.csv'}")
+        if self.stop_signal is not None:
+            return 128 + self.stop_signal
+        return 0 if counts.get("done", 0) == n else 1
