@@ -1,0 +1,51 @@
+"""The ``wheelsim-post`` command line: argparse set-up and error reporting.
+
+Every input error ends the program with one line ``wheelsim-post <command>: error: ...`` on
+stderr and exit status 2.
+"""
+
+import argparse
+import sys
+
+from . import cmd_compare, cmd_curves, cmd_maps, cmd_series, cmd_study
+from .errors import PostError
+
+COMMANDS = (cmd_curves, cmd_series, cmd_maps, cmd_compare, cmd_study)
+EXIT_USAGE = 2
+
+
+class _Parser(argparse.ArgumentParser):
+    """An ArgumentParser whose errors are one line (no usage block) and exit status 2."""
+
+    def error(self, message):
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
+
+
+def build_parser():
+    """The top-level parser with one subparser per command."""
+    parser = _Parser(
+        prog="wheelsim-post",
+        description="Post-processing of wheelsim run files (docs/postprocess.md).",
+    )
+    subparsers = parser.add_subparsers(
+        dest="command", metavar="COMMAND", parser_class=_Parser
+    )
+    subparsers.required = True
+    for command in COMMANDS:
+        command.add_parser(subparsers)
+    return parser
+
+
+def main(argv=None):
+    """Parses ``argv`` and runs the command; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except PostError as exc:
+        print(f"wheelsim-post {args.command}: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+
+
+if __name__ == "__main__":
+    sys.exit(main())

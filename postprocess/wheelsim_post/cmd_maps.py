@@ -1,0 +1,215 @@
+"""``maps``: SCM terrain snapshots of a run, or unrolled contact pressure of VTK wheel surfaces."""
+
+import math
+import os
+
+import numpy as np
+
+from .errors import PostError
+from .options import split_list
+from .plotting import panel_grid, save
+from .runfile import RunFile
+from .vtk import bounding_box_centre, read_wheel_surface, unrolled_pressure
+
+HELP = "maps of SCM terrain snapshots (RUN.h5) or of wheel-surface contact pressure (--vtk)"
+
+
+def add_parser(subparsers):
+    """Registers the subcommand."""
+    parser = subparsers.add_parser("maps", help=HELP, description=HELP)
+    parser.add_argument(
+        "run", nargs="?", metavar="RUN.h5", help="run file with /terrain snapshots"
+    )
+    parser.add_argument(
+        "--vtk",
+        nargs="+",
+        metavar="FILE.vtk",
+        help="wheel-surface files of fix wheel/cosim (instead of RUN.h5)",
+    )
+    parser.add_argument(
+        "--png-dir",
+        required=True,
+        metavar="DIR",
+        help="directory for the PNG files (created if missing)",
+    )
+    snap = parser.add_argument_group("SCM snapshots (with RUN.h5)")
+    snap.add_argument(
+        "--field",
+        metavar="F,...",
+        help="comma-separated fields from height, sinkage, pressure, shear_stress "
+        "(default: all the file has)",
+    )
+    which = snap.add_mutually_exclusive_group()
+    which.add_argument("--step", type=int, metavar="N", help="the snapshot of step N")
+    which.add_argument(
+        "--time", type=float, metavar="T", help="the snapshot nearest to time T [s]"
+    )
+    which.add_argument(
+        "--all", action="store_true", help="every snapshot (default: the last one)"
+    )
+    wheel = parser.add_argument_group("wheel surface (with --vtk)")
+    wheel.add_argument(
+        "--centre",
+        type=float,
+        nargs=3,
+        metavar=("X", "Y", "Z"),
+        help="wheel centre [m] in the file's (world) frame, e.g. f_ID[8..10] of the fix "
+        "(default: centre of the points' bounding box)",
+    )
+    wheel.add_argument(
+        "--angle-bin",
+        type=float,
+        default=2.0,
+        metavar="DEG",
+        help="angular bin width [deg] (default 2)",
+    )
+    wheel.add_argument(
+        "--axial-bins",
+        type=int,
+        default=30,
+        metavar="N",
+        help="number of bins across the wheel width along y (default 30)",
+    )
+    wheel.add_argument(
+        "--angle-range",
+        type=float,
+        nargs=2,
+        default=(-180.0, 180.0),
+        metavar=("MIN", "MAX"),
+        help="angle range [deg] shown; 0 is below the axle, + towards +x "
+        "(default -180 180)",
+    )
+    parser.set_defaults(func=run)
+    return parser
+
+
+def _output_dir(path):
+    try:
+        os.makedirs(path, exist_ok=True)
+    except OSError as exc:
+        raise PostError(f"--png-dir: cannot create '{path}': {exc.strerror}") from None
+    return path
+
+
+def select_steps(steps, step, time, every, times_of):
+    """Steps to draw from ``steps`` (sorted) for --step/--time/--all (default: the last)."""
+    if every:
+        return list(steps)
+    if step is not None:
+        if step not in steps:
+            raise PostError(
+                f"--step: no snapshot at step {step} (steps: "
+                f"{', '.join(str(s) for s in steps)})"
+            )
+        return [step]
+    if time is not None:
+        times = np.array([times_of(s) for s in steps])
+        return [steps[int(np.argmin(np.abs(times - time)))]]
+    return [steps[-1]]
+
+
+def plot_snapshot(snap, path):
+    """An image of a snapshot with x/y [m] axes and a colour bar with its unit."""
+    fig, (ax,) = panel_grid(1, width=7.0, height=5.0)
+    image = ax.imshow(
+        snap.value,
+        origin="lower",
+        extent=snap.extent(),
+        aspect="equal",
+        interpolation="nearest",
+        cmap="viridis",
+    )
+    bar = fig.colorbar(image, ax=ax)
+    unit = "-" if snap.unit == "1" else snap.unit
+    bar.set_label(f"{snap.field} [{unit}]")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title(f"{snap.field}, step {snap.step}, t = {snap.time:g} s")
+    save(fig, path)
+
+
+def run_snapshots(args, out_dir):
+    """Maps of the SCM snapshots of args.run; returns the PNG paths."""
+    written = []
+    with RunFile(args.run) as run_file:
+        present = run_file.snapshot_fields()
+        if not present:
+            raise PostError(f"run file '{args.run}' has no /terrain snapshots")
+        fields = split_list(args.field) if args.field is not None else present
+        for field in fields:
+            if field not in present:
+                raise PostError(
+                    f"--field: run file '{args.run}' has no snapshots of '{field}' "
+                    f"(it has: {', '.join(present)})"
+                )
+        for field in fields:
+            steps = run_file.snapshot_steps(field)
+            chosen = select_steps(
+                steps,
+                args.step,
+                args.time,
+                args.all,
+                lambda s, f=field: run_file.snapshot(f, s).time,
+            )
+            for step in chosen:
+                snap = run_file.snapshot(field, step)
+                path = os.path.join(out_dir, f"{field}_{step:09d}.png")
+                plot_snapshot(snap, path)
+                written.append(path)
+    return written
+
+
+def plot_wheel_surface(surface, centre, args, path):
+    """The unrolled contact-pressure map of one wheel surface."""
+    lo, hi = args.angle_range
+    bins = max(1, int(round((hi - lo) / args.angle_bin)))
+    angle_edges = np.linspace(lo, hi, bins + 1)
+    y = surface.points[:, 1] - centre[1]
+    pad = 1e-9 * max(1.0, float(np.ptp(y)))
+    y_edges = np.linspace(y.min() - pad, y.max() + pad, args.axial_bins + 1)
+    grid = unrolled_pressure(surface, centre, angle_edges, y_edges)
+    fig, (ax,) = panel_grid(1, width=9.0, height=4.0)
+    mesh = ax.pcolormesh(angle_edges, y_edges, np.ma.masked_invalid(grid), cmap="inferno")
+    bar = fig.colorbar(mesh, ax=ax)
+    bar.set_label("contact pressure [Pa]")
+    ax.set_xlabel("angle about the axle θ [deg] (0 below the axle, + towards +x)")
+    ax.set_ylabel("axial position y − y_centre [m]")
+    when = "" if surface.step < 0 else f", step {surface.step}, t = {surface.time:g} s"
+    ax.set_title(f"{os.path.basename(surface.path)}{when}", fontsize=9)
+    save(fig, path)
+    return grid
+
+
+def run_vtk(args, out_dir):
+    """Unrolled pressure maps of args.vtk; returns the PNG paths."""
+    lo, hi = args.angle_range
+    if not (-360.0 <= lo < hi <= 360.0):
+        raise PostError(f"--angle-range: expected MIN < MAX [deg], got {lo:g} {hi:g}")
+    if not (args.angle_bin > 0.0 and math.isfinite(args.angle_bin)):
+        raise PostError(f"--angle-bin: expected > 0 deg, got {args.angle_bin:g}")
+    if args.axial_bins < 1:
+        raise PostError(f"--axial-bins: expected >= 1, got {args.axial_bins}")
+    written = []
+    for vtk_path in args.vtk:
+        surface = read_wheel_surface(vtk_path)
+        centre = (
+            np.array(args.centre) if args.centre else bounding_box_centre(surface)
+        )
+        stem = os.path.splitext(os.path.basename(vtk_path))[0]
+        path = os.path.join(out_dir, f"{stem}_pressure.png")
+        plot_wheel_surface(surface, centre, args, path)
+        written.append(path)
+    return written
+
+
+def run(args):
+    """Runs the subcommand; returns the exit status."""
+    if (args.run is None) == (args.vtk is None):
+        raise PostError("give either RUN.h5 or --vtk FILE.vtk ..., not both or neither")
+    if args.vtk is not None and (args.field or args.step is not None or args.time is not None or args.all):
+        raise PostError("--field/--step/--time/--all apply to RUN.h5 snapshots, not --vtk")
+    out_dir = _output_dir(args.png_dir)
+    written = run_vtk(args, out_dir) if args.vtk else run_snapshots(args, out_dir)
+    for path in written:
+        print(f"wrote {path}")
+    return 0

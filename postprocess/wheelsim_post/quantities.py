@@ -1,0 +1,76 @@
+"""The steady-state quantities of ``curves``/``study``/``compare``: names, units, CSV columns."""
+
+import dataclasses
+
+
+@dataclasses.dataclass(frozen=True)
+class Quantity:
+    """A reported quantity: SI ``unit`` in the CSV, ``plot_scale`` × SI in ``plot_unit`` plots."""
+
+    name: str
+    unit: str
+    label: str
+    plot_unit: str
+    plot_scale: float = 1.0
+
+    @property
+    def suffix(self):
+        """Unit suffix of CSV column names ('_N', '_Nm', '_m', '' if dimensionless)."""
+        return "" if self.unit == "1" else "_" + self.unit.replace(" ", "")
+
+    @property
+    def mean_column(self):
+        """CSV column of the window mean, e.g. 'drawbar_pull_mean_N'."""
+        return f"{self.name}_mean{self.suffix}"
+
+    @property
+    def std_column(self):
+        """CSV column of the window standard deviation, e.g. 'drawbar_pull_std_N'."""
+        return f"{self.name}_std{self.suffix}"
+
+    def axis_label(self):
+        """Plot axis label with unit, e.g. 'drawbar pull [N]'."""
+        unit = "-" if self.plot_unit == "1" else self.plot_unit
+        return f"{self.label} [{unit}]"
+
+
+QUANTITIES = {
+    q.name: q
+    for q in (
+        Quantity("slip", "1", "slip", "1"),
+        Quantity("drawbar_pull", "N", "drawbar pull", "N"),
+        Quantity("driving_torque", "N m", "driving torque", "N m"),
+        Quantity("sinkage", "m", "sinkage", "mm", 1000.0),
+        Quantity("tractive_efficiency", "1", "tractive efficiency", "1"),
+        Quantity("traction_force", "N", "traction force T/R_eff", "N"),
+        Quantity("lateral_force", "N", "lateral force", "N"),
+    )
+}
+
+#: Quantities plotted against slip by ``curves`` (one panel each).
+CURVE_QUANTITIES = (
+    "drawbar_pull",
+    "driving_torque",
+    "sinkage",
+    "tractive_efficiency",
+    "traction_force",
+    "lateral_force",
+)
+
+#: Extra CSV columns: values computed from the window means (see docs/postprocess.md).
+SLIP_OF_MEANS = "slip_of_means"
+EFFICIENCY_OF_MEANS = "tractive_efficiency_of_means"
+
+
+def parse_quantities(text, option="--quantity"):
+    """A comma-separated list of quantity names (PostError naming ``option`` if unknown)."""
+    from .errors import PostError
+
+    names = [n.strip() for n in text.split(",") if n.strip()]
+    bad = [n for n in names if n not in QUANTITIES]
+    if bad or not names:
+        raise PostError(
+            f"{option}: '{text}' is not a comma-separated list of "
+            f"{', '.join(QUANTITIES)}"
+        )
+    return names

@@ -1,0 +1,219 @@
+"""Reading wheelsim run files (docs/hdf5-layout.md) with h5py.
+
+Tolerant to crashed files: rows with ``step < 0`` (never written) are dropped, and series of
+one observable whose datasets differ in length are cut to the shortest.
+"""
+
+import dataclasses
+import os
+
+import h5py
+import numpy as np
+
+from .errors import PostError
+
+#: Fields of SCM terrain snapshots (``/terrain/<field>/<step as 9 digits>``).
+SNAPSHOT_FIELDS = ("height", "sinkage", "pressure", "shear_stress")
+
+
+@dataclasses.dataclass
+class Series:
+    """One observable: ``step`` int64[n], ``time`` [s] float64[n], ``value`` [n] or [n][c]."""
+
+    name: str
+    step: np.ndarray
+    time: np.ndarray
+    value: np.ndarray
+    unit: str
+
+    def __len__(self):
+        return len(self.step)
+
+
+@dataclasses.dataclass
+class Snapshot:
+    """One SCM terrain snapshot: ``value[i][j]`` at y = y0 + i*spacing, x = x0 + j*spacing [m]."""
+
+    field: str
+    step: int
+    time: float
+    value: np.ndarray
+    unit: str
+    x0: float
+    y0: float
+    spacing: float
+
+    def extent(self):
+        """Image extent (left, right, bottom, top) [m] with cells centred on grid points."""
+        rows, cols = self.value.shape
+        half = 0.5 * self.spacing
+        return (
+            self.x0 - half,
+            self.x0 + (cols - 1) * self.spacing + half,
+            self.y0 - half,
+            self.y0 + (rows - 1) * self.spacing + half,
+        )
+
+
+def _text(value):
+    """An HDF5 string (bytes or str, scalar) as str."""
+    if isinstance(value, bytes):
+        return value.decode("utf-8")
+    return str(value)
+
+
+class RunFile:
+    """A run file opened read-only; use as a context manager."""
+
+    def __init__(self, path):
+        self.path = str(path)
+        if not os.path.isfile(self.path):
+            raise PostError(f"run file '{self.path}' does not exist")
+        try:
+            self._file = h5py.File(self.path, "r")
+        except OSError as exc:
+            raise PostError(
+                f"cannot open run file '{self.path}' as HDF5: {exc}"
+            ) from None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def close(self):
+        """Closes the file."""
+        self._file.close()
+
+    @property
+    def name(self):
+        """The file's basename, for messages and tables."""
+        return os.path.basename(self.path)
+
+    # Parameters ---------------------------------------------------------------------------
+
+    def has_parameter(self, name):
+        """True if ``/parameters/<name>`` is a dataset."""
+        obj = self._file.get(f"parameters/{name}")
+        return isinstance(obj, h5py.Dataset)
+
+    def parameter(self, name, default=None):
+        """``/parameters/<name>`` as str or float/int (``default`` if absent)."""
+        if not self.has_parameter(name):
+            return default
+        data = self._file[f"parameters/{name}"][()]
+        if isinstance(data, (bytes, str)):
+            return _text(data)
+        if isinstance(data, np.ndarray):
+            return data
+        return data.item() if hasattr(data, "item") else data
+
+    def parameter_text(self, name, default=None):
+        """``/parameters/<name>`` as str (numbers formatted with repr), or ``default``."""
+        value = self.parameter(name)
+        if value is None:
+            return default
+        return value if isinstance(value, str) else repr(value)
+
+    def parameter_float(self, name):
+        """``/parameters/<name>`` as float; PostError naming the file if absent or not a number."""
+        value = self.parameter(name)
+        try:
+            return float(value)
+        except (TypeError, ValueError):
+            raise PostError(
+                f"run file '{self.path}': parameter '/parameters/{name}' "
+                f"is missing or not a number (got {value!r})"
+            ) from None
+
+    # Observables --------------------------------------------------------------------------
+
+    def has_observable(self, name):
+        """True if ``/observables/<name>`` is a group with a ``value`` dataset."""
+        group = self._file.get(f"observables/{name}")
+        return isinstance(group, h5py.Group) and "value" in group
+
+    def observable_names(self):
+        """Names of all observables (nested names joined with '/'), sorted."""
+        names = []
+        root = self._file.get("observables")
+        if root is None:
+            return names
+
+        def visit(name, obj):
+            if isinstance(obj, h5py.Group) and "value" in obj and "step" in obj:
+                names.append(name)
+
+        root.visititems(visit)
+        return sorted(names)
+
+    def observable(self, name):
+        """The written rows of ``/observables/<name>`` (PostError if it is missing)."""
+        if not self.has_observable(name):
+            available = ", ".join(self.observable_names()) or "none"
+            raise PostError(
+                f"run file '{self.path}' has no observable '{name}' "
+                f"(available: {available})"
+            )
+        group = self._file[f"observables/{name}"]
+        step = np.asarray(group["step"][()], dtype=np.int64)
+        time = np.asarray(group["time"][()], dtype=np.float64)
+        value = np.asarray(group["value"][()], dtype=np.float64)
+        n = min(len(step), len(time), len(value))
+        step, time, value = step[:n], time[:n], value[:n]
+        written = step >= 0
+        unit = _text(group["value"].attrs.get("unit", "1"))
+        return Series(name, step[written], time[written], value[written], unit)
+
+    # Terrain snapshots --------------------------------------------------------------------
+
+    def snapshot_steps(self, field):
+        """Steps of the snapshots of ``field`` (sorted; empty if there are none)."""
+        group = self._file.get(f"terrain/{field}")
+        if not isinstance(group, h5py.Group):
+            return []
+        steps = []
+        for key in group:
+            if key.isdigit():
+                steps.append(int(key))
+        return sorted(steps)
+
+    def snapshot_fields(self):
+        """Fields with at least one snapshot, in the order of SNAPSHOT_FIELDS, then others."""
+        root = self._file.get("terrain")
+        if not isinstance(root, h5py.Group):
+            return []
+        present = [k for k in root if self.snapshot_steps(k)]
+        known = [f for f in SNAPSHOT_FIELDS if f in present]
+        return known + sorted(f for f in present if f not in SNAPSHOT_FIELDS)
+
+    def snapshot(self, field, step):
+        """The snapshot of ``field`` at ``step`` (PostError if absent or malformed)."""
+        key = f"terrain/{field}/{step:09d}"
+        group = self._file.get(key)
+        if not isinstance(group, h5py.Group):
+            raise PostError(f"run file '{self.path}' has no snapshot '/{key}'")
+        try:
+            value = np.asarray(group["value"][()], dtype=np.float64)
+            snap = Snapshot(
+                field=field,
+                step=int(np.ravel(group["step"][()])[0]),
+                time=float(np.ravel(group["time"][()])[0]),
+                value=value,
+                unit=_text(group["value"].attrs.get("unit", "1")),
+                x0=float(group["x0"][()]),
+                y0=float(group["y0"][()]),
+                spacing=float(group["spacing"][()]),
+            )
+        except KeyError as exc:
+            raise PostError(
+                f"run file '{self.path}': snapshot '/{key}' lacks {exc} "
+                "(expected step, time, value, x0, y0, spacing)"
+            ) from None
+        if value.ndim != 2:
+            raise PostError(
+                f"run file '{self.path}': snapshot '/{key}/value' has shape "
+                f"{value.shape}, expected [rows][cols]"
+            )
+        return snap
