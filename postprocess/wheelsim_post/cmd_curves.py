@@ -1,8 +1,10 @@
 """``curves``: steady-state quantities of many runs against slip (CSV and PNG)."""
 
 import math
+import textwrap
 
 import numpy as np
+from matplotlib.ticker import MaxNLocator
 
 from .analysis import analyse_runs, group_label
 from .csvio import write_csv
@@ -110,9 +112,10 @@ def plot_curves(groups, path, window_text):
         ax.set_ylabel(q.axis_label())
         if name == "tractive_efficiency":
             ax.set_title("η = mean DP·mean v / (mean T·mean ω)", fontsize=9)
+        ax.xaxis.set_major_locator(MaxNLocator(5))
         ax.grid(True, alpha=0.3)
     axes[0].legend(fontsize=8)
-    fig.suptitle(f"mean ± std; {window_text}", fontsize=8)
+    fig.suptitle(textwrap.fill(f"mean ± std; {window_text}", 110), fontsize=8)
     save(fig, path)
 
 

@@ -1,0 +1,50 @@
+"""Shared test helpers: a temporary directory per test and running the wheelsim-post script."""
+
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import wheelsim_post
+
+#: The entry script next to the package (found from the package, no fixed path).
+SCRIPT = os.path.join(
+    os.path.dirname(os.path.dirname(os.path.abspath(wheelsim_post.__file__))),
+    "wheelsim-post",
+)
+
+
+class TempDirTestCase(unittest.TestCase):
+    """A TestCase with ``self.dir``, a fresh temporary directory removed after the test."""
+
+    def setUp(self):
+        self._tmp = tempfile.TemporaryDirectory(prefix="wheelsim_post_test_")
+        self.dir = self._tmp.name
+
+    def tearDown(self):
+        self._tmp.cleanup()
+
+    def path(self, name):
+        """A path inside the temporary directory."""
+        return os.path.join(self.dir, name)
+
+
+def run_cli(*args):
+    """Runs wheelsim-post with this interpreter; returns the CompletedProcess (text)."""
+    env = dict(os.environ, MPLBACKEND="Agg")
+    return subprocess.run(
+        [sys.executable, SCRIPT, *[str(a) for a in args]],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
+
+
+def is_png(path):
+    """True if ``path`` exists and starts with the PNG signature."""
+    if not os.path.isfile(path) or os.path.getsize(path) < 100:
+        return False
+    with open(path, "rb") as f:
+        return f.read(8) == b"\x89PNG\r\n\x1a\n"
