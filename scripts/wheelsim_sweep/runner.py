@@ -177,6 +177,8 @@ class Runner:
         return f"{p.wheel.label} {p.soil.label} s={p.slip:g}"
 
     def run_point(self, p, counter):
+        if self.stop_signal is not None:
+            return  # stopping: the point stays pending
         d = self.point_dir(p)
         d.mkdir(parents=True, exist_ok=True)
         for name in (DONE_FILE, RUN_FILE, PART_FILE):
@@ -188,17 +190,17 @@ class Runner:
         _write_atomic(d / "rig.toml", toml_out.dumps(p.rig, header))
         with self.lock:
             counter["started"] += 1
-            k = counter["started"]
-        self.say(f"[started {k}/{counter['total']}] {self.describe(p)} ({p.reldir})")
+            self.say(f"[started {counter['started']}/{counter['total']}] {self.describe(p)} "
+                     f"({p.reldir})")
         t0 = time.monotonic()
         try:
             rc = self._run_child(self.command(p), d / "run.log", cwd=d)
         except Interrupted:
-            self.status[p.index] = "interrupted"
             with self.lock:
+                self.status[p.index] = "interrupted"
                 counter["finished"] += 1
-            self.say(f"[{counter['finished']}/{counter['total']}] {self.describe(p)} "
-                     f"interrupted after {_fmt_time(time.monotonic() - t0)}")
+                self.say(f"[{counter['finished']}/{counter['total']}] {self.describe(p)} "
+                         f"interrupted after {_fmt_time(time.monotonic() - t0)}")
             return
         wall = time.monotonic() - t0
         if rc == 0 and not (d / PART_FILE).is_file():
@@ -326,6 +328,11 @@ class Runner:
             for p in sw.points:
                 if self.status.get(p.index) == "done":
                     self.say(f"    {self.describe(p)}: finished ({p.reldir}/{RUN_FILE})")
+        again = [(p, why) for p, why in todo if why != "not run"]
+        if again:
+            self.say(f"wheel-sweep: re-running {len(again)} point(s):")
+            for p, why in again:
+                self.say(f"    {self.describe(p)} ({why})")
         try:
             if sw.terrain == "dem" and todo:
                 try:

@@ -1,0 +1,326 @@
+#!/usr/bin/python3
+"""Tests of scripts/wheel-sweep on the flat test ground (fast, real wheel-rig runs).
+
+  test_sweep.py CASE --sweep scripts/wheel-sweep --build-dir BUILD --work DIR
+
+CASE: matrix, resume_marker, resume_sigterm, bad_config, examples_dry_run (see each function).
+Exit 0 pass, 1 fail, 77 skip (wheel-rig or the wheel meshes not built).
+"""
+
+import argparse
+import csv
+import json
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+SKIP = 77
+SLIPS = [0.1, 0.25, 0.5]
+FRICTION = 0.5
+DURATION_SIGTERM = 400.0  # s simulated: a point takes ~2 s of wall time (1e-4 s steps)
+
+
+class Fail(Exception):
+    pass
+
+
+def check(cond, msg):
+    if not cond:
+        raise Fail(msg)
+
+
+def base_rig(path, duration, every=10):
+    """A flat-ground rig without effective_radius (R_eff = the mesh's outer radius)."""
+    path.write_text(f"""# test base rig (flat ground)
+[wheel]
+mass = 205.0
+inertia = 72.0
+[rig]
+vertical_load = 13200.0
+[motor]
+omega = 1.05
+ramp_time = 0.1
+[carriage]
+mode = "imposed_slip"
+[run]
+dt = 1.0e-4
+duration = {duration}
+[terrain]
+type = "flat"
+damping = 1.1e5
+[output]
+every = {every}
+flush_interval = 100
+""")
+
+
+def sweep_config(path, build, duration=0.2, every=10, slips=SLIPS, extra=""):
+    """2 wheels (a catalogue name and a mesh path with a label) x 1 soil x len(slips) slips."""
+    base_rig(path.parent / "base.toml", duration, every)
+    path.write_text(f"""description = "test sweep"
+terrain = "flat"
+base = "base.toml"
+wheels = ["wheel1", {{ name = "small", mesh = "{build}/meshes/test_small.stl" }}]
+soils = [{{ name = "mu05", friction = {FRICTION}, friction_model = "regularized", slip_velocity_scale = 1.0e-3 }}]
+slips = {json.dumps(slips)}
+{extra}""")
+
+
+def run_sweep(a, cfg, *args, timeout=60):
+    r = subprocess.run([a.sweep, str(cfg), "--build-dir", a.build_dir, *args],
+                       capture_output=True, text=True, timeout=timeout)
+    print(f"$ wheel-sweep {cfg.name} {' '.join(args)}  -> exit {r.returncode}")
+    print(r.stdout + r.stderr)
+    return r
+
+
+def manifest(out):
+    with open(out / "manifest.csv", newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def check_complete(out, wheels, slips, soil="mu05"):
+    rows = manifest(out)
+    check(len(rows) == len(wheels) * len(slips), f"manifest has {len(rows)} rows")
+    expect = [(w, soil, s) for w in wheels for s in slips]
+    got = [(r["wheel"], r["soil"], float(r["slip"])) for r in rows]
+    check(got == expect, f"manifest points {got} != {expect}")
+    for r in rows:
+        check(r["terrain"] == "flat" and r["status"] == "done" and r["exit_status"] == "0",
+              f"manifest row {r}")
+        rf = out / r["run_file"]
+        check(rf.is_file(), f"run file {rf} missing")
+        d = rf.parent
+        check(not (d / "run.part.h5").exists(), f"{d}/run.part.h5 left behind")
+        done = json.loads((d / "done.json").read_text())
+        check(done["exit_status"] == 0 and done["wheel"] == r["wheel"] and done["soil"] == soil
+              and done["slip"] == float(r["slip"]) and done["wall_time_s"] > 0, f"done.json {done}")
+        with h5py.File(rf, "r") as f:
+            p = f["parameters/sweep"]
+            par = {k: p[k].asstr()[()] for k in ("wheel", "soil", "slip", "terrain")}
+            check(par == {"wheel": r["wheel"], "soil": soil, "slip": r["slip"], "terrain": "flat"},
+                  f"{rf}: /parameters/sweep = {par}")
+            o = f["observables"]
+            test = o["phase/value"][()] == 3
+            check(test.sum() > 10, f"{rf}: {test.sum()} test-phase records")
+            slip = o["slip/value"][()][test]
+            check(np.allclose(slip, float(r["slip"]), atol=1e-9),
+                  f"{rf}: slip {slip.mean()} != {r['slip']}")
+            # the soil's terrain keys reach the rig: on the flat ground DP = mu W at s > 0
+            half = test & (np.cumsum(test) > test.sum() // 2)  # last half of the test phase
+            mu = (o["drawbar_pull/value"][()][half] / o["vertical_load/value"][()][half]).mean()
+            check(abs(mu - FRICTION) < 0.02, f"{rf}: DP/W = {mu}, expected {FRICTION}")
+            cfg = f["parameters/rig_config"].asstr()[()]
+            check(f"/meshes/{'wheel1' if r['wheel'] == 'wheel1' else 'test_small'}.stl" in cfg,
+                  f"{rf}: rig config lacks the wheel's mesh")
+    return rows
+
+
+def case_matrix(a, work):
+    """2 x 1 x 3 matrix: all points run, manifest, done.json and the run files' parameters."""
+    cfg = work / "sweep.toml"
+    sweep_config(cfg, a.build_dir)
+    out = work / "out"
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--jobs", "2")
+    check(r.returncode == 0, "sweep failed")
+    check_complete(out, ["wheel1", "small"], SLIPS)
+    check(len(re.findall(r"^\[\d/6\] .* done in ", r.stdout, re.M)) == 6, "6 'done in' lines")
+    check(re.search(r"ETA", r.stdout), "no ETA in the progress lines")
+    check(f"manifest {out}/manifest.csv" in r.stdout, "summary does not name the manifest")
+    check((out / "sweep.toml").is_file(), "config copy missing")
+
+
+def case_resume_marker(a, work):
+    """A lost done.json with a partial temp file, and a failed point, are re-run; the rest is
+    skipped; a changed config re-runs everything; --force re-runs all."""
+    cfg = work / "sweep.toml"
+    sweep_config(cfg, a.build_dir)
+    out = work / "out"
+    check(run_sweep(a, cfg, "--out-dir", str(out)).returncode == 0, "first sweep failed")
+    lost = out / "small/mu05/s0.250"
+    (lost / "done.json").unlink()
+    (lost / "run.h5").unlink()
+    (lost / "run.part.h5").write_bytes(b"half a run file")
+    failed = out / "wheel1/mu05/s0.500"
+    done = json.loads((failed / "done.json").read_text())
+    done.update(exit_status=1, status="failed")
+    (failed / "done.json").write_text(json.dumps(done))
+    keep = {p: p.stat().st_mtime_ns for p in out.glob("*/mu05/*/run.h5")
+            if p.parent not in (lost, failed)}
+    check(len(keep) == 4, f"{len(keep)} untouched points")
+    r = run_sweep(a, cfg, "--out-dir", str(out))
+    check(r.returncode == 0, "resumed sweep failed")
+    check("skipping 4 finished point(s)" in r.stdout, "does not say it skips 4 points")
+    check("running 2 point(s)" in r.stdout, "does not run exactly 2 points")
+    check("small mu05 s=0.25 (unfinished)" in r.stdout
+          and "wheel1 mu05 s=0.5 (failed before (exit 1))" in r.stdout,
+          "does not say why it re-runs the two points")
+    for p, t in keep.items():
+        check(p.stat().st_mtime_ns == t, f"{p} was re-run")
+    check_complete(out, ["wheel1", "small"], SLIPS)
+    # dry run after completion: nothing to run
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--dry-run")
+    check(r.returncode == 0 and "0 point(s) to run, 6 finished" in r.stdout, "dry run")
+    # a changed input re-runs the points it changes
+    text = (work / "base.toml").read_text().replace("duration = 0.2", "duration = 0.25")
+    (work / "base.toml").write_text(text)
+    r = run_sweep(a, cfg, "--out-dir", str(out))
+    check(r.returncode == 0 and "running 6 point(s)" in r.stdout
+          and "(inputs changed since it finished)" in r.stdout,
+          "a changed base config did not re-run the points (saying why)")
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--force")
+    check(r.returncode == 0 and "running 6 point(s)" in r.stdout, "--force did not re-run all")
+    check_complete(out, ["wheel1", "small"], SLIPS)
+
+
+def procs_under(path):
+    """PIDs whose command line mentions path (children left behind)."""
+    found = []
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit() and int(d.name) != os.getpid():
+            try:
+                if str(path) in (d / "cmdline").read_bytes().replace(b"\0", b" ").decode():
+                    found.append(int(d.name))
+            except OSError:
+                pass
+    return found
+
+
+def case_resume_sigterm(a, work):
+    """SIGTERM after the first point finished: the driver kills its child, exits 143, marks only
+    finished points done; the re-run skips them and completes the rest."""
+    cfg = work / "sweep.toml"
+    sweep_config(cfg, a.build_dir, duration=DURATION_SIGTERM, every=1000, slips=[0.1, 0.2])
+    out = work / "out"
+    cmd = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--out-dir", str(out), "--jobs", "1"]
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    lines, t0 = [], time.monotonic()
+    for line in p.stdout:
+        print(line, end="")
+        lines.append(line)
+        if re.match(r"\[1/4\] .* done in ", line):
+            break
+        check(time.monotonic() - t0 < 40, "no point finished within 40 s")
+    check(any(re.match(r"\[1/4\]", x) for x in lines), "first point never finished")
+    for line in p.stdout:  # wait until the second point started
+        print(line, end="")
+        if line.startswith("[started 2/4]"):
+            break
+    time.sleep(0.5)
+    p.send_signal(signal.SIGTERM)
+    rest = p.stdout.read()
+    print(rest, end="")
+    rc = p.wait(timeout=30)
+    check(rc == 128 + signal.SIGTERM, f"driver exit {rc}, expected {128 + signal.SIGTERM}")
+    check(re.search(r"interrupted after", rest), "the running point was not reported interrupted")
+    time.sleep(0.2)
+    left = procs_under(out)
+    check(not left, f"child processes left running: {left}")
+    rows = manifest(out)
+    st = [r["status"] for r in rows]
+    check(st.count("done") == 1 and st.count("interrupted") == 1 and st.count("pending") == 2,
+          f"manifest statuses {st}")
+    marked = sorted(str(d.parent.relative_to(out)) for d in out.glob("*/*/*/done.json"))
+    check(marked == ["wheel1/mu05/s0.100"], f"points marked done: {marked}")
+    check(not (out / "wheel1/mu05/s0.200/run.h5").exists(), "interrupted point has a run.h5")
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--jobs", "2", timeout=120)
+    check(r.returncode == 0, "resumed sweep failed")
+    check("skipping 1 finished point(s)" in r.stdout and "running 3 point(s)" in r.stdout,
+          "resume did not skip exactly the finished point")
+    check_complete(out, ["wheel1", "small"], [0.1, 0.2])
+
+
+BAD = [
+    # (name, config text after the valid header lines replaced/added, expected message regex)
+    ("unknown_key", 'slip = [0.1]\n', r"unknown key 'slip'; did you mean 'slips'\?"),
+    ("override_key", '[override.run]\ndurration = 1.0\n',
+     r"unknown key 'override\.run\.durration'; did you mean 'duration'\?"),
+    ("override_table", '[override.motors]\nomega = 1.0\n', r"unknown table 'override\.motors'"),
+    ("slip_range", None, r"slips\[1\] must be in \[-1, 1\], got 1\.5"),
+    ("wheel_name", None, r"wheels\[0\]: no catalogue wheel 'no_such_wheel'"),
+    ("wheel_key", None, r"unknown key 'wheels\[1\]\.mas'; did you mean 'mass'\?"),
+    ("dem_table_flat", '[dem]\nnp = 2\n', r"\[dem\] is only used with terrain = \"dem\""),
+    ("terrain", None, r"terrain must be one of scm, dem, flat, got 'sand'"),
+    ("scm_soils_missing", None, r"missing key 'soils'"),
+    ("dem_recipe_key", None, r"unknown key 'soils\[0\]\.bin_lenght'; did you mean 'bin_length'\?"),
+    ("toml_syntax", 'slips = [0.1,\n', r"TOML syntax error"),
+]
+
+
+def case_bad_config(a, work):
+    """Bad configs exit 2 with a message naming the file and the key."""
+    base_rig(work / "base.toml", 0.2)
+    good = ('terrain = "flat"\nbase = "base.toml"\nwheels = ["wheel1"]\nslips = [0.1, 0.2]\n')
+    for name, extra, regex in BAD:
+        text = good + (extra or "")
+        if name == "slip_range":
+            text = text.replace("[0.1, 0.2]", "[0.1, 1.5]")
+        elif name == "wheel_name":
+            text = text.replace('["wheel1"]', '["no_such_wheel"]')
+        elif name == "wheel_key":
+            text = text.replace('["wheel1"]', '["wheel1", { name = "w", mas = 3.0 }]')
+        elif name == "terrain":
+            text = text.replace('"flat"', '"sand"')
+        elif name == "scm_soils_missing":
+            text = 'terrain = "scm"\nwheels = ["wheel1"]\nslips = [0.1]\n[override.run]\ndt = 1e-3\n'
+        elif name == "dem_recipe_key":
+            text = ('terrain = "dem"\nwheels = ["wheel1"]\nslips = [0.1]\n'
+                    'soils = [{ soil = "ci", bin_lenght = 0.3 }]\n[override.run]\ndt = 1e-3\n')
+        elif name == "toml_syntax":
+            text = good.replace("slips = [0.1, 0.2]\n", "") + extra
+        cfg = work / f"{name}.toml"
+        cfg.write_text(text)
+        r = run_sweep(a, cfg, "--out-dir", str(work / "out"), "--dry-run")
+        check(r.returncode == 2, f"{name}: exit {r.returncode}, expected 2")
+        check(re.search(re.escape(str(cfg)) + ".*" + regex, r.stderr),
+              f"{name}: message does not match /{regex}/")
+    check(not (work / "out").exists(), "a bad config wrote output")
+
+
+def case_examples_dry_run(a, work):
+    """The example configs of inputs/sweeps/ load and list their points (no runs)."""
+    repo = Path(a.sweep).resolve().parents[1]
+    expect = {"scm_wheel2_dry_sand.toml": 8, "dem_small_slips.toml": 3, "study_scm.toml": 60}
+    for name, n in expect.items():
+        r = run_sweep(a, repo / "inputs" / "sweeps" / name, "--out-dir", str(work / name),
+                      "--dry-run")
+        check(r.returncode == 0, f"{name}: exit {r.returncode}")
+        check(f"= {n} point(s)" in r.stdout, f"{name}: expected {n} points")
+        check(not (work / name).exists(), f"{name}: dry run wrote output")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("case")
+    ap.add_argument("--sweep", required=True)
+    ap.add_argument("--build-dir", required=True)
+    ap.add_argument("--work", required=True)
+    a = ap.parse_args()
+    build = Path(a.build_dir)
+    for need in (build / "bin" / "wheel-rig", build / "meshes" / "wheel1.stl",
+                 build / "meshes" / "test_small.stl"):
+        if not need.exists():
+            print(f"SKIP: {need} not built (cmake --build {build} --target wheel-rig wheel_meshes)")
+            return SKIP
+    work = Path(a.work)
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    try:
+        globals()[f"case_{a.case}"](a, work)
+    except Fail as e:
+        print(f"FAIL: {a.case}: {e}")
+        return 1
+    print(f"PASS: {a.case}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
