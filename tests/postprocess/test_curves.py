@@ -1,0 +1,98 @@
+"""``wheelsim-post curves``: the CSV (header comment, columns, groups) and the PNG."""
+
+import csv
+import math
+import unittest
+
+import synthetic as syn
+from helpers import TempDirTestCase, is_png, run_cli
+from wheelsim_post.cmd_curves import csv_header
+
+
+def read(path):
+    with open(path) as f:
+        lines = f.read().splitlines()
+    comments = [line for line in lines if line.startswith("#")]
+    rows = list(csv.DictReader(line for line in lines if not line.startswith("#")))
+    return comments, rows
+
+
+class CurvesTest(TempDirTestCase):
+    def setUp(self):
+        super().setUp()
+        self.runs = []
+        # two wheels on one soil at two slips, and one wheel on a second soil
+        for wheel, soil, slip, dp in (
+            ("W2", "S1", 0.3, 130.0),
+            ("W1", "S1", 0.3, 120.0),
+            ("W1", "S1", 0.1, 80.0),
+            ("W1", "S2", 0.1, 60.0),
+        ):
+            path = self.path(f"{wheel}_{soil}_{slip}.h5")
+            syn.write_rig_run(
+                path,
+                slip=slip,
+                dp_mean=dp,
+                sweep={"wheel": wheel, "soil": soil, "slip": str(slip), "terrain": "dem"},
+            )
+            self.runs.append(path)
+
+    def test_csv_groups_sorted_by_slip_with_window_in_header(self):
+        out, png = self.path("curves.csv"), self.path("curves.png")
+        result = run_cli("curves", *self.runs, "--csv", out, "--png", png)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("steady-state window: test phase (phase == 3) from 0.5 to 1", result.stdout)
+        comments, rows = read(out)
+        self.assertTrue(any("from 0.5 to 1 of its duration" in c for c in comments))
+        with open(out) as f:
+            header = next(line for line in f if not line.startswith("#")).strip()
+        self.assertEqual(header.split(","), csv_header())
+        groups = [r["group"] for r in rows]
+        self.assertEqual(
+            groups,
+            [
+                "wheel=W2, soil=S1, terrain=dem",
+                "wheel=W1, soil=S1, terrain=dem",
+                "wheel=W1, soil=S1, terrain=dem",
+                "wheel=W1, soil=S2, terrain=dem",
+            ],
+        )
+        w1 = [r for r in rows if r["group"] == "wheel=W1, soil=S1, terrain=dem"]
+        self.assertEqual([float(r["target_slip"]) for r in w1], [0.1, 0.3])
+        self.assertAlmostEqual(float(w1[0]["slip_mean"]), 0.1, places=9)
+        self.assertAlmostEqual(float(w1[0]["drawbar_pull_mean_N"]), 80.0, places=6)
+        self.assertAlmostEqual(
+            float(w1[1]["drawbar_pull_std_N"]), 20 * math.sqrt(syn.SIN2_MEAN), places=6
+        )
+        self.assertAlmostEqual(float(w1[1]["window_start_s"]), 0.8, places=9)
+        self.assertAlmostEqual(float(w1[1]["window_end_s"]), 1.3, places=9)
+        self.assertEqual(w1[1]["n_samples"], "501")
+        self.assertAlmostEqual(float(w1[1]["traction_force_mean_N"]), 600.0, places=6)
+        v0 = 0.7 * syn.OMEGA * syn.R_EFF
+        self.assertAlmostEqual(
+            float(w1[1]["tractive_efficiency_of_means"]), 120 * v0 / 120.0, places=9
+        )
+        self.assertTrue(is_png(png))
+
+    def test_group_by_wheel_merges_soils(self):
+        out = self.path("curves.csv")
+        result = run_cli("curves", *self.runs, "--group-by", "wheel", "--csv", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        _, rows = read(out)
+        self.assertEqual(sorted({r["group"] for r in rows}), ["wheel=W1", "wheel=W2"])
+        self.assertEqual(sum(r["group"] == "wheel=W1" for r in rows), 3)
+
+    def test_stated_window_is_written(self):
+        out = self.path("curves.csv")
+        result = run_cli(
+            "curves", self.runs[0], "--window-start", "0.55", "--window-end", "0.65", "--csv", out
+        )
+        self.assertEqual(result.returncode, 0, result.stderr)
+        comments, rows = read(out)
+        self.assertTrue(any("t0 + 0.55 s to t0 + 0.65 s" in c for c in comments))
+        self.assertEqual(rows[0]["n_samples"], "101")
+        self.assertAlmostEqual(float(rows[0]["window_start_s"]), 0.85, places=9)
+
+
+if __name__ == "__main__":
+    unittest.main()
