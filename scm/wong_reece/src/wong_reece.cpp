@@ -64,7 +64,8 @@ struct Field {
         k((so.Bekker_Kc / w.width_m + so.Bekker_Kphi) * std::pow(w.radius_m, so.Bekker_n)),
         theta1(th1), cos1(std::cos(th1)), sin1(std::sin(th1)), tan_phi(std::tan(so.Mohr_friction)) {
     const double z = R * (1.0 - cos1);
-    theta2 = -std::acos(1.0 - o.rebound_ratio * z / R);
+    // λ = 0: θ2 = 0 exactly (not −0).
+    theta2 = o.rebound_ratio > 0 ? -std::acos(1.0 - o.rebound_ratio * z / R) : 0.0;
     thetam = (o.c1 + o.c2 * slip) * theta1;
   }
 
