@@ -1,0 +1,75 @@
+"""The command line: one error line naming the option or file, exit status 2; option help."""
+
+import argparse
+import unittest
+
+import synthetic
+from helpers import TempDirTestCase, run_cli
+from wheelsim_post.cli import build_parser
+
+
+class CliErrorTest(TempDirTestCase):
+    def setUp(self):
+        super().setUp()
+        self.run_path = self.path("run.h5")
+        synthetic.write_rig_run(self.run_path)
+
+    def check(self, args, *fragments):
+        result = run_cli(*args)
+        self.assertEqual(result.returncode, 2, (args, result.stdout, result.stderr))
+        lines = result.stderr.strip().splitlines()
+        self.assertEqual(len(lines), 1, (args, result.stderr))
+        self.assertTrue(lines[0].startswith("wheelsim-post"), lines[0])
+        for fragment in fragments:
+            self.assertIn(fragment, lines[0], args)
+
+    def test_errors(self):
+        run, out = self.run_path, self.path("out")
+        cases = [
+            (["bogus"], "invalid choice: 'bogus'"),
+            (["curves"], "required: RUN.h5"),
+            (["curves", run, "--window-fraction", "0.8", "0.2"], "--window-fraction", "A < B"),
+            (["curves", run, "--window-start", "abc", "--window-end", "1"], "--window-start"),
+            (["curves", run, "--window-start", "0.1"], "--window-start and --window-end"),
+            (["curves", self.path("missing.h5")], "missing.h5' does not exist"),
+            (["curves", run, "--group-by", "colour"], "--group-by: 'colour'"),
+            (["curves", run, "--csv", self.path("no/dir/c.csv")], "directory", "does not exist"),
+            (["series", run], "--png OUT.png and/or --csv OUT.csv"),
+            (["maps", run, "--png-dir", out], "has no /terrain snapshots"),
+            (["maps", run, "--vtk", "a.vtk", "--png-dir", out], "either RUN.h5 or --vtk"),
+            (["maps", "--vtk", self.path("none.vtk"), "--png-dir", out], "--vtk", "none.vtk"),
+            (["maps", run], "--png-dir"),
+            (["compare", "c.csv", "m.csv", "--quantity", "speed"], "--quantity: 'speed'"),
+            (["compare", self.path("c.csv"), "m.csv", "--quantity", "sinkage"], "CURVES.csv", "c.csv' does not exist"),
+            (["study", run, "--quantity", "dp", "--out-dir", out], "--quantity: 'dp'"),
+        ]
+        for args, *fragments in cases:
+            with self.subTest(args=args):
+                self.check(args, *fragments)
+
+
+class HelpTest(unittest.TestCase):
+    def test_every_option_has_help(self):
+        parser = build_parser()
+        subparsers = next(
+            a for a in parser._actions if isinstance(a, argparse._SubParsersAction)
+        )
+        self.assertEqual(
+            sorted(subparsers.choices), ["compare", "curves", "maps", "series", "study"]
+        )
+        for name, sub in subparsers.choices.items():
+            for action in sub._actions:
+                if isinstance(action, argparse._HelpAction):
+                    continue
+                with self.subTest(command=name, option=action.dest):
+                    self.assertTrue(action.help, f"{name} {action.dest} has no help")
+
+    def test_time_options_state_their_unit(self):
+        sub = build_parser()._subparsers._group_actions[0].choices["curves"]
+        helps = {a.dest: a.help for a in sub._actions}
+        self.assertIn("[s]", helps["window_start"])
+        self.assertIn("[s]", helps["window_end"])
+
+
+if __name__ == "__main__":
+    unittest.main()
