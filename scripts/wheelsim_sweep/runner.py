@@ -193,11 +193,14 @@ class Runner:
             self.say(f"[started {counter['started']}/{counter['total']}] {self.describe(p)} "
                      f"({p.reldir})")
         t0 = time.monotonic()
+        with self.lock:
+            counter["running"][p.index] = t0
         try:
             rc = self._run_child(self.command(p), d / "run.log", cwd=d)
         except Interrupted:
             with self.lock:
                 self.status[p.index] = "interrupted"
+                counter["running"].pop(p.index, None)
                 counter["finished"] += 1
                 self.say(f"[{counter['finished']}/{counter['total']}] {self.describe(p)} "
                          f"interrupted after {_fmt_time(time.monotonic() - t0)}")
@@ -220,15 +223,26 @@ class Runner:
             self.exit_status[p.index] = rc
             counter["finished"] += 1
             k = counter["finished"]
-            elapsed = time.monotonic() - counter["t0"]
-            left = counter["total"] - k
-            eta = f"; ETA {_fmt_time(elapsed / k * left)}" if left else ""
+            counter["walls"].append(wall)
+            del counter["running"][p.index]
+            eta = self._eta(counter)
         if rc == 0:
             self.say(f"[{k}/{counter['total']}] {self.describe(p)} done in {_fmt_time(wall)}{eta}")
         else:
             why = note or _last_error(d / "run.log")
             self.say(f"[{k}/{counter['total']}] {self.describe(p)} FAILED (exit {rc}) after "
                      f"{_fmt_time(wall)}: {why} [log {d / 'run.log'}]{eta}")
+
+    def _eta(self, counter):
+        """Mean wall time of the finished points x the work left (running points count by their
+        expected remainder), spread over the job slots."""
+        pending = counter["total"] - counter["finished"] - len(counter["running"])
+        if not counter["walls"] or pending + len(counter["running"]) == 0:
+            return ""
+        mean = sum(counter["walls"]) / len(counter["walls"])
+        now = time.monotonic()
+        work = pending * mean + sum(max(mean - (now - t), 0.0) for t in counter["running"].values())
+        return f"; ETA {_fmt_time(work / self.jobs_used)}"
 
     # ---- DEM beds -------------------------------------------------------------------------------
     def prepare_beds(self):
@@ -352,7 +366,8 @@ class Runner:
             return
         jobs = max(1, min(self.jobs, len(todo)))
         self.say(f"wheel-sweep: running {len(todo)} point(s), {jobs} at a time")
-        counter = {"started": 0, "finished": 0, "total": len(todo), "t0": time.monotonic()}
+        self.jobs_used = jobs
+        counter = {"started": 0, "finished": 0, "total": len(todo), "running": {}, "walls": []}
         with ThreadPoolExecutor(max_workers=jobs) as ex:
             pending = {ex.submit(self.run_point, p, counter) for p, _ in todo}
             kill_at = None
