@@ -46,8 +46,7 @@ const std::vector<Row> &table1() {
       {"north_gower_clayey_loam", "North Gower clayey loam", 0.73, 41.6, 2471, 6.1, 26.6, 0.008,
        false},
       {"grenville_loam", "Grenville loam", 1.01, 0.06, 5880, 3.1, 29.8, 0.010, false},
-      {"clayey_soil_thailand", "clayey soil (Thailand)", 0.5, 13.19, 692.15, 4.14, 13, 0.006,
-       true},
+      {"clayey_soil_thailand", "clayey soil (Thailand)", 0.5, 13.19, 692.15, 4.14, 13, 0.006, true},
       {"lean_clay_wes", "lean clay (WES)", 0.2, 16.43, 1724.69, 68.95, 20, 0.006, false},
       {"lunar_soil", "lunar soil", 1.0, 1.4, 820, 0.17, 35, 0.0178, true},
   };
@@ -106,7 +105,8 @@ TEST(ScmSoilFiles, EveryValueHasASourceAndChosenOrUncheckedValuesSaySo) {
     }
     const std::string file = r.file;
     if (file == "upland_sandy_loam" || file == "north_gower_clayey_loam") {
-      EXPECT_NE(doc["source"]["mohr_coulomb"]["friction_angle"].value_or(std::string())
+      EXPECT_NE(doc["source"]["mohr_coulomb"]["friction_angle"]
+                    .value_or(std::string())
                     .find("from memory, unchecked"),
                 std::string::npos);
     }
@@ -197,7 +197,8 @@ TEST(ScmSoilLoader, RangeErrorsNameKeyRangeUnitAndValue) {
        "bad.toml:9: mohr_coulomb.friction_angle must be in [0, 90) deg, got 90"},
       {"friction_angle", "friction_angle = -1",
        "bad.toml:9: mohr_coulomb.friction_angle must be in [0, 90) deg, got -1"},
-      {"shear_modulus", "shear_modulus = 0", "bad.toml:11: janosi.shear_modulus must be > 0 m, got 0"},
+      {"shear_modulus", "shear_modulus = 0",
+       "bad.toml:11: janosi.shear_modulus must be > 0 m, got 0"},
       {"elastic_stiffness", "elastic_stiffness = 0",
        "bad.toml:13: scm.elastic_stiffness must be > 0 Pa/m, got 0"},
       {"damping", "damping = -1", "bad.toml:14: scm.damping must be >= 0 Pa s/m, got -1"},

@@ -15,9 +15,10 @@ namespace {
 using namespace wheelsim::scm;
 using namespace wr_test;
 
-const char *kSoils[] = {"dry_sand",       "sandy_loam",           "sand_loam",     "lete_sand",
-                        "upland_sandy_loam", "north_gower_clayey_loam", "grenville_loam",
-                        "clayey_soil_thailand", "lean_clay_wes", "lunar_soil"};
+const char *kSoils[] = {"dry_sand",       "sandy_loam",           "sand_loam",
+                        "lete_sand",      "upland_sandy_loam",    "north_gower_clayey_loam",
+                        "grenville_loam", "clayey_soil_thailand", "lean_clay_wes",
+                        "lunar_soil"};
 
 /// b ∫_{x0}^{a} (kc/b + kφ) z(x)^n dx by the trapezoid rule on `steps` equal steps (x0 = −a for
 /// the full chord, 0 for the front half). Independent of the library's angle substitution.

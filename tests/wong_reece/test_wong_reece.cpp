@@ -33,9 +33,9 @@ double trapezoid_vertical(const WongReeceResult &r) {
 }
 
 TEST(WongReece, VerticalBalanceHoldsAtEverySolution) {
-  for (const char *name : {"dry_sand", "sandy_loam", "sand_loam", "lete_sand",
-                           "upland_sandy_loam", "north_gower_clayey_loam", "grenville_loam",
-                           "clayey_soil_thailand", "lean_clay_wes", "lunar_soil"}) {
+  for (const char *name : {"dry_sand", "sandy_loam", "sand_loam", "lete_sand", "upland_sandy_loam",
+                           "north_gower_clayey_loam", "grenville_loam", "clayey_soil_thailand",
+                           "lean_clay_wes", "lunar_soil"}) {
     const SoilParameters s = soil(name);
     for (double slip : {0.0, 0.05, 0.1, 0.3, 0.5, 0.8}) {
       for (double rebound : {0.0, 0.3}) {
@@ -124,8 +124,8 @@ TEST(WongReece, DrawbarPullAndTorqueRiseWithSlipTowardsAPlateau) {
     for (double slip : kSlips)
       r.push_back(solve_wong_reece(s, kWheel, kLoad, slip));
     for (std::size_t i = 0; i < r.size(); ++i)
-      std::printf("%s s %.1f: sinkage %.3f mm, DP %.1f N, T %.1f N m, F_T %.1f N, eta %.4f\n",
-                  name, r[i].slip, r[i].sinkage_m * 1e3, r[i].drawbar_pull_N, r[i].torque_Nm,
+      std::printf("%s s %.1f: sinkage %.3f mm, DP %.1f N, T %.1f N m, F_T %.1f N, eta %.4f\n", name,
+                  r[i].slip, r[i].sinkage_m * 1e3, r[i].drawbar_pull_N, r[i].torque_Nm,
                   r[i].traction_force_N, r[i].tractive_efficiency);
     for (std::size_t i = 1; i < r.size(); ++i) {
       // Torque: rising, with shrinking increments (concave: towards a plateau).

@@ -52,12 +52,14 @@ std::vector<std::string> split(const std::string &line) {
 std::string lete() { return std::string(SCM_SOILS_DIR) + "/lete_sand.toml"; }
 
 TEST(WongReeceCli, CsvHasTheDocumentedColumnsAndTheLibrarysNumbers) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("wong_reece_cli_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("wong_reece_cli_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string csv = (dir / "out.csv").string();
-  const CliRun r = run("--soil " + lete() + " --radius 0.617 --width 0.479 --load 13200 "
-                    "--slips 0.1,0.3,0.5 --csv " + csv);
+  const CliRun r = run("--soil " + lete() +
+                       " --radius 0.617 --width 0.479 --load 13200 "
+                       "--slips 0.1,0.3,0.5 --csv " +
+                       csv);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("drawbar pull [N]"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("sinkage [mm]"), std::string::npos);
@@ -89,8 +91,9 @@ TEST(WongReeceCli, CsvHasTheDocumentedColumnsAndTheLibrarysNumbers) {
 }
 
 TEST(WongReeceCli, DistributionIsPrinted) {
-  const CliRun r = run("--soil " + lete() + " --radius 0.617 --width 0.479 --load 13200 --slips 0.2 "
-                    "--distribution 0.2 --distribution-points 5");
+  const CliRun r = run("--soil " + lete() +
+                       " --radius 0.617 --width 0.479 --load 13200 --slips 0.2 "
+                       "--distribution 0.2 --distribution-points 5");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("# stress distribution at slip 0.2"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("sigma [kPa]"), std::string::npos);

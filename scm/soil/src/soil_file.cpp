@@ -282,14 +282,14 @@ SoilParameters parse_soil_file(const std::string &text, const std::string &sourc
     if (!v) {
       if (required)
         p.fail(doc.get(table), "missing key '" + full + "': write " + key + " = <" + k.what +
-                                   (*k.unit ? std::string(" in ") + k.unit : std::string()) +
-                                   ", " + range + "> under [" + table + "]");
+                                   (*k.unit ? std::string(" in ") + k.unit : std::string()) + ", " +
+                                   range + "> under [" + table + "]");
       return v;
     }
     if (!ok(*v)) {
       const toml::table *t = doc.get_as<toml::table>(table);
-      p.fail(t->get(key), full + " must be " + range + (*k.unit ? " " : "") + k.unit + ", got " +
-                              fmt(*v));
+      p.fail(t->get(key),
+             full + " must be " + range + (*k.unit ? " " : "") + k.unit + ", got " + fmt(*v));
     }
     return v;
   };
@@ -310,11 +310,10 @@ SoilParameters parse_soil_file(const std::string &text, const std::string &sourc
            "bekker.kc + bekker.kphi must be > 0 (the soil must resist sinkage), got kc = 0 "
            "N/m^(n+1) and kphi = 0 N/m^(n+2)");
   s.Mohr_cohesion = *get("mohr_coulomb", "cohesion", true, ">= 0", [](double v) { return v >= 0; });
-  s.Mohr_friction = *get("mohr_coulomb", "friction_angle", true, "in [0, 90)",
-                         [](double v) { return v >= 0 && v < 90; }) *
-                    kPi / 180.0;
-  s.Janosi_shear =
-      *get("janosi", "shear_modulus", true, "> 0", [](double v) { return v > 0; });
+  s.Mohr_friction = *get("mohr_coulomb", "friction_angle", true, "in [0, 90)", [](double v) {
+    return v >= 0 && v < 90;
+  }) * kPi / 180.0;
+  s.Janosi_shear = *get("janosi", "shear_modulus", true, "> 0", [](double v) { return v > 0; });
   s.elastic_K = get("scm", "elastic_stiffness", false, "> 0", [](double v) {
                   return v > 0;
                 }).value_or(s.elastic_K);

@@ -65,8 +65,8 @@ int main(int argc, char **argv) {
   app.add_option("--distribution-points", dist_points,
                  "angles in the distribution, >= 2 (default 91)");
   app.add_option("--distribution-csv", dist_csv_path, "also write the distribution to this CSV");
-  app.set_version_flag("--version", std::string(WHEELSIM_VERSION) + " (git " +
-                                        WHEELSIM_GIT_REVISION + ")");
+  app.set_version_flag("--version",
+                       std::string(WHEELSIM_VERSION) + " (git " + WHEELSIM_GIT_REVISION + ")");
   CLI11_PARSE(app, argc, argv);
 
   SoilParameters soil;
@@ -87,8 +87,7 @@ int main(int argc, char **argv) {
             opt.rebound_ratio);
     require(opt.quadrature_points >= 9, "--points", ">= 9", opt.quadrature_points);
     if (dist_slip) {
-      require(*dist_slip >= 0 && *dist_slip <= 1, "--distribution", "a slip in [0, 1]",
-              *dist_slip);
+      require(*dist_slip >= 0 && *dist_slip <= 1, "--distribution", "a slip in [0, 1]", *dist_slip);
       require(opt.c1 + opt.c2 * *dist_slip < 1, "--distribution: c1 + c2 s", "< 1",
               opt.c1 + opt.c2 * *dist_slip);
       require(dist_points >= 2, "--distribution-points", ">= 2", dist_points);
@@ -104,15 +103,14 @@ int main(int argc, char **argv) {
                 WHEELSIM_VERSION, soil.name.c_str(), soil_path.c_str(), radius, width, load);
     std::printf("# c1 = %g, c2 = %g, rebound ratio = %g, %d quadrature nodes per region\n", opt.c1,
                 opt.c2, opt.rebound_ratio, opt.quadrature_points);
-    std::printf("%8s %13s %12s %17s %14s %12s %14s\n", "slip [-]", "sinkage [mm]",
-                "theta1 [deg]", "drawbar pull [N]", "torque [N m]", "F_T = T/R [N]",
-                "efficiency [-]");
+    std::printf("%8s %13s %12s %17s %14s %12s %14s\n", "slip [-]", "sinkage [mm]", "theta1 [deg]",
+                "drawbar pull [N]", "torque [N m]", "F_T = T/R [N]", "efficiency [-]");
     std::vector<WongReeceResult> results;
     for (double s : slips) {
       const WongReeceResult r = solve_wong_reece(soil, wheel, load, s, opt);
       std::printf("%8.3f %13.3f %12.3f %17.1f %14.1f %12.1f %14.4f\n", s, r.sinkage_m * 1e3,
-                  r.entry_angle_rad * kRadToDeg, r.drawbar_pull_N, r.torque_Nm,
-                  r.traction_force_N, r.tractive_efficiency);
+                  r.entry_angle_rad * kRadToDeg, r.drawbar_pull_N, r.torque_Nm, r.traction_force_N,
+                  r.tractive_efficiency);
       results.push_back(r);
     }
     if (!csv_path.empty()) {
@@ -123,9 +121,9 @@ int main(int argc, char **argv) {
              "torque_Nm,traction_force_N,tractive_efficiency\n";
       csv.precision(10);
       for (const auto &r : results)
-        csv << r.slip << ',' << r.sinkage_m << ',' << r.entry_angle_rad << ','
-            << r.exit_angle_rad << ',' << r.max_stress_angle_rad << ',' << r.drawbar_pull_N << ','
-            << r.torque_Nm << ',' << r.traction_force_N << ',' << r.tractive_efficiency << '\n';
+        csv << r.slip << ',' << r.sinkage_m << ',' << r.entry_angle_rad << ',' << r.exit_angle_rad
+            << ',' << r.max_stress_angle_rad << ',' << r.drawbar_pull_N << ',' << r.torque_Nm << ','
+            << r.traction_force_N << ',' << r.tractive_efficiency << '\n';
     }
     if (dist_slip) {
       WongReeceOptions d = opt;

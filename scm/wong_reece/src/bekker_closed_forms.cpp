@@ -83,9 +83,10 @@ double rolling_sinkage_closed_form_m(const SoilParameters &soil, double radius_m
   require(soil.Bekker_n < 3, f, "soil n", "< 3", soil.Bekker_n);
   const double n = soil.Bekker_n;
   const double diameter = 2.0 * radius_m;
-  return std::pow(3.0 * load_N / ((3.0 - n) * (soil.Bekker_Kc + width_m * soil.Bekker_Kphi) *
-                                  std::sqrt(diameter)),
-                  2.0 / (2.0 * n + 1.0));
+  return std::pow(
+      3.0 * load_N /
+          ((3.0 - n) * (soil.Bekker_Kc + width_m * soil.Bekker_Kphi) * std::sqrt(diameter)),
+      2.0 / (2.0 * n + 1.0));
 }
 
 double rolling_closed_form_load_N(const SoilParameters &soil, double radius_m, double width_m,

@@ -154,8 +154,8 @@ WongReeceResult evaluate_wong_reece(const SoilParameters &soil, const WongReeceW
                                     const WongReeceOptions &options) {
   const char *f = "evaluate_wong_reece";
   check_inputs(f, soil, wheel, slip, options);
-  require(entry_angle_rad > 0 && entry_angle_rad <= kHalfPi, f, "entry angle",
-          "in (0, pi/2] rad", entry_angle_rad);
+  require(entry_angle_rad > 0 && entry_angle_rad <= kHalfPi, f, "entry angle", "in (0, pi/2] rad",
+          entry_angle_rad);
   return make_result(soil, wheel, entry_angle_rad, slip, options);
 }
 
@@ -187,11 +187,11 @@ WongReeceResult solve_wong_reece(const SoilParameters &soil, const WongReeceWhee
     lo = hi;
     g_lo = g_hi;
   }
-  throw TerramechanicsError(
-      std::string(f) + ": the soil \"" + soil.name + "\" cannot carry " + fmt(load_N) +
-      " N on this wheel (R = " + fmt(wheel.radius_m) + " m, b = " + fmt(wheel.width_m) +
-      " m) at slip " + fmt(slip) + ": at entry angle 90 deg (sinkage = R) the vertical force is " +
-      fmt(g_lo + load_N) + " N");
+  throw TerramechanicsError(std::string(f) + ": the soil \"" + soil.name + "\" cannot carry " +
+                            fmt(load_N) + " N on this wheel (R = " + fmt(wheel.radius_m) +
+                            " m, b = " + fmt(wheel.width_m) + " m) at slip " + fmt(slip) +
+                            ": at entry angle 90 deg (sinkage = R) the vertical force is " +
+                            fmt(g_lo + load_N) + " N");
 }
 
 } // namespace wheelsim::scm

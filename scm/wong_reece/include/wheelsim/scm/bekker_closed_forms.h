@@ -4,8 +4,8 @@
 //
 // Geometry: a wheel sunk by z0 [m] meets the undisturbed surface on the chord x ∈ [−a, a],
 // a = sqrt(2 R z0 − z0²); the local sinkage is z(x) = z0 − (R − sqrt(R² − x²)). With x = R sin θ
-// the load integrals become b (kc/b + kφ) R^(n+1) ∫ (cos θ − cos θ1)^n cos θ dθ, θ1 = acos(1 − z0/R),
-// which is how they are evaluated (tanh–sinh quadrature, exact to ~1e-14 relative).
+// the load integrals become b (kc/b + kφ) R^(n+1) ∫ (cos θ − cos θ1)^n cos θ dθ, θ1 = acos(1 −
+// z0/R), which is how they are evaluated (tanh–sinh quadrature, exact to ~1e-14 relative).
 //
 // All functions check their arguments (R > 0, b > 0, W > 0 or z0 ≥ 0) and throw
 // std::invalid_argument naming the argument, its range and value. The sinkage solvers throw

@@ -38,22 +38,22 @@ struct WongReeceOptions {
 
 /// One sample of the stress distribution.
 struct WongReeceStress {
-  double theta_rad = 0.0; ///< θ [rad]
-  double sigma_Pa = 0.0;  ///< normal stress σ [Pa]
-  double tau_Pa = 0.0;    ///< shear stress τ [Pa]
+  double theta_rad = 0.0;            ///< θ [rad]
+  double sigma_Pa = 0.0;             ///< normal stress σ [Pa]
+  double tau_Pa = 0.0;               ///< shear stress τ [Pa]
   double shear_displacement_m = 0.0; ///< j [m]
 };
 
 struct WongReeceResult {
-  double load_N = 0.0;          ///< the vertical load W asked for [N]
-  double slip = 0.0;            ///< s = 1 − v/(ωR) [-]
-  double entry_angle_rad = 0.0; ///< θ1 [rad]
-  double exit_angle_rad = 0.0;  ///< θ2 [rad] (≤ 0)
+  double load_N = 0.0;               ///< the vertical load W asked for [N]
+  double slip = 0.0;                 ///< s = 1 − v/(ωR) [-]
+  double entry_angle_rad = 0.0;      ///< θ1 [rad]
+  double exit_angle_rad = 0.0;       ///< θ2 [rad] (≤ 0)
   double max_stress_angle_rad = 0.0; ///< θm [rad]
-  double sinkage_m = 0.0;       ///< z = R (1 − cos θ1) [m]
+  double sinkage_m = 0.0;            ///< z = R (1 − cos θ1) [m]
   double vertical_force_N = 0.0; ///< R b ∫ (σ cos θ + τ sin θ) dθ at the solution [N] (= W)
-  double drawbar_pull_N = 0.0;  ///< DP [N], positive = pulling
-  double torque_Nm = 0.0;       ///< driving torque T about the axle [N m]
+  double drawbar_pull_N = 0.0;   ///< DP [N], positive = pulling
+  double torque_Nm = 0.0;        ///< driving torque T about the axle [N m]
   double traction_force_N = 0.0; ///< F_T = T/R [N]
   /// η = DP (1 − s) / (T/R) = DP v / (T ω) [-]; negative when DP < 0; 0 when T = 0.
   double tractive_efficiency = 0.0;
