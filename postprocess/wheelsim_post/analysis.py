@@ -30,7 +30,9 @@ def analyse_runs(paths, window):
     results = []
     for path in paths:
         with RunFile(path) as run:
-            results.append(RunResult(path, read_metadata(run), steady_state(run, window)))
+            results.append(
+                RunResult(path, read_metadata(run), steady_state(run, window))
+            )
     return results
 
 

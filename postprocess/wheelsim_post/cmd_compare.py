@@ -35,7 +35,9 @@ def add_parser(subparsers):
         "more than one",
     )
     parser.add_argument("--png", metavar="OUT.png", help="write the plot here")
-    parser.add_argument("--csv", metavar="OUT.csv", help="write the per-point table here")
+    parser.add_argument(
+        "--csv", metavar="OUT.csv", help="write the per-point table here"
+    )
     parser.set_defaults(func=run)
     return parser
 
@@ -43,7 +45,9 @@ def add_parser(subparsers):
 def simulated_curve(path, quantity, group):
     """(label, slip, mean, std) of the chosen group, sorted by slip, equal slips averaged."""
     q = QUANTITIES[quantity]
-    y_column = EFFICIENCY_OF_MEANS if quantity == "tractive_efficiency" else q.mean_column
+    y_column = (
+        EFFICIENCY_OF_MEANS if quantity == "tractive_efficiency" else q.mean_column
+    )
     _, header, rows = read_csv(path, "CURVES.csv")
     for column in ("group", "slip_mean", y_column, q.std_column):
         if column not in header:
@@ -60,7 +64,9 @@ def simulated_curve(path, quantity, group):
             )
         group = labels[0]
     elif group not in labels:
-        raise PostError(f"--group: '{group}' is not in '{path}' (it has: {'; '.join(labels)})")
+        raise PostError(
+            f"--group: '{group}' is not in '{path}' (it has: {'; '.join(labels)})"
+        )
     points = {}
     for number, r in enumerate(rows, start=1):
         if r["group"] != group:
@@ -71,7 +77,9 @@ def simulated_curve(path, quantity, group):
         if math.isfinite(x) and math.isfinite(y):
             points.setdefault(x, []).append((y, e))
     if not points:
-        raise PostError(f"CURVES.csv: '{path}' has no finite '{y_column}' for '{group}'")
+        raise PostError(
+            f"CURVES.csv: '{path}' has no finite '{y_column}' for '{group}'"
+        )
     slip = np.array(sorted(points))
     mean = np.array([np.mean([p[0] for p in points[s]]) for s in slip])
     std = np.array([np.mean([p[1] for p in points[s]]) for s in slip])
@@ -89,8 +97,14 @@ def measured_points(path, quantity):
             )
     if not rows:
         raise PostError(f"MEASURED.csv: file '{path}' has no data rows")
-    slip = [to_float(r["slip"], "MEASURED.csv", path, "slip", i) for i, r in enumerate(rows, 1)]
-    value = [to_float(r[quantity], "MEASURED.csv", path, quantity, i) for i, r in enumerate(rows, 1)]
+    slip = [
+        to_float(r["slip"], "MEASURED.csv", path, "slip", i)
+        for i, r in enumerate(rows, 1)
+    ]
+    value = [
+        to_float(r[quantity], "MEASURED.csv", path, quantity, i)
+        for i, r in enumerate(rows, 1)
+    ]
     return np.array(slip), np.array(value)
 
 
@@ -104,7 +118,9 @@ def interpolate(sim_slip, sim_value, slip):
 def percent_errors(simulated, measured):
     """100 (simulated − measured) / |measured|; NaN where measured is 0 or simulated NaN."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(measured != 0.0, 100.0 * (simulated - measured) / np.abs(measured), np.nan)
+        return np.where(
+            measured != 0.0, 100.0 * (simulated - measured) / np.abs(measured), np.nan
+        )
 
 
 def mean_absolute_percent_error(errors):
@@ -118,16 +134,29 @@ def plot(q, label, sim, meas, errors, in_range, mape, path):
     sim_slip, sim_mean, sim_std = sim
     slip, value = meas
     fig, (ax, ax_err) = panel_grid(2, columns=1, width=7.0, height=3.5)
-    ax.errorbar(sim_slip, sim_mean * q.plot_scale, yerr=sim_std * q.plot_scale,
-                marker="o", capsize=3, label=f"simulated ({label})")
+    ax.errorbar(
+        sim_slip,
+        sim_mean * q.plot_scale,
+        yerr=sim_std * q.plot_scale,
+        marker="o",
+        capsize=3,
+        label=f"simulated ({label})",
+    )
     ax.plot(slip[in_range], value[in_range] * q.plot_scale, "ks", label="measured")
     if np.any(~in_range):
-        ax.plot(slip[~in_range], value[~in_range] * q.plot_scale, "ks", mfc="none",
-                label="measured, outside the simulated slip range")
+        ax.plot(
+            slip[~in_range],
+            value[~in_range] * q.plot_scale,
+            "ks",
+            mfc="none",
+            label="measured, outside the simulated slip range",
+        )
     ax.set_xlabel("slip [-]")
     ax.set_ylabel(q.axis_label())
-    ax.set_title(f"mean |error| = {mape:.3g} % over {int(np.sum(np.isfinite(errors)))} points",
-                 fontsize=9)
+    ax.set_title(
+        f"mean |error| = {mape:.3g} % over {int(np.sum(np.isfinite(errors)))} points",
+        fontsize=9,
+    )
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     ok = np.isfinite(errors)
@@ -144,10 +173,14 @@ def run(args):
     """Runs the subcommand; returns the exit status."""
     quantity = parse_quantities(args.quantity)
     if len(quantity) != 1 or quantity[0] == "slip":
-        raise PostError(f"--quantity: expected one quantity other than slip, got '{args.quantity}'")
+        raise PostError(
+            f"--quantity: expected one quantity other than slip, got '{args.quantity}'"
+        )
     quantity = quantity[0]
     q = QUANTITIES[quantity]
-    label, sim_slip, sim_mean, sim_std = simulated_curve(args.curves, quantity, args.group)
+    label, sim_slip, sim_mean, sim_std = simulated_curve(
+        args.curves, quantity, args.group
+    )
     slip, value = measured_points(args.measured, quantity)
     simulated, in_range = interpolate(sim_slip, sim_mean, slip)
     errors = percent_errors(simulated, value)
@@ -157,12 +190,21 @@ def run(args):
     for s, m, v, e, r in zip(slip, value, simulated, errors, in_range):
         note = "" if r else "  outside the simulated slip range"
         print(f"{s:8.4g} {m:12.5g} {v:12.5g} {e:9.3g}{note}")
-    print(f"mean absolute error: {mape:.4g} % over {int(np.sum(np.isfinite(errors)))} points")
+    print(
+        f"mean absolute error: {mape:.4g} % over {int(np.sum(np.isfinite(errors)))} points"
+    )
     if args.csv:
-        header = ["slip", f"measured_{quantity}{q.suffix}", f"simulated_{quantity}{q.suffix}",
-                  "error_percent", "in_range"]
-        rows = [[float(s), float(m), float(v), float(e), int(r)]
-                for s, m, v, e, r in zip(slip, value, simulated, errors, in_range)]
+        header = [
+            "slip",
+            f"measured_{quantity}{q.suffix}",
+            f"simulated_{quantity}{q.suffix}",
+            "error_percent",
+            "in_range",
+        ]
+        rows = [
+            [float(s), float(m), float(v), float(e), int(r)]
+            for s, m, v, e, r in zip(slip, value, simulated, errors, in_range)
+        ]
         comments = [
             f"wheelsim-post compare: {args.curves} ({label}) vs {args.measured}",
             "simulated: linear interpolation in measured slip, no extrapolation "
@@ -173,7 +215,15 @@ def run(args):
         write_csv(args.csv, comments, header, rows)
         print(f"wrote {args.csv}")
     if args.png:
-        plot(q, label, (sim_slip, sim_mean, sim_std), (slip, value), errors, in_range, mape,
-             args.png)
+        plot(
+            q,
+            label,
+            (sim_slip, sim_mean, sim_std),
+            (slip, value),
+            errors,
+            in_range,
+            mape,
+            args.png,
+        )
         print(f"wrote {args.png}")
     return 0

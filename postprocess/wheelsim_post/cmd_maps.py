@@ -9,7 +9,14 @@ from .errors import PostError
 from .options import split_list
 from .plotting import panel_grid, save
 from .runfile import RunFile
-from .vtk import bounding_box_centre, read_wheel_surface, unrolled_pressure
+from matplotlib.collections import PolyCollection
+
+from .vtk import (
+    bounding_box_centre,
+    read_wheel_surface,
+    unrolled_pressure,
+    unrolled_triangles,
+)
 
 HELP = "maps of SCM terrain snapshots (RUN.h5) or of wheel-surface contact pressure (--vtk)"
 
@@ -57,18 +64,24 @@ def add_parser(subparsers):
         "(default: centre of the points' bounding box)",
     )
     wheel.add_argument(
+        "--binned",
+        action="store_true",
+        help="draw the area-weighted mean pressure on an (angle, y) grid instead of "
+        "the triangles themselves",
+    )
+    wheel.add_argument(
         "--angle-bin",
         type=float,
         default=2.0,
         metavar="DEG",
-        help="angular bin width [deg] (default 2)",
+        help="with --binned: angular bin width [deg] (default 2)",
     )
     wheel.add_argument(
         "--axial-bins",
         type=int,
         default=30,
         metavar="N",
-        help="number of bins across the wheel width along y (default 30)",
+        help="with --binned: number of bins across the wheel width along y (default 30)",
     )
     wheel.add_argument(
         "--angle-range",
@@ -149,7 +162,7 @@ def run_snapshots(args, out_dir):
                 args.step,
                 args.time,
                 args.all,
-                lambda s, f=field: run_file.snapshot(f, s).time,
+                lambda s, f=field: run_file.snapshot_time(f, s),
             )
             for step in chosen:
                 snap = run_file.snapshot(field, step)
@@ -159,8 +172,8 @@ def run_snapshots(args, out_dir):
     return written
 
 
-def plot_wheel_surface(surface, centre, args, path):
-    """The unrolled contact-pressure map of one wheel surface."""
+def _binned(ax, surface, centre, args):
+    """pcolormesh of unrolled_pressure() on the --angle-bin × --axial-bins grid."""
     lo, hi = args.angle_range
     bins = max(1, int(round((hi - lo) / args.angle_bin)))
     angle_edges = np.linspace(lo, hi, bins + 1)
@@ -168,16 +181,41 @@ def plot_wheel_surface(surface, centre, args, path):
     pad = 1e-9 * max(1.0, float(np.ptp(y)))
     y_edges = np.linspace(y.min() - pad, y.max() + pad, args.axial_bins + 1)
     grid = unrolled_pressure(surface, centre, angle_edges, y_edges)
+    return ax.pcolormesh(
+        angle_edges, y_edges, np.ma.masked_invalid(grid), cmap="inferno"
+    )
+
+
+def _triangles(ax, surface, centre):
+    """Each triangle drawn in the (θ, y) plane, coloured by its pressure (loaded on top)."""
+    polygons = unrolled_triangles(surface, centre)
+    pressure = surface.cell_data["contact_pressure"]
+    order = np.argsort(pressure, kind="stable")
+    collection = PolyCollection(
+        polygons[order], array=pressure[order], cmap="inferno", edgecolors="face"
+    )
+    collection.set_linewidth(0.2)
+    ax.add_collection(collection)
+    y = polygons[..., 1]
+    ax.set_ylim(y.min(), y.max())
+    return collection
+
+
+def plot_wheel_surface(surface, centre, args, path):
+    """The unrolled contact-pressure map of one wheel surface."""
     fig, (ax,) = panel_grid(1, width=9.0, height=4.0)
-    mesh = ax.pcolormesh(angle_edges, y_edges, np.ma.masked_invalid(grid), cmap="inferno")
-    bar = fig.colorbar(mesh, ax=ax)
+    if args.binned:
+        mappable = _binned(ax, surface, centre, args)
+    else:
+        mappable = _triangles(ax, surface, centre)
+    ax.set_xlim(*args.angle_range)
+    bar = fig.colorbar(mappable, ax=ax)
     bar.set_label("contact pressure [Pa]")
     ax.set_xlabel("angle about the axle θ [deg] (0 below the axle, + towards +x)")
     ax.set_ylabel("axial position y − y_centre [m]")
     when = "" if surface.step < 0 else f", step {surface.step}, t = {surface.time:g} s"
     ax.set_title(f"{os.path.basename(surface.path)}{when}", fontsize=9)
     save(fig, path)
-    return grid
 
 
 def run_vtk(args, out_dir):
@@ -192,9 +230,7 @@ def run_vtk(args, out_dir):
     written = []
     for vtk_path in args.vtk:
         surface = read_wheel_surface(vtk_path)
-        centre = (
-            np.array(args.centre) if args.centre else bounding_box_centre(surface)
-        )
+        centre = np.array(args.centre) if args.centre else bounding_box_centre(surface)
         stem = os.path.splitext(os.path.basename(vtk_path))[0]
         path = os.path.join(out_dir, f"{stem}_pressure.png")
         plot_wheel_surface(surface, centre, args, path)
@@ -206,8 +242,12 @@ def run(args):
     """Runs the subcommand; returns the exit status."""
     if (args.run is None) == (args.vtk is None):
         raise PostError("give either RUN.h5 or --vtk FILE.vtk ..., not both or neither")
-    if args.vtk is not None and (args.field or args.step is not None or args.time is not None or args.all):
-        raise PostError("--field/--step/--time/--all apply to RUN.h5 snapshots, not --vtk")
+    if args.vtk is not None and (
+        args.field or args.step is not None or args.time is not None or args.all
+    ):
+        raise PostError(
+            "--field/--step/--time/--all apply to RUN.h5 snapshots, not --vtk"
+        )
     out_dir = _output_dir(args.png_dir)
     written = run_vtk(args, out_dir) if args.vtk else run_snapshots(args, out_dir)
     for path in written:

@@ -83,7 +83,9 @@ def table(series_list):
 
 def plot(series_list, phase, path, title):
     """One panel per series against time, phases shaded if ``phase`` is given."""
-    fig, axes = panel_grid(len(series_list), columns=1, width=9.0, height=2.4, sharex=True)
+    fig, axes = panel_grid(
+        len(series_list), columns=1, width=9.0, height=2.4, sharex=True
+    )
     for number, (ax, s) in enumerate(zip(axes, series_list)):
         if phase is not None:
             shade_phases(ax, phase.time, np.ravel(phase.value), label=number == 0)
@@ -108,7 +110,9 @@ def run(args):
         if args.observables is not None:
             names = split_list(args.observables)
             if not names:
-                raise PostError("--observables: expected a comma-separated list of names")
+                raise PostError(
+                    "--observables: expected a comma-separated list of names"
+                )
         else:
             names = [n for n in DEFAULT_OBSERVABLES if run_file.has_observable(n)]
             if not names:
@@ -119,11 +123,17 @@ def run(args):
         series_list = [run_file.observable(n) for n in names]
         empty = [s.name for s in series_list if len(s) == 0]
         if empty:
-            raise PostError(f"run file '{args.run}': observable '{empty[0]}' has no rows")
-        phase = run_file.observable("phase") if run_file.has_observable("phase") else None
+            raise PostError(
+                f"run file '{args.run}': observable '{empty[0]}' has no rows"
+            )
+        phase = (
+            run_file.observable("phase") if run_file.has_observable("phase") else None
+        )
         if args.csv:
             header, rows = table(series_list + ([phase] if phase is not None else []))
-            comments = [f"wheelsim-post series of {args.run}; units in the column names"]
+            comments = [
+                f"wheelsim-post series of {args.run}; units in the column names"
+            ]
             write_csv(args.csv, comments, header, rows)
             print(f"wrote {args.csv}")
         if args.png:

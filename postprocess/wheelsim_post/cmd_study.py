@@ -10,7 +10,9 @@ from .errors import PostError
 from .options import add_window_options, window_from_args
 from .quantities import EFFICIENCY_OF_MEANS, QUANTITIES, parse_quantities
 
-HELP = "tables per soil and quantity: rows wheels, columns target slips (CSV and Markdown)"
+HELP = (
+    "tables per soil and quantity: rows wheels, columns target slips (CSV and Markdown)"
+)
 
 
 def add_parser(subparsers):
@@ -112,7 +114,8 @@ def write_table(out_dir, soil, quantity, table, window_text):
         suffix = "" if kind == "mean" else "_std"
         path = os.path.join(out_dir, f"{safe_name(soil)}_{quantity}{suffix}.csv")
         body = [
-            [row] + [values[(row, s)][index] if (row, s) in values else "" for s in slips]
+            [row]
+            + [values[(row, s)][index] if (row, s) in values else "" for s in slips]
             for row in rows
         ]
         comments = [
@@ -135,7 +138,9 @@ def run(args):
     try:
         os.makedirs(args.out_dir, exist_ok=True)
     except OSError as exc:
-        raise PostError(f"--out-dir: cannot create '{args.out_dir}': {exc.strerror}") from None
+        raise PostError(
+            f"--out-dir: cannot create '{args.out_dir}': {exc.strerror}"
+        ) from None
     document = [f"# wheelsim-post study\n\n{window.describe()}\n"]
     for (soil, quantity), table in tables.items():
         text = markdown(soil, quantity, table)

@@ -18,7 +18,9 @@ def write_csv(path, comments, header, rows):
     """Writes ``comments`` (lines, '# ' prepended), the ``header`` row and ``rows``."""
     directory = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(directory):
-        raise PostError(f"cannot write '{path}': directory '{directory}' does not exist")
+        raise PostError(
+            f"cannot write '{path}': directory '{directory}' does not exist"
+        )
     with open(path, "w", newline="", encoding="utf-8") as out:
         for line in comments:
             out.write(f"# {line}\n")

@@ -60,7 +60,9 @@ def save(fig, path):
     directory = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(directory):
         plt.close(fig)
-        raise PostError(f"cannot write '{path}': directory '{directory}' does not exist")
+        raise PostError(
+            f"cannot write '{path}': directory '{directory}' does not exist"
+        )
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)

@@ -2,6 +2,8 @@
 
 import dataclasses
 
+from .errors import PostError
+
 
 @dataclasses.dataclass(frozen=True)
 class Quantity:
@@ -64,8 +66,6 @@ EFFICIENCY_OF_MEANS = "tractive_efficiency_of_means"
 
 def parse_quantities(text, option="--quantity"):
     """A comma-separated list of quantity names (PostError naming ``option`` if unknown)."""
-    from .errors import PostError
-
     names = [n.strip() for n in text.split(",") if n.strip()]
     bad = [n for n in names if n not in QUANTITIES]
     if bad or not names:

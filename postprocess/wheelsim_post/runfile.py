@@ -188,6 +188,13 @@ class RunFile:
         known = [f for f in SNAPSHOT_FIELDS if f in present]
         return known + sorted(f for f in present if f not in SNAPSHOT_FIELDS)
 
+    def snapshot_time(self, field, step):
+        """Time [s] of the snapshot of ``field`` at ``step`` (without reading its grid)."""
+        key = f"terrain/{field}/{step:09d}/time"
+        if key not in self._file:
+            raise PostError(f"run file '{self.path}' has no dataset '/{key}'")
+        return float(np.ravel(self._file[key][()])[0])
+
     def snapshot(self, field, step):
         """The snapshot of ``field`` at ``step`` (PostError if absent or malformed)."""
         key = f"terrain/{field}/{step:09d}"

@@ -33,7 +33,9 @@ class WheelSurface:
     def areas(self):
         """Triangle areas [m] (m²)."""
         p = self.points[self.triangles]
-        return 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+        return 0.5 * np.linalg.norm(
+            np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1
+        )
 
 
 def _fail(path, what):
@@ -109,6 +111,29 @@ def read_wheel_surface(path):
     return WheelSurface(path, title, step, time, points, triangles, cell_data)
 
 
+def axle_angle(points, centre):
+    """Angle θ [deg] of ``points`` [n][3] about the axle (+y) through ``centre``.
+
+    0 straight below the centre, positive towards +x, in (−180, 180].
+    """
+    return np.degrees(
+        np.arctan2(points[..., 0] - centre[0], -(points[..., 2] - centre[2]))
+    )
+
+
+def unrolled_triangles(surface, centre):
+    """The triangles in the unrolled plane: [m][3][2] of (θ [deg], y − centre_y [m]).
+
+    A triangle across the ±180° seam keeps its vertices next to its centroid's angle (its
+    angles may then pass ±180), so no triangle spans the whole map.
+    """
+    corners = surface.points[surface.triangles]  # [m][3][3]
+    theta = axle_angle(corners, centre)
+    theta_c = axle_angle(surface.centroids(), centre)[:, None]
+    theta = theta_c + (theta - theta_c + 180.0) % 360.0 - 180.0
+    return np.stack([theta, corners[..., 1] - centre[1]], axis=-1)
+
+
 def unrolled_pressure(surface, centre, angle_edges, y_edges):
     """Area-weighted mean contact pressure [Pa] on an (angle, y) grid: [len(y)-1][len(a)-1].
 
@@ -117,11 +142,13 @@ def unrolled_pressure(surface, centre, angle_edges, y_edges):
     the centre. A bin holds Σ p·A / Σ A (the normal force per area); NaN where no triangle lies.
     """
     c = surface.centroids()
-    theta = np.degrees(np.arctan2(c[:, 0] - centre[0], -(c[:, 2] - centre[2])))
+    theta = axle_angle(c, centre)
     y = c[:, 1] - centre[1]
     area = surface.areas()
     pressure = surface.cell_data["contact_pressure"]
-    force, _, _ = np.histogram2d(y, theta, bins=[y_edges, angle_edges], weights=pressure * area)
+    force, _, _ = np.histogram2d(
+        y, theta, bins=[y_edges, angle_edges], weights=pressure * area
+    )
     total, _, _ = np.histogram2d(y, theta, bins=[y_edges, angle_edges], weights=area)
     count, _, _ = np.histogram2d(y, theta, bins=[y_edges, angle_edges])
     with np.errstate(divide="ignore", invalid="ignore"):

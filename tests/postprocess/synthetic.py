@@ -63,7 +63,9 @@ def write_observable(f, name, step, time, value, unit, crashed_rows=None):
     g = f.create_group(f"observables/{name}")
     extra = value.shape[1:]
     g.create_dataset("step", data=step, maxshape=(None,), chunks=(1024,), fillvalue=-1)
-    t = g.create_dataset("time", data=time, maxshape=(None,), chunks=(1024,), fillvalue=np.nan)
+    t = g.create_dataset(
+        "time", data=time, maxshape=(None,), chunks=(1024,), fillvalue=np.nan
+    )
     t.attrs["unit"] = "s"
     v = g.create_dataset(
         "value",
@@ -126,7 +128,9 @@ def rig_series(slip=0.2, dp_mean=100.0, torque=60.0):
         "slip": (rig_slip, "1"),
         "tractive_efficiency": (eta, "1"),
     }
-    position = np.column_stack([v0 * time, np.zeros_like(time), 0.1 - SINKAGE + 0 * time])
+    position = np.column_stack(
+        [v0 * time, np.zeros_like(time), 0.1 - SINKAGE + 0 * time]
+    )
     series["wheel/position"] = (position, "m")
     return {name: (step, time, value, unit) for name, (value, unit) in series.items()}
 
@@ -155,7 +159,9 @@ def write_rig_run(
             write_parameter(f, f"sweep/{key}", text)
         for name, value in (parameters or {}).items():
             write_parameter(f, name, value)
-        for name, (step, time, value, unit) in rig_series(slip, dp_mean, torque).items():
+        for name, (step, time, value, unit) in rig_series(
+            slip, dp_mean, torque
+        ).items():
             if name in omit:
                 continue
             crashed_rows = None
@@ -171,7 +177,9 @@ def write_snapshot(f, field, step, time, value, unit, x0, y0, spacing):
     g = f.create_group(f"terrain/{field}/{step:09d}")
     g.create_dataset("step", data=np.int64(step))
     g.create_dataset("time", data=np.float64(time)).attrs["unit"] = "s"
-    g.create_dataset("value", data=np.asarray(value, dtype=np.float64)).attrs["unit"] = unit
+    g.create_dataset("value", data=np.asarray(value, dtype=np.float64)).attrs[
+        "unit"
+    ] = unit
     for name, number in (("x0", x0), ("y0", y0), ("spacing", spacing)):
         g.create_dataset(name, data=np.float64(number)).attrs["unit"] = "m"
 

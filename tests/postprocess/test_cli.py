@@ -28,19 +28,47 @@ class CliErrorTest(TempDirTestCase):
         cases = [
             (["bogus"], "invalid choice: 'bogus'"),
             (["curves"], "required: RUN.h5"),
-            (["curves", run, "--window-fraction", "0.8", "0.2"], "--window-fraction", "A < B"),
-            (["curves", run, "--window-start", "abc", "--window-end", "1"], "--window-start"),
-            (["curves", run, "--window-start", "0.1"], "--window-start and --window-end"),
+            (
+                ["curves", run, "--window-fraction", "0.8", "0.2"],
+                "--window-fraction",
+                "A < B",
+            ),
+            (
+                ["curves", run, "--window-start", "abc", "--window-end", "1"],
+                "--window-start",
+            ),
+            (
+                ["curves", run, "--window-start", "0.1"],
+                "--window-start and --window-end",
+            ),
             (["curves", self.path("missing.h5")], "missing.h5' does not exist"),
             (["curves", run, "--group-by", "colour"], "--group-by: 'colour'"),
-            (["curves", run, "--csv", self.path("no/dir/c.csv")], "directory", "does not exist"),
+            (
+                ["curves", run, "--csv", self.path("no/dir/c.csv")],
+                "directory",
+                "does not exist",
+            ),
             (["series", run], "--png OUT.png and/or --csv OUT.csv"),
             (["maps", run, "--png-dir", out], "has no /terrain snapshots"),
-            (["maps", run, "--vtk", "a.vtk", "--png-dir", out], "either RUN.h5 or --vtk"),
-            (["maps", "--vtk", self.path("none.vtk"), "--png-dir", out], "--vtk", "none.vtk"),
+            (
+                ["maps", run, "--vtk", "a.vtk", "--png-dir", out],
+                "either RUN.h5 or --vtk",
+            ),
+            (
+                ["maps", "--vtk", self.path("none.vtk"), "--png-dir", out],
+                "--vtk",
+                "none.vtk",
+            ),
             (["maps", run], "--png-dir"),
-            (["compare", "c.csv", "m.csv", "--quantity", "speed"], "--quantity: 'speed'"),
-            (["compare", self.path("c.csv"), "m.csv", "--quantity", "sinkage"], "CURVES.csv", "c.csv' does not exist"),
+            (
+                ["compare", "c.csv", "m.csv", "--quantity", "speed"],
+                "--quantity: 'speed'",
+            ),
+            (
+                ["compare", self.path("c.csv"), "m.csv", "--quantity", "sinkage"],
+                "CURVES.csv",
+                "c.csv' does not exist",
+            ),
             (["study", run, "--quantity", "dp", "--out-dir", out], "--quantity: 'dp'"),
         ]
         for args, *fragments in cases:

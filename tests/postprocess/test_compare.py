@@ -41,8 +41,17 @@ class CompareTest(TempDirTestCase):
     def test_errors_per_point_and_mean(self):
         out, png = self.path("cmp.csv"), self.path("cmp.png")
         result = run_cli(
-            "compare", self.curves, self.measured, "--quantity", "drawbar_pull", "--group", "A",
-            "--csv", out, "--png", png,
+            "compare",
+            self.curves,
+            self.measured,
+            "--quantity",
+            "drawbar_pull",
+            "--group",
+            "A",
+            "--csv",
+            out,
+            "--png",
+            png,
         )
         self.assertEqual(result.returncode, 0, result.stderr)
         with open(out) as f:
@@ -51,33 +60,51 @@ class CompareTest(TempDirTestCase):
         rows = list(csv.DictReader(line for line in lines if not line.startswith("#")))
         self.assertEqual(
             list(rows[0]),
-            ["slip", "measured_drawbar_pull_N", "simulated_drawbar_pull_N", "error_percent", "in_range"],
+            [
+                "slip",
+                "measured_drawbar_pull_N",
+                "simulated_drawbar_pull_N",
+                "error_percent",
+                "in_range",
+            ],
         )
         self.assertEqual([r["in_range"] for r in rows], ["0", "1", "1", "1", "0"])
         errors = [float(r["error_percent"]) for r in rows]
         self.assertTrue(np.isnan(errors[0]) and np.isnan(errors[4]))
         np.testing.assert_allclose(errors[1:4], [25.0, 0.0, 10.0], atol=1e-9)
-        self.assertAlmostEqual(float(rows[1]["simulated_drawbar_pull_N"]), 150.0, places=9)
+        self.assertAlmostEqual(
+            float(rows[1]["simulated_drawbar_pull_N"]), 150.0, places=9
+        )
         self.assertIn("mean_absolute_error_percent = 11.66666667", comments[-1])
         self.assertIn("mean absolute error: 11.67 % over 3 points", result.stdout)
         self.assertTrue(is_png(png))
 
     def test_several_series_need_group(self):
-        result = run_cli("compare", self.curves, self.measured, "--quantity", "drawbar_pull")
+        result = run_cli(
+            "compare", self.curves, self.measured, "--quantity", "drawbar_pull"
+        )
         self.assertEqual(result.returncode, 2)
         self.assertIn("--group:", result.stderr)
         self.assertIn("2 series; choose one of: A; B", result.stderr)
 
     def test_missing_measured_column(self):
         result = run_cli(
-            "compare", self.curves, self.measured, "--quantity", "driving_torque", "--group", "A"
+            "compare",
+            self.curves,
+            self.measured,
+            "--quantity",
+            "driving_torque",
+            "--group",
+            "A",
         )
         self.assertEqual(result.returncode, 2)
         self.assertIn("has no column 'driving_torque_mean_Nm'", result.stderr)
 
     def test_interpolate_and_percent_errors(self):
         sim_slip, sim = np.array([0.0, 1.0]), np.array([0.0, 10.0])
-        values, inside = interpolate(sim_slip, sim, np.array([-0.1, 0.0, 0.25, 1.0, 1.1]))
+        values, inside = interpolate(
+            sim_slip, sim, np.array([-0.1, 0.0, 0.25, 1.0, 1.1])
+        )
         np.testing.assert_array_equal(inside, [False, True, True, True, False])
         np.testing.assert_allclose(values[1:4], [0.0, 2.5, 10.0])
         e = percent_errors(np.array([2.0, 3.0, 1.0]), np.array([-4.0, 0.0, 1.0]))

@@ -33,7 +33,12 @@ class CurvesTest(TempDirTestCase):
                 path,
                 slip=slip,
                 dp_mean=dp,
-                sweep={"wheel": wheel, "soil": soil, "slip": str(slip), "terrain": "dem"},
+                sweep={
+                    "wheel": wheel,
+                    "soil": soil,
+                    "slip": str(slip),
+                    "terrain": "dem",
+                },
             )
             self.runs.append(path)
 
@@ -41,7 +46,9 @@ class CurvesTest(TempDirTestCase):
         out, png = self.path("curves.csv"), self.path("curves.png")
         result = run_cli("curves", *self.runs, "--csv", out, "--png", png)
         self.assertEqual(result.returncode, 0, result.stderr)
-        self.assertIn("steady-state window: test phase (phase == 3) from 0.5 to 1", result.stdout)
+        self.assertIn(
+            "steady-state window: test phase (phase == 3) from 0.5 to 1", result.stdout
+        )
         comments, rows = read(out)
         self.assertTrue(any("from 0.5 to 1 of its duration" in c for c in comments))
         with open(out) as f:
@@ -85,7 +92,14 @@ class CurvesTest(TempDirTestCase):
     def test_stated_window_is_written(self):
         out = self.path("curves.csv")
         result = run_cli(
-            "curves", self.runs[0], "--window-start", "0.55", "--window-end", "0.65", "--csv", out
+            "curves",
+            self.runs[0],
+            "--window-start",
+            "0.55",
+            "--window-end",
+            "0.65",
+            "--csv",
+            out,
         )
         self.assertEqual(result.returncode, 0, result.stderr)
         comments, rows = read(out)

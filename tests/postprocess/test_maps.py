@@ -9,7 +9,12 @@ import numpy as np
 import synthetic
 from helpers import TempDirTestCase, is_png, run_cli
 from wheelsim_post.errors import PostError
-from wheelsim_post.vtk import bounding_box_centre, read_wheel_surface, unrolled_pressure
+from wheelsim_post.vtk import (
+    bounding_box_centre,
+    read_wheel_surface,
+    unrolled_pressure,
+    unrolled_triangles,
+)
 
 CENTRE = (0.5, 0.01, 0.2)
 
@@ -22,8 +27,12 @@ class SnapshotMapsTest(TempDirTestCase):
         with h5py.File(self.run_path, "w") as f:
             synthetic.write_header(f)
             for step in (100, 200):
-                synthetic.write_snapshot(f, "sinkage", step, step * 1e-3, grid, "m", 0.0, -0.1, 0.02)
-            synthetic.write_snapshot(f, "pressure", 200, 0.2, grid * 1e6, "Pa", 0.0, -0.1, 0.02)
+                synthetic.write_snapshot(
+                    f, "sinkage", step, step * 1e-3, grid, "m", 0.0, -0.1, 0.02
+                )
+            synthetic.write_snapshot(
+                f, "pressure", 200, 0.2, grid * 1e6, "Pa", 0.0, -0.1, 0.02
+            )
         self.out = self.path("maps")
 
     def maps(self, *args):
@@ -37,10 +46,16 @@ class SnapshotMapsTest(TempDirTestCase):
         self.assertTrue(is_png(os.path.join(self.out, files[0])))
 
     def test_step_time_and_all(self):
-        self.assertEqual(self.maps("--field", "sinkage", "--step", "100")[1], ["sinkage_000000100.png"])
+        self.assertEqual(
+            self.maps("--field", "sinkage", "--step", "100")[1],
+            ["sinkage_000000100.png"],
+        )
         self.tearDown()
         self.setUp()
-        self.assertEqual(self.maps("--field", "sinkage", "--time", "0.09")[1], ["sinkage_000000100.png"])
+        self.assertEqual(
+            self.maps("--field", "sinkage", "--time", "0.09")[1],
+            ["sinkage_000000100.png"],
+        )
         self.tearDown()
         self.setUp()
         self.assertEqual(
@@ -67,14 +82,18 @@ class VtkMapsTest(TempDirTestCase):
         pressure = np.zeros(len(triangles))
         pressure[[0, 2, 4]] = 1000.0
         self.vtk_path = self.path("wheel_surface_2000.vtk")
-        synthetic.write_vtk(self.vtk_path, points, triangles, pressure, step=2000, time=0.25)
+        synthetic.write_vtk(
+            self.vtk_path, points, triangles, pressure, step=2000, time=0.25
+        )
 
     def test_reader(self):
         surface = read_wheel_surface(self.vtk_path)
         self.assertEqual((surface.step, surface.time), (2000, 0.25))
         self.assertEqual(surface.points.shape, (72, 3))
         self.assertEqual(surface.triangles.shape, (72, 3))
-        self.assertEqual(sorted(surface.cell_data), ["contact_count", "contact_pressure"])
+        self.assertEqual(
+            sorted(surface.cell_data), ["contact_count", "contact_pressure"]
+        )
         np.testing.assert_allclose(bounding_box_centre(surface), CENTRE, atol=1e-9)
 
     def test_unrolled_pressure_lies_below_the_axle(self):
@@ -87,11 +106,27 @@ class VtkMapsTest(TempDirTestCase):
         expected[0, 18:21] = 1000.0  # y < 0; bins 0..10°, 10..20°, 20..30°
         np.testing.assert_allclose(grid, expected)
         # one axial bin: two triangles of equal area per bin, one loaded → area mean 500 Pa
-        one = unrolled_pressure(surface, np.array(CENTRE), angle_edges, np.array([-0.03, 0.03]))
+        one = unrolled_pressure(
+            surface, np.array(CENTRE), angle_edges, np.array([-0.03, 0.03])
+        )
         np.testing.assert_allclose(one[0, 18:21], 500.0)
         # a bin without triangles is NaN, not 0
-        fine = unrolled_pressure(surface, np.array(CENTRE), np.linspace(-180, 180, 721), y_edges)
+        fine = unrolled_pressure(
+            surface, np.array(CENTRE), np.linspace(-180, 180, 721), y_edges
+        )
         self.assertTrue(np.isnan(fine).any())
+
+    def test_unrolled_triangles_keep_their_width_across_the_seam(self):
+        surface = read_wheel_surface(self.vtk_path)
+        polygons = unrolled_triangles(surface, np.array(CENTRE))
+        self.assertEqual(polygons.shape, (72, 3, 2))
+        width = np.ptp(polygons[..., 0], axis=1)
+        # every triangle spans one 10° segment, also 170..190° (segment 17, across ±180°)
+        np.testing.assert_allclose(width, 10.0, atol=1e-6)
+        np.testing.assert_allclose(
+            sorted(polygons[0, :, 0]), [0.0, 0.0, 10.0], atol=1e-6
+        )
+        np.testing.assert_allclose(np.ptp(polygons[..., 1], axis=1), 0.05, atol=1e-9)
 
     def test_cli_writes_one_png_per_file(self):
         second = self.path("wheel_surface_3000.vtk")
@@ -105,12 +140,29 @@ class VtkMapsTest(TempDirTestCase):
             ["wheel_surface_2000_pressure.png", "wheel_surface_3000_pressure.png"],
         )
         self.assertTrue(is_png(os.path.join(out, "wheel_surface_2000_pressure.png")))
+        binned = self.path("binned")
+        result = run_cli(
+            "maps",
+            "--vtk",
+            self.vtk_path,
+            "--png-dir",
+            binned,
+            "--binned",
+            "--angle-bin",
+            "5",
+            "--axial-bins",
+            "4",
+        )
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertTrue(is_png(os.path.join(binned, "wheel_surface_2000_pressure.png")))
 
     def test_malformed_vtk_names_the_file(self):
         bad = self.path("bad.vtk")
         with open(self.vtk_path) as src, open(bad, "w") as dst:
             dst.write(src.read().replace("SCALARS contact_pressure", "SCALARS other"))
-        with self.assertRaisesRegex(PostError, "bad.vtk.*no cell data 'contact_pressure'"):
+        with self.assertRaisesRegex(
+            PostError, "bad.vtk.*no cell data 'contact_pressure'"
+        ):
             read_wheel_surface(bad)
         result = run_cli("maps", "--vtk", bad, "--png-dir", self.path("png"))
         self.assertEqual(result.returncode, 2)

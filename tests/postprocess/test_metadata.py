@@ -22,7 +22,9 @@ class MetadataTest(TempDirTestCase):
         path = self.path(name)
         with h5py.File(path, "w") as f:
             synthetic.write_header(f)
-            synthetic.write_parameter(f, "rig_config", synthetic.rig_config(slip, "scm"))
+            synthetic.write_parameter(
+                f, "rig_config", synthetic.rig_config(slip, "scm")
+            )
             for key, value in params.items():
                 synthetic.write_parameter(f, key, value)
         return path
@@ -41,14 +43,20 @@ class MetadataTest(TempDirTestCase):
             slip=0.1,
         )
         m = metadata(path)
-        self.assertEqual((m.wheel, m.soil, m.terrain, m.target_slip), ("W1", "GRC-1", "dem", 0.35))
+        self.assertEqual(
+            (m.wheel, m.soil, m.terrain, m.target_slip), ("W1", "GRC-1", "dem", 0.35)
+        )
 
     def test_dem_fallbacks(self):
         path = self.write(
-            "b.h5", {"wheel/source": "mesh ../meshes/lugged_12.stl", "bed/soil": "ci_sand"}
+            "b.h5",
+            {"wheel/source": "mesh ../meshes/lugged_12.stl", "bed/soil": "ci_sand"},
         )
         m = metadata(path)
-        self.assertEqual((m.wheel, m.soil, m.terrain, m.target_slip), ("lugged_12", "ci_sand", "scm", 0.2))
+        self.assertEqual(
+            (m.wheel, m.soil, m.terrain, m.target_slip),
+            ("lugged_12", "ci_sand", "scm", 0.2),
+        )
 
     def test_mesh_file_and_scm_soil_fallbacks(self):
         path = self.write(
@@ -66,14 +74,20 @@ class MetadataTest(TempDirTestCase):
         path = self.path("d.h5")
         with h5py.File(path, "w") as f:
             synthetic.write_header(f)
-            synthetic.write_parameter(f, "rig_config", '[carriage]\nmode = "constant_load"\n')
+            synthetic.write_parameter(
+                f, "rig_config", '[carriage]\nmode = "constant_load"\n'
+            )
         m = metadata(path)
         self.assertTrue(math.isnan(m.target_slip))
-        self.assertEqual((m.wheel, m.soil, m.terrain), ("unknown", "unknown", "unknown"))
+        self.assertEqual(
+            (m.wheel, m.soil, m.terrain), ("unknown", "unknown", "unknown")
+        )
 
     def test_bad_sweep_slip(self):
         path = self.write("e.h5", {"sweep/slip": "high"})
-        with self.assertRaisesRegex(PostError, "sweep/slip is 'high', expected a number"):
+        with self.assertRaisesRegex(
+            PostError, "sweep/slip is 'high', expected a number"
+        ):
             metadata(path)
 
     def test_group_by(self):

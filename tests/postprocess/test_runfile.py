@@ -27,7 +27,9 @@ class ObservableTest(TempDirTestCase):
         path = self.path("torn.h5")
         with h5py.File(path, "w") as f:
             synthetic.write_header(f)
-            synthetic.write_observable(f, "sinkage", [0, 1, 2], [0.0, 0.1, 0.2], [1, 2, 3], "m")
+            synthetic.write_observable(
+                f, "sinkage", [0, 1, 2], [0.0, 0.1, 0.2], [1, 2, 3], "m"
+            )
             del f["observables/sinkage/value"]
             f["observables/sinkage"].create_dataset("value", data=[1.0, 2.0])
         with RunFile(path) as run:
@@ -68,12 +70,16 @@ class SnapshotTest(TempDirTestCase):
             synthetic.write_header(f)
             value = np.arange(12.0).reshape(3, 4)
             for step in (200, 100):
-                synthetic.write_snapshot(f, "sinkage", step, step * 1e-3, value, "m", 1.0, -0.5, 0.1)
+                synthetic.write_snapshot(
+                    f, "sinkage", step, step * 1e-3, value, "m", 1.0, -0.5, 0.1
+                )
         with RunFile(path) as run:
             self.assertEqual(run.snapshot_fields(), ["sinkage"])
             self.assertEqual(run.snapshot_steps("sinkage"), [100, 200])
             snap = run.snapshot("sinkage", 200)
-            with self.assertRaisesRegex(PostError, "no snapshot '/terrain/sinkage/000000300'"):
+            with self.assertRaisesRegex(
+                PostError, "no snapshot '/terrain/sinkage/000000300'"
+            ):
                 run.snapshot("sinkage", 300)
         self.assertEqual(snap.step, 200)
         self.assertAlmostEqual(snap.time, 0.2)

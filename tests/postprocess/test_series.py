@@ -15,11 +15,21 @@ class SeriesTest(TempDirTestCase):
         self.run_path = self.path("run.h5")
         with h5py.File(self.run_path, "w") as f:
             synthetic.write_header(f)
-            synthetic.write_observable(f, "phase", [0, 1, 2, 3], [0, 0.1, 0.2, 0.3], [0, 1, 2, 3], "1")
-            synthetic.write_observable(f, "drawbar_pull", [0, 1, 2, 3], [0, 0.1, 0.2, 0.3], [1, 2, 3, 4], "N")
+            synthetic.write_observable(
+                f, "phase", [0, 1, 2, 3], [0, 0.1, 0.2, 0.3], [0, 1, 2, 3], "1"
+            )
+            synthetic.write_observable(
+                f, "drawbar_pull", [0, 1, 2, 3], [0, 0.1, 0.2, 0.3], [1, 2, 3, 4], "N"
+            )
             # half the cadence, plus a torn row
             synthetic.write_observable(
-                f, "sinkage", [0, 2], [0, 0.2], [0.01, 0.03], "m", crashed_rows=([0.3], [9.0])
+                f,
+                "sinkage",
+                [0, 2],
+                [0, 0.2],
+                [0.01, 0.03],
+                "m",
+                crashed_rows=([0.3], [9.0]),
             )
             synthetic.write_observable(
                 f, "wheel/position", [1, 3], [0.1, 0.3], [[1, 2, 3], [4, 5, 6]], "m"
@@ -28,16 +38,28 @@ class SeriesTest(TempDirTestCase):
     def test_csv_outer_join_on_step(self):
         out = self.path("series.csv")
         result = run_cli(
-            "series", self.run_path, "--observables", "drawbar_pull,sinkage,wheel/position",
-            "--csv", out,
+            "series",
+            self.run_path,
+            "--observables",
+            "drawbar_pull,sinkage,wheel/position",
+            "--csv",
+            out,
         )
         self.assertEqual(result.returncode, 0, result.stderr)
         with open(out) as f:
             rows = list(csv.reader(line for line in f if not line.startswith("#")))
         self.assertEqual(
             rows[0],
-            ["step", "time_s", "drawbar_pull [N]", "sinkage [m]", "wheel/position_x [m]",
-             "wheel/position_y [m]", "wheel/position_z [m]", "phase [1]"],
+            [
+                "step",
+                "time_s",
+                "drawbar_pull [N]",
+                "sinkage [m]",
+                "wheel/position_x [m]",
+                "wheel/position_y [m]",
+                "wheel/position_z [m]",
+                "phase [1]",
+            ],
         )
         self.assertEqual(len(rows), 5)  # steps 0..3; the step -1 row is dropped
         self.assertEqual(rows[2], ["1", "0.1", "2", "", "1", "2", "3", "1"])
@@ -50,7 +72,14 @@ class SeriesTest(TempDirTestCase):
         self.assertTrue(is_png(png))
 
     def test_unknown_observable_is_named(self):
-        result = run_cli("series", self.run_path, "--observables", "torque", "--png", self.path("x.png"))
+        result = run_cli(
+            "series",
+            self.run_path,
+            "--observables",
+            "torque",
+            "--png",
+            self.path("x.png"),
+        )
         self.assertEqual(result.returncode, 2)
         self.assertIn("has no observable 'torque'", result.stderr)
         self.assertIn("drawbar_pull", result.stderr)  # lists what is available

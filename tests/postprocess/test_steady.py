@@ -41,7 +41,9 @@ class WindowTest(TempDirTestCase):
     def test_drawbar_pull_mean_and_std_are_analytic(self):
         mean, std = stats(self.run_path)["drawbar_pull"]
         self.assertAlmostEqual(mean, 100.0, delta=1e-9)
-        self.assertAlmostEqual(std, syn.DP_AMPLITUDE * math.sqrt(syn.SIN2_MEAN), delta=1e-9)
+        self.assertAlmostEqual(
+            std, syn.DP_AMPLITUDE * math.sqrt(syn.SIN2_MEAN), delta=1e-9
+        )
 
     def test_time_and_fraction_windows_agree(self):
         by_time = stats(self.run_path, make_window(0.5, 1.0, None))
@@ -71,7 +73,9 @@ class WindowTest(TempDirTestCase):
         m2 = syn.SIN2_MEAN
         self.assertAlmostEqual(s["slip"][0], 0.2, delta=1e-12)
         self.assertAlmostEqual(
-            s["slip"][1], syn.V_AMPLITUDE / (syn.OMEGA * syn.R_EFF) * math.sqrt(m2), delta=1e-12
+            s["slip"][1],
+            syn.V_AMPLITUDE / (syn.OMEGA * syn.R_EFF) * math.sqrt(m2),
+            delta=1e-12,
         )
         self.assertAlmostEqual(s[SLIP_OF_MEANS], 0.2, delta=1e-12)
         # η of the means: DP v / (T ω) with the window means
@@ -79,7 +83,9 @@ class WindowTest(TempDirTestCase):
         # mean of the per-step η: mean(DP v) = 100 v0 + 20·0.01·mean(u²)
         eta_mean = (100 * v0 + syn.DP_AMPLITUDE * syn.V_AMPLITUDE * m2) / (60 * 2)
         self.assertAlmostEqual(s["tractive_efficiency"][0], eta_mean, delta=1e-12)
-        self.assertNotAlmostEqual(s["tractive_efficiency"][0], s[EFFICIENCY_OF_MEANS], places=6)
+        self.assertNotAlmostEqual(
+            s["tractive_efficiency"][0], s[EFFICIENCY_OF_MEANS], places=6
+        )
         self.assertAlmostEqual(s["traction_force"][0], 60 / syn.R_EFF, delta=1e-9)
         self.assertAlmostEqual(s["traction_force"][1], 0.0, delta=1e-9)
         self.assertAlmostEqual(s["driving_torque"][0], 60.0, delta=1e-9)
@@ -113,7 +119,9 @@ class WindowTest(TempDirTestCase):
     def test_missing_required_observable_is_an_error(self):
         other = self.path("no_dp.h5")
         syn.write_rig_run(other, omit=("drawbar_pull",))
-        with self.assertRaisesRegex(PostError, "no_dp.h5' has no observable 'drawbar_pull'"):
+        with self.assertRaisesRegex(
+            PostError, "no_dp.h5' has no observable 'drawbar_pull'"
+        ):
             stats(other)
 
     def test_window_after_the_data_is_an_error(self):

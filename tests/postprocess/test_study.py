@@ -25,14 +25,22 @@ class StudyTest(TempDirTestCase):
         ):
             path = self.path(f"{wheel}_{len(self.runs)}.h5")
             syn.write_rig_run(
-                path, slip=slip, dp_mean=dp, sweep={"wheel": wheel, "soil": soil, "slip": str(slip)}
+                path,
+                slip=slip,
+                dp_mean=dp,
+                sweep={"wheel": wheel, "soil": soil, "slip": str(slip)},
             )
             self.runs.append(path)
         self.out = self.path("study")
 
     def test_table_layout(self):
         result = run_cli(
-            "study", *self.runs, "--quantity", "drawbar_pull,sinkage", "--out-dir", self.out
+            "study",
+            *self.runs,
+            "--quantity",
+            "drawbar_pull,sinkage",
+            "--out-dir",
+            self.out,
         )
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual(
@@ -60,11 +68,23 @@ class StudyTest(TempDirTestCase):
 
     def test_two_runs_in_one_cell_are_an_error(self):
         twin = self.path("twin.h5")
-        syn.write_rig_run(twin, slip=0.3, sweep={"wheel": "W2", "soil": "S1", "slip": "0.3"})
-        result = run_cli("study", *self.runs, twin, "--quantity", "drawbar_pull", "--out-dir", self.out)
+        syn.write_rig_run(
+            twin, slip=0.3, sweep={"wheel": "W2", "soil": "S1", "slip": "0.3"}
+        )
+        result = run_cli(
+            "study",
+            *self.runs,
+            twin,
+            "--quantity",
+            "drawbar_pull",
+            "--out-dir",
+            self.out,
+        )
         self.assertEqual(result.returncode, 2)
         self.assertIn("W2_0.h5' and '", result.stderr)
-        self.assertIn("twin.h5' both have soil S1, wheel W2, target slip 0.3", result.stderr)
+        self.assertIn(
+            "twin.h5' both have soil S1, wheel W2, target slip 0.3", result.stderr
+        )
 
 
 if __name__ == "__main__":
