@@ -143,11 +143,12 @@ def _deep_merge(base, over):
     return out
 
 
-def _check_rig_tables(ctx, doc, where):
-    """The rig tables of `doc` (base file or [override]); relative paths made absolute."""
+def _check_rig_tables(ctx, doc, where, check_keys=True):
+    """The rig tables of `doc` (base file or [override]); relative paths made absolute. Keys are
+    checked for [override] only: the base is a rig config that wheel-rig checks itself."""
     if not isinstance(doc, dict):
         raise ctx.err(f"{where} must be a table of rig-config tables")
-    for t, v in doc.items():
+    for t, v in (doc.items() if check_keys else ()):
         name = f"{where}.{t}" if where else t
         if t not in RIG_KEYS:
             raise ctx.err(f"unknown table '{name}'{_suggest(t, list(RIG_KEYS))}")
@@ -354,7 +355,7 @@ def load(path, repo, build_dir):
     if "base" in doc:
         bpath = ctx.path_of(doc["base"], "base")
         bctx = _Ctx(bpath.resolve())
-        rig = _check_rig_tables(bctx, _load_toml(bpath, ctx), "")
+        rig = _check_rig_tables(bctx, _load_toml(bpath, ctx), "", check_keys=False)
     if "override" in doc:
         rig = _deep_merge(rig, _check_rig_tables(ctx, copy.deepcopy(doc["override"]), "override"))
     if not rig:
@@ -367,8 +368,9 @@ def load(path, repo, build_dir):
     if mode is not None and mode != "imposed_slip":
         raise ctx.err(f"the base rig config has carriage.mode = \"{mode}\"; a slip sweep needs "
                       "\"imposed_slip\"")
-    if terrain == "scm" and "soil" in rig.get("terrain", {}):
-        raise ctx.err("terrain.soil is set per point from 'soils'; remove it from the base/override")
+    if "soil" in doc.get("override", {}).get("terrain", {}):
+        raise ctx.err("override.terrain.soil: the soil is set per point from 'soils'")
+    rig.get("terrain", {}).pop("soil", None)  # a base's soil is replaced per point
 
     sweep = Sweep(path=path, terrain=terrain, description=description,
                   wheels=_wheels(ctx, doc["wheels"], terrain, build_dir),
