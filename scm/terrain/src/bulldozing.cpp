@@ -32,8 +32,7 @@ void remove_soil(NodeState &n, double amount) {
 
 int bulldoze(StepWindow &w, TileGrid &grid, const std::vector<ContactPatch> &patches,
              const std::vector<double> &plastic_flow, const BulldozingConstants &c,
-             const std::function<bool(std::int64_t, std::int64_t)> &in_domain,
-             double &max_level) {
+             const Eigen::Vector4d *domain_m, double delta, double &max_level) {
   const int nx = w.nx(), size = w.size();
   auto neighbours = [&](int cell, int out[4]) {
     const int ci = cell % nx;
@@ -42,7 +41,13 @@ int bulldoze(StepWindow &w, TileGrid &grid, const std::vector<ContactPatch> &pat
     out[2] = cell - nx >= 0 ? cell - nx : -1;
     out[3] = cell + nx < size ? cell + nx : -1;
   };
-  auto is_soil = [&](int cell) { return in_domain(w.i_of(cell), w.j_of(cell)); };
+  auto is_soil = [&](int cell) {
+    if (!domain_m)
+      return true;
+    const double x = w.i_of(cell) * delta, y = w.j_of(cell) * delta;
+    const Eigen::Vector4d &d = *domain_m;
+    return x >= d[0] && x <= d[1] && y >= d[2] && y <= d[3];
+  };
 
   // (1) Spread each patch's plastic flow over its boundary.
   std::vector<int> domain; // boundary first, then the rings, in discovery order

@@ -9,7 +9,7 @@
 
 #include "contact_patches.h"
 
-#include <functional>
+#include <Eigen/Core>
 #include <vector>
 
 namespace wheelsim::scm::detail {
@@ -21,12 +21,11 @@ struct BulldozingConstants {
   int rings = 5;
 };
 
-/// plastic_flow[c]: plastic sinkage increment of contact cell c this step [m]. in_domain(i, j):
-/// whether node (i, j) is soil (domain bounds). max_level: running upper bound of node levels,
-/// raised as soil piles up. Returns the number of nodes in the erosion domain.
+/// plastic_flow[c]: plastic sinkage increment of contact cell c this step [m]. domain_m: soil
+/// bounds (x_min, x_max, y_min, y_max) [m] or nullptr; delta_m: grid spacing. max_level: running
+/// upper bound of node levels, raised as soil piles up. Returns the erosion domain's node count.
 int bulldoze(StepWindow &window, TileGrid &grid, const std::vector<ContactPatch> &patches,
              const std::vector<double> &plastic_flow, const BulldozingConstants &c,
-             const std::function<bool(std::int64_t, std::int64_t)> &in_domain,
-             double &max_level);
+             const Eigen::Vector4d *domain_m, double delta_m, double &max_level);
 
 } // namespace wheelsim::scm::detail

@@ -206,7 +206,7 @@ ScmContact ScmTerrain::Impl::advance(const BodyState &state, double dt) {
   if (settings.bulldozing.enabled && !contact_cells.empty())
     timings.erosion_nodes =
         bulldoze(window, grid, patches, plastic_flow, bulldozing,
-                 [this](std::int64_t i, std::int64_t j) { return in_domain(i, j); }, max_level);
+                 settings.domain_m ? &*settings.domain_m : nullptr, delta, max_level);
   timings.bulldozing_ms = ms(t3, clock::now());
 
   // Bounds of touched nodes: contact nodes and the reach of their bulldozing.

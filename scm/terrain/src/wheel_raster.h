@@ -2,8 +2,9 @@
 // triangles, transformed to W, are rasterised onto the nodes they cover in xy; the height at a
 // node is the exact barycentric interpolation of the triangle's vertex heights (double
 // precision), the lowest over all triangles is kept. Triangles are culled in the wheel frame B:
-// they are binned by the angle of their centroid about the axle (B's y axis) and a bin is skipped
-// when its bounding box cannot reach below the highest soil level.
+// they are binned by the angle of their centroid about the axle (B's y axis) and, inside each
+// angular sector, by their largest distance from the axle; a sector or bin is skipped when its
+// bounding box cannot reach below the highest soil level.
 #pragma once
 
 #include "step_window.h"
@@ -22,7 +23,8 @@ namespace wheelsim::scm::detail {
 
 class WheelRasteriser {
 public:
-  explicit WheelRasteriser(const geometry::TriangleMesh &mesh_B, int bins = 256);
+  explicit WheelRasteriser(const geometry::TriangleMesh &mesh_B, int sectors = 256,
+                           int bands = 8);
 
   /// Rasterises the wheel at pose (R_WB, p_WBo_W) onto a new window of `window` (nodes at
   /// spacing delta_m), keeping only triangles that reach below z_cut_m. The window covers the
@@ -35,19 +37,33 @@ public:
   int triangles_rasterised() const { return static_cast<int>(step_normal_W_.size()); }
 
 private:
+  struct Box {
+    Eigen::Vector3d lo, hi; ///< bounding box in B [m]
+    /// Lowest value of up_B · v over the box.
+    double lowest(const Eigen::Vector3d &up_B) const;
+    void grow(const Eigen::Vector3d &v);
+  };
   struct Bin {
-    Eigen::Vector3d lo, hi;     ///< bounding box of the bin's triangles in B [m]
-    std::vector<int> triangles; ///< indices into tri_
+    Box box;
+    int begin = 0, end = 0; ///< range in tri_
+  };
+  struct Sector {
+    Box box;
+    std::vector<Bin> bands;
   };
   struct Triangle {
-    std::array<Eigen::Vector3d, 3> v_B;
-    Eigen::Vector3d n_B; ///< outward unit normal in B
+    std::array<int, 3> v; ///< vertex indices
+    Eigen::Vector3d n_B;  ///< outward unit normal in B
   };
 
-  std::vector<Triangle> tri_;
-  std::vector<Bin> bins_;
-  // Per step: the kept triangles in W.
-  std::vector<std::array<Eigen::Vector3d, 3>> step_v_W_;
+  std::vector<Eigen::Vector3d> vertices_B_;
+  std::vector<Triangle> tri_; ///< sorted by sector, then band
+  std::vector<Sector> sectors_;
+  // Per step: vertices transformed to W on first use (stamp == step_), the normals (W) of the
+  // triangles kept.
+  std::vector<Eigen::Vector3d> vertices_W_;
+  std::vector<unsigned> stamp_;
+  unsigned step_ = 0;
   std::vector<Eigen::Vector3d> step_normal_W_;
 };
 

@@ -71,7 +71,7 @@ struct ScmStepTimings {
   double node_law_ms = 0.0;      ///< elastic/plastic law, shear and force sums
   double patches_ms = 0.0;       ///< contact flood fill and b = 2A/L
   double bulldozing_ms = 0.0;    ///< displaced volume to the rim + erosion sweeps
-  int triangles_rasterised = 0;  ///< triangles that survived culling
+  int triangles_rasterised = 0;  ///< triangles that covered at least one node
   int erosion_nodes = 0;         ///< nodes in the erosion domain
 };
 
