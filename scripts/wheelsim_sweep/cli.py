@@ -27,7 +27,8 @@ def main(argv=None):
     ap.add_argument("--out-dir", metavar="DIR",
                     help="output directory (default: <repo>/runs/sweeps/<config name>)")
     ap.add_argument("--dry-run", action="store_true",
-                    help="list the points, whether each is finished, and the commands; write nothing")
+                    help="list the points, whether each is finished, and the commands; "
+                         "write nothing")
     ap.add_argument("--force", action="store_true", help="re-run finished points too")
     ap.add_argument("--build-dir", metavar="D",
                     help="build directory (default: $WHEELSIM_BUILD_DIR, else <repo>/build)")
@@ -41,9 +42,9 @@ def main(argv=None):
         return 2
     if a.jobs is not None and a.jobs < 1:
         ap.error(f"--jobs must be >= 1, got {a.jobs}")
-    exe = (REPO / "scripts" / "wheel-cosim") if sweep.terrain == "dem" else build / "bin" / "wheel-rig"
-    needed = [exe] + ([build / "bin" / "wheel-rig", build / "bin" / "liggghts-wheel"]
-                      if sweep.terrain == "dem" else [])
+    needed = [build / "bin" / "wheel-rig"]
+    if sweep.terrain == "dem":
+        needed += [REPO / "scripts" / "wheel-cosim", build / "bin" / "liggghts-wheel"]
     for f in needed:
         if not os.access(f, os.X_OK) and not a.dry_run:
             print(f"wheel-sweep: error: {f} not found or not executable (build it, or pass "

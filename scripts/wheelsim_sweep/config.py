@@ -281,7 +281,8 @@ def _soils(ctx, entries, terrain, repo):
                 if "soil" in e:
                     soil_in = repo / "inputs" / "soils" / f"{e['soil']}.in"
                     if not soil_in.is_file():
-                        raise ctx.err(f"{key}.soil: no DEM soil '{e['soil']}' ({soil_in} not found)")
+                        raise ctx.err(f"{key}.soil: no DEM soil '{e['soil']}' "
+                                      f"({soil_in} not found)")
                     label = ctx.label(e.get("name", e["soil"]),
                                       f"{key}.name" if "name" in e else f"{key}.soil")
                     out.append(Soil(label, restart=restart, recipe=recipe))

@@ -14,7 +14,6 @@ import os
 import shutil
 import signal
 import subprocess
-import sys
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
@@ -183,7 +182,6 @@ class Runner:
         d.mkdir(parents=True, exist_ok=True)
         for name in (DONE_FILE, RUN_FILE, PART_FILE):
             (d / name).unlink(missing_ok=True)
-        text = self.rig_text(p)
         header = (f"written by wheel-sweep from {self.sweep.path}\npoint {p.reldir}: wheel "
                   f"{p.wheel.label}, soil {p.soil.label}, slip {p.slip!r}, terrain "
                   f"{self.sweep.terrain}\n")
@@ -284,8 +282,9 @@ class Runner:
             t0 = time.monotonic()
             rc = self._run_child(cmd, bdir / "soilbin.log", cwd=bdir)
             if rc != 0 or not part.is_file() or not Path(f"{part}.vars").is_file():
+                log = bdir / "soilbin.log"
                 raise RuntimeError(f"bed '{soil.label}': in.soilbin failed (exit {rc}): "
-                                   f"{_last_error(bdir / 'soilbin.log')} [log {bdir / 'soilbin.log'}]")
+                                   f"{_last_error(log)} [log {log}]")
             _write_atomic(recipe_file, recipe_text)
             os.replace(f"{part}.vars", f"{restart}.vars")
             os.replace(part, restart)

@@ -25,6 +25,9 @@ import numpy as np
 SKIP = 77
 SLIPS = [0.1, 0.25, 0.5]
 FRICTION = 0.5
+# the one soil: on the flat ground with regularized friction DP = mu W once v_j >> v_c
+SOIL = (f'{{ name = "mu05", friction = {FRICTION}, friction_model = "regularized", '
+        'slip_velocity_scale = 1.0e-3 }')
 DURATION_SIGTERM = 400.0  # s simulated: a point takes ~2 s of wall time (1e-4 s steps)
 
 
@@ -69,7 +72,7 @@ def sweep_config(path, build, duration=0.2, every=10, slips=SLIPS, extra=""):
 terrain = "flat"
 base = "base.toml"
 wheels = ["wheel1", {{ name = "small", mesh = "{build}/meshes/test_small.stl" }}]
-soils = [{{ name = "mu05", friction = {FRICTION}, friction_model = "regularized", slip_velocity_scale = 1.0e-3 }}]
+soils = [{SOIL}]
 slips = {json.dumps(slips)}
 {extra}""")
 
@@ -270,7 +273,8 @@ def case_bad_config(a, work):
         elif name == "terrain":
             text = text.replace('"flat"', '"sand"')
         elif name == "scm_soils_missing":
-            text = 'terrain = "scm"\nwheels = ["wheel1"]\nslips = [0.1]\n[override.run]\ndt = 1e-3\n'
+            text = ('terrain = "scm"\nwheels = ["wheel1"]\nslips = [0.1]\n'
+                    '[override.run]\ndt = 1e-3\n')
         elif name == "dem_recipe_key":
             text = ('terrain = "dem"\nwheels = ["wheel1"]\nslips = [0.1]\n'
                     'soils = [{ soil = "ci", bin_lenght = 0.3 }]\n[override.run]\ndt = 1e-3\n')
