@@ -1,5 +1,5 @@
 // wheel-rig: the multibody test rig process. Reads a rig config (TOML, docs/rig-config.md), runs
-// the rig on its terrain — in-process (flat) or remote (dem: LIGGGHTS with fix wheel/cosim
+// the rig on its terrain — in-process (flat; scm: the SCM soft soil, docs/scm.md) or remote (dem: LIGGGHTS with fix wheel/cosim
 // 'motion coupled', over ZeroMQ, docs/coupling-protocol.md) — and writes the HDF5 run file
 // (docs/hdf5-layout.md), with a progress line on the terminal.
 //
@@ -11,12 +11,14 @@
 // the file keeps what was flushed (every [output] flush_interval recorded steps).
 #include "progress.h"
 #include "run_recorder.h"
+#include "terrain_snapshots.h"
 
 #include "coupler/coupling.h"
 #include "coupler/transport.h"
 #include "wheelsim/rig/flat_ground.h"
 #include "wheelsim/rig/rig_config.h"
 #include "wheelsim/rig/rig_simulation.h"
+#include "wheelsim/rig/scm_ground.h"
 #include "wheelsim/run_file/run_file.h"
 #include "wheelsim_version.h"
 
@@ -25,6 +27,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -72,6 +75,38 @@ struct Sink {
 void run_flat(rig::RigSimulation &sim, Sink &sink) {
   rig::FlatGround ground = rig::make_flat_ground(sim.config(), sim.wheel());
   sim.run(ground, [&sink](const rig::RigOutputs &o) { sink(o, 1.0); });
+}
+
+/// The in-process SCM soft soil: records the soil and settings in /parameters and writes the
+/// terrain snapshots.
+void run_scm(rig::RigSimulation &sim, Sink &sink, runfile::RunFile &file) {
+  const rig::RigConfig &config = sim.config();
+  rig::ScmGround ground(config, sim.wheel());
+  const scm::SoilParameters &soil = ground.terrain().soil();
+  const scm::ScmSettings &settings = ground.terrain().settings();
+  std::ifstream soil_in(config.terrain.scm.soil, std::ios::binary);
+  std::ostringstream soil_text;
+  soil_text << soil_in.rdbuf();
+  file.set_parameter("terrain/soil_file", config.terrain.scm.soil);
+  file.set_parameter_text("terrain/soil_file_text", soil_text.str());
+  file.set_parameter("terrain/soil_name", soil.name);
+  file.set_parameter("terrain/soil/Bekker_n", soil.Bekker_n, "1");
+  file.set_parameter("terrain/soil/Bekker_Kc", soil.Bekker_Kc, "N/m^(n+1)");
+  file.set_parameter("terrain/soil/Bekker_Kphi", soil.Bekker_Kphi, "N/m^(n+2)");
+  file.set_parameter("terrain/soil/Mohr_cohesion", soil.Mohr_cohesion, "Pa");
+  file.set_parameter("terrain/soil/Mohr_friction", soil.Mohr_friction, "rad");
+  file.set_parameter("terrain/soil/Janosi_shear", soil.Janosi_shear, "m");
+  file.set_parameter("terrain/soil/elastic_K", soil.elastic_K, "Pa/m");
+  file.set_parameter("terrain/soil/damping_R", soil.damping_R, "Pa s/m");
+  file.set_parameter("terrain/grid_spacing", settings.grid_spacing_m, "m");
+  file.set_parameter("terrain/normal_direction",
+                     settings.normal == scm::NormalDirection::vertical ? "vertical" : "surface");
+  rig::TerrainSnapshots snapshots(config.terrain.scm, file);
+  sim.run(ground, [&](const rig::RigOutputs &o) {
+    sink(o, ground.last_contact().contact_nodes);
+    snapshots.after_step(ground.terrain(), o.step, o.time_s);
+  });
+  snapshots.at_end(ground.terrain(), sim.step(), sim.time_s());
 }
 
 /// What moves the wheel in a DEM run: the rig (normal use) or a fixed twist (--kinematic).
@@ -272,9 +307,6 @@ int main(int argc, char **argv) {
     if (config.terrain.type == rig::TerrainType::dem && config.terrain.endpoint.empty())
       throw rig::RigConfigError(config_path +
                                 ": terrain.type = \"dem\" needs terrain.endpoint (or --endpoint)");
-    if (config.terrain.type == rig::TerrainType::scm)
-      throw rig::RigConfigError(config_path + ": terrain.type = \"scm\" is not available in this "
-                                              "build yet; use \"dem\" or \"flat\"");
   } catch (const std::exception &e) {
     std::fprintf(stderr, "wheel-rig: %s\n", e.what());
     return 2;
@@ -325,6 +357,8 @@ int main(int argc, char **argv) {
     } else if (config.terrain.type == rig::TerrainType::dem) {
       RigDriver driver(sim, sink);
       run_dem(config, driver, *file, quiet);
+    } else if (config.terrain.type == rig::TerrainType::scm) {
+      run_scm(sim, sink, *file);
     } else {
       run_flat(sim, sink);
     }

@@ -551,7 +551,7 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
       const auto soil = t.string("soil");
       if (!soil || soil->empty())
         p.fail(nullptr, "missing key 'terrain.soil': the SCM soil file, e.g. terrain.soil = "
-                        "\"inputs/scm/lete_sand.toml\"");
+                        "\"inputs/scm_soils/lete_sand.toml\"");
       ScmTerrainConfig &m = c.terrain.scm;
       m.soil = resolve(*soil, base_dir);
       m.grid_spacing_m =
