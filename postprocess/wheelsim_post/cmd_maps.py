@@ -43,8 +43,8 @@ def add_parser(subparsers):
     snap.add_argument(
         "--field",
         metavar="F,...",
-        help="comma-separated fields from height, sinkage, pressure, shear_stress "
-        "(default: all the file has)",
+        help="comma-separated fields, e.g. height, sinkage, plastic_sinkage, pressure, "
+        "shear_stress, shear_displacement (default: all the file has)",
     )
     which = snap.add_mutually_exclusive_group()
     which.add_argument("--step", type=int, metavar="N", help="the snapshot of step N")

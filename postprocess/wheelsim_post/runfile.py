@@ -12,8 +12,16 @@ import numpy as np
 
 from .errors import PostError
 
-#: Fields of SCM terrain snapshots (``/terrain/<field>/<step as 9 digits>``).
-SNAPSHOT_FIELDS = ("height", "sinkage", "pressure", "shear_stress")
+#: Fields of SCM terrain snapshots (``/terrain/<field>/<step as 9 digits>``), in display
+#: order; others the file has follow, sorted.
+SNAPSHOT_FIELDS = (
+    "height",
+    "sinkage",
+    "plastic_sinkage",
+    "pressure",
+    "shear_stress",
+    "shear_displacement",
+)
 
 
 @dataclasses.dataclass
@@ -157,9 +165,17 @@ class RunFile:
                 f"(available: {available})"
             )
         group = self._file[f"observables/{name}"]
-        step = np.asarray(group["step"][()], dtype=np.int64)
-        time = np.asarray(group["time"][()], dtype=np.float64)
-        value = np.asarray(group["value"][()], dtype=np.float64)
+        try:
+            step = np.asarray(group["step"][()], dtype=np.int64)
+            time = np.asarray(group["time"][()], dtype=np.float64)
+            value = np.asarray(group["value"][()], dtype=np.float64)
+        except (
+            OSError,
+            KeyError,
+        ) as exc:  # a dataset damaged by a crash inside a flush
+            raise PostError(
+                f"run file '{self.path}': observable '{name}' cannot be read ({exc})"
+            ) from None
         n = min(len(step), len(time), len(value))
         step, time, value = step[:n], time[:n], value[:n]
         written = step >= 0
