@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <ostream>
 #include <string>
 
 namespace wheelsim::scm {
@@ -75,6 +76,8 @@ struct Case {
   const char *soil;
   double W;
 };
+
+void PrintTo(const Case &c, std::ostream *os) { *os << c.soil << ", W = " << c.W << " N"; }
 
 class StandingSinkage : public ::testing::TestWithParam<Case> {};
 

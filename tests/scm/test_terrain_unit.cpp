@@ -107,6 +107,31 @@ TEST(Intersection, FlatPlateMatchesBekkerWithPatchWidth) {
   EXPECT_NEAR(p.values[0], sigma, 1e-9 * sigma);
 }
 
+TEST(MultiPass, PlasticSinkageAndYieldStay) {
+  // Plate pressed to 30 mm, lifted, pressed again: the second pass meets the compacted soil. At
+  // the same depth it reloads elastically to the old yield (no new plastic sinkage); deeper, it
+  // continues on the Bekker curve. Tolerance: round-off (1e-9 relative).
+  const double delta = 0.02;
+  SoilParameters soil = test::lete_sand();
+  soil.damping_R = 0.0;
+  ScmTerrain t(soil, no_bulldozing(delta), test::make_box(0.4, 0.4, 0.2));
+  const Eigen::Vector3d c(0.001, 0.003, 0.07);
+  const double f1 = t.advance(at(c), 1e-3).force_N.z();
+  const double zp1 = t.sample(Field::plastic_sinkage, 0, 0, 0, 0).values[0];
+  EXPECT_EQ(t.advance(at(c + Eigen::Vector3d(0, 0, 0.5)), 1e-3).contact_nodes, 0);
+  EXPECT_EQ(t.sample(Field::pressure, 0, 0, 0, 0).values[0], 0.0) << "σ is 0 off contact";
+  // Just above the plastic level: no contact.
+  EXPECT_EQ(t.advance(at(c + Eigen::Vector3d(0, 0, 0.03 - zp1 + 1e-6)), 1e-3).contact_nodes, 0);
+  const double f2 = t.advance(at(c), 1e-3).force_N.z();
+  EXPECT_NEAR(f2, f1, 1e-9 * f1) << "elastic reload to the yield pressure";
+  EXPECT_NEAR(t.sample(Field::plastic_sinkage, 0, 0, 0, 0).values[0], zp1, 1e-15);
+  const double f3 = t.advance(at(c - Eigen::Vector3d(0, 0, 0.01)), 1e-3).force_N.z();
+  const double side = 19 * delta, b = side / 2.0;
+  const double sigma = (soil.Bekker_Kc / b + soil.Bekker_Kphi) * std::pow(0.04, soil.Bekker_n);
+  EXPECT_NEAR(f3, 400 * delta * delta * sigma, 1e-9 * f3);
+  EXPECT_GT(t.sample(Field::plastic_sinkage, 0, 0, 0, 0).values[0], zp1 + 0.009);
+}
+
 TEST(Intersection, WheelAboveSoilTouchesNothingAndStoresNothing) {
   ScmTerrain t(test::lete_sand(), ScmSettings{}, test::make_cylinder(0.5, 0.3, 60));
   const ScmContact f = t.advance(at(Eigen::Vector3d(0, 0, 0.5001)), 1e-3);
