@@ -10,6 +10,7 @@ from .options import split_list
 from .plotting import panel_grid, save
 from .runfile import RunFile
 from matplotlib.collections import PolyCollection
+from mpl_toolkits.axes_grid1 import make_axes_locatable
 
 from .vtk import (
     bounding_box_centre,
@@ -123,7 +124,9 @@ def select_steps(steps, step, time, every, times_of):
 
 def plot_snapshot(snap, path):
     """An image of a snapshot with x/y [m] axes and a colour bar with its unit."""
-    fig, (ax,) = panel_grid(1, width=7.0, height=5.0)
+    left, right, bottom, top = snap.extent()
+    ratio = (top - bottom) / (right - left)
+    fig, (ax,) = panel_grid(1, width=8.0, height=min(max(6.5 * ratio + 1.2, 2.5), 9.0))
     image = ax.imshow(
         snap.value,
         origin="lower",
@@ -132,7 +135,8 @@ def plot_snapshot(snap, path):
         interpolation="nearest",
         cmap="viridis",
     )
-    bar = fig.colorbar(image, ax=ax)
+    bar_axes = make_axes_locatable(ax).append_axes("right", size="3%", pad=0.1)
+    bar = fig.colorbar(image, cax=bar_axes)
     unit = "-" if snap.unit == "1" else snap.unit
     bar.set_label(f"{snap.field} [{unit}]")
     ax.set_xlabel("x [m]")
