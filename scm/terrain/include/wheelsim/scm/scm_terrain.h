@@ -2,7 +2,7 @@
 // TERRAMECHANICS.md §4: a height grid of spacing Δ, Bekker pressure with elastic unloading (Ke)
 // and damping, patch width b = 2A/L, Janosi–Hanamoto shear on accumulated shear displacement,
 // Mohr–Coulomb, bulldozing with erosion, multi-pass memory. Where §4 is silent the choices are
-// those of Project Chrono's SCMTerrain (listed in docs/scm.md). Reference: docs/scm.md.
+// those of Project Chrono's SCMTerrain (listed in docs/scm-algorithm.md). Reference: docs/scm.md.
 //
 // Frames: world W (x forward, y left, z up; the undisturbed surface is z = surface_height_m),
 // wheel body B = the mesh frame (origin Bo at the wheel centre, axle +y).
@@ -114,7 +114,8 @@ public:
   /// undisturbed values).
   FieldMap sample(Field field, double x_min, double x_max, double y_min, double y_max) const;
 
-  /// Soil volume above (positive) / below the initial level summed over all nodes [m³].
+  /// Soil volume above (positive) / below the initial level summed over all nodes [m³],
+  /// including bulldozed soil still waiting to be placed (Chrono's "mass remainder").
   double volume_change_m3() const;
   /// Nodes currently stored (tiles allocated × nodes per tile).
   std::size_t stored_nodes() const;
