@@ -103,8 +103,8 @@ Result roll(const geometry::TriangleMesh &mesh, double R, double delta, double z
     r.nodes += c.contact_nodes;
     r.triangles += tm.triangles_rasterised;
   }
-  for (double *x : {&r.raster, &r.law, &r.patches, &r.bulldozing, &r.fz, &r.fx, &r.nodes,
-                    &r.triangles})
+  for (double *x :
+       {&r.raster, &r.law, &r.patches, &r.bulldozing, &r.fz, &r.fx, &r.nodes, &r.triangles})
     *x /= steps;
   r.ms_per_step = wall / steps;
   r.stored = t.stored_nodes();
@@ -112,16 +112,15 @@ Result roll(const geometry::TriangleMesh &mesh, double R, double delta, double z
 }
 
 void print(const char *wheel, double delta, double anchor_ms, double z_sink, const Result &r) {
-  std::printf("%-12s %4.0f mm  sinkage %5.1f mm  %7.3f ms/step  RTF %6.1f  ", wheel,
-              delta * 1e3, z_sink * 1e3, r.ms_per_step, kDt * 1e3 / r.ms_per_step);
+  std::printf("%-12s %4.0f mm  sinkage %5.1f mm  %7.3f ms/step  RTF %6.1f  ", wheel, delta * 1e3,
+              z_sink * 1e3, r.ms_per_step, kDt * 1e3 / r.ms_per_step);
   if (anchor_ms > 0)
     std::printf("vs Chrono %.3f  ", r.ms_per_step / anchor_ms);
   else
     std::printf("vs Chrono   -    ");
   std::printf("[raster %.3f, law %.3f, patches %.3f, bulldozing %.3f ms]  Fz %.0f N  Fx %.0f N  "
               "%.0f nodes  %.0f tris  %zu stored\n",
-              r.raster, r.law, r.patches, r.bulldozing, r.fz, r.fx, r.nodes, r.triangles,
-              r.stored);
+              r.raster, r.law, r.patches, r.bulldozing, r.fz, r.fx, r.nodes, r.triangles, r.stored);
 }
 
 } // namespace

@@ -1,7 +1,8 @@
 // Reference test (TERRAMECHANICS.md §2): a smooth rigid cylinder lowered quasi-statically
 // (displacement-controlled, ω = 0, v_x = 0) onto SCM settles, when the vertical soil force equals
 // the load W, at the sinkage of the full-chord Bekker integral
-//   W = b ∫_{−a}^{a} (kc/b' + kφ) z(x)^n dx,  z(x) = z0 − (R − sqrt(R² − x²)),  a = sqrt(2 R z0 − z0²),
+//   W = b ∫_{−a}^{a} (kc/b' + kφ) z(x)^n dx,  z(x) = z0 − (R − sqrt(R² − x²)),  a = sqrt(2 R z0 −
+//   z0²),
 // solved numerically here. b is the wheel width; b' in kc/b' is SCM's patch width 2A/L of the
 // contact rectangle 2a × b (the §2 formula's b' = b is printed for comparison). Tolerance 3 %.
 #include "scm_test_util.h"
@@ -22,7 +23,8 @@ namespace {
 constexpr double kR = 0.617, kWidth = 0.479; // smooth_1234 (TERRAMECHANICS.md §7)
 
 // W(z0) of the full chord; patch_b(a) gives b' for the Bekker kc term.
-double chord_load(const SoilParameters &s, double z0, const std::function<double(double)> &patch_b) {
+double chord_load(const SoilParameters &s, double z0,
+                  const std::function<double(double)> &patch_b) {
   const double a = std::sqrt(2.0 * kR * z0 - z0 * z0);
   const double k = s.Bekker_Kc / patch_b(a) + s.Bekker_Kphi;
   const int n = 20000; // midpoint rule; the integrand vanishes like (a − |x|)^n at the ends
@@ -52,7 +54,7 @@ double scm_standing_sinkage(const SoilParameters &soil, double W, NormalDirectio
   ScmSettings s;
   s.grid_spacing_m = kWidth / 48.0; // 48 node rows exactly span the width
   s.normal = normal;
-  s.bulldozing.enabled = false;     // the analytic anchor has no bulldozing
+  s.bulldozing.enabled = false; // the analytic anchor has no bulldozing
   ScmTerrain t(soil, s, test::make_cylinder(kR, kWidth, 720, 1));
   const double dt = 1e-3, vz = -0.02;
   BodyState b;

@@ -15,8 +15,7 @@ double cross(const Eigen::Vector2d &o, const Eigen::Vector2d &a, const Eigen::Ve
 }
 } // namespace
 
-void convex_hull_area_perimeter(std::vector<Eigen::Vector2d> pts, double &area,
-                                double &perimeter) {
+void convex_hull_area_perimeter(std::vector<Eigen::Vector2d> pts, double &area, double &perimeter) {
   area = 0.0;
   perimeter = 0.0;
   std::sort(pts.begin(), pts.end(), [](const Eigen::Vector2d &a, const Eigen::Vector2d &b) {

@@ -24,7 +24,7 @@ void convex_hull_area_perimeter(std::vector<Eigen::Vector2d> points, double &are
 
 /// Groups the window's contact cells (flag kContact; listed in `contact_cells`) into patches,
 /// sets window.patch, and fills `patches` (cleared first).
-void find_contact_patches(StepWindow &window, const std::vector<int> &contact_cells,
-                          double delta_m, std::vector<ContactPatch> &patches);
+void find_contact_patches(StepWindow &window, const std::vector<int> &contact_cells, double delta_m,
+                          std::vector<ContactPatch> &patches);
 
 } // namespace wheelsim::scm::detail

@@ -19,9 +19,8 @@ NodeLawConstants NodeLawConstants::from(const SoilParameters &soil) {
   return c;
 }
 
-NodeLawResult apply_node_law(NodeState &node, const NodeLawConstants &c, double hit_z,
-                             double inv_b, const Eigen::Vector3d &normal,
-                             const Eigen::Vector3d &v, double dt) {
+NodeLawResult apply_node_law(NodeState &node, const NodeLawConstants &c, double hit_z, double inv_b,
+                             const Eigen::Vector3d &normal, const Eigen::Vector3d &v, double dt) {
   NodeLawResult r;
   const double z = node.level_initial - hit_z; // total sinkage
   double sigma = c.Ke * (z - node.sinkage_plastic);

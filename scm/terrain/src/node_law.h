@@ -28,8 +28,8 @@ inline double elastic_trial(const NodeState &node, double hit_z_m, double Ke) {
 }
 
 struct NodeLawResult {
-  double sigma = 0.0;       ///< normal pressure incl. damping [Pa]
-  double tau = 0.0;         ///< shear stress [Pa]
+  double sigma = 0.0;                              ///< normal pressure incl. damping [Pa]
+  double tau = 0.0;                                ///< shear stress [Pa]
   Eigen::Vector3d t_dir = Eigen::Vector3d::Zero(); ///< shear direction (−v_t / |v_t|, or 0)
   double plastic_flow_m = 0.0; ///< increase of the plastic sinkage this step [m]
 };
@@ -39,7 +39,7 @@ struct NodeLawResult {
 /// direction of the normal pressure on the wheel; v: velocity of the wheel surface point relative
 /// to the (resting) soil [m/s]; dt [s]. Updates the node's level, plastic sinkage, yield, j, σ, τ.
 NodeLawResult apply_node_law(NodeState &node, const NodeLawConstants &c, double hit_z_m,
-                             double inv_b, const Eigen::Vector3d &normal,
-                             const Eigen::Vector3d &v, double dt_s);
+                             double inv_b, const Eigen::Vector3d &normal, const Eigen::Vector3d &v,
+                             double dt_s);
 
 } // namespace wheelsim::scm::detail

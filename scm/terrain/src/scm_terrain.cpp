@@ -188,7 +188,8 @@ ScmContact ScmTerrain::Impl::advance(const BodyState &state, double dt) {
     const Eigen::Vector3d p(window.i_of(c) * delta, window.j_of(c) * delta, window.hit_z[c]);
     const Eigen::Vector3d r = p - p_Bo;
     const Eigen::Vector3d v = state.v_WBo_W + state.w_WB_W.cross(r);
-    const Eigen::Vector3d normal = vertical ? up : Eigen::Vector3d(-raster.normal_W(window.hit_tri[c]));
+    const Eigen::Vector3d normal =
+        vertical ? up : Eigen::Vector3d(-raster.normal_W(window.hit_tri[c]));
     const NodeLawResult res =
         apply_node_law(n, law, window.hit_z[c], patches[window.patch[c]].inv_b, normal, v, dt);
     const Eigen::Vector3d F = area * (res.sigma * normal + res.tau * res.t_dir);

@@ -31,8 +31,7 @@ void StepWindow::attach_tile(std::int64_t ti, std::int64_t tj, Tile *tile) {
   const std::int64_t jb = std::min(j0_ + ny_, (tj + 1) * kTileSize);
   for (std::int64_t j = ja; j < jb; ++j)
     for (std::int64_t i = ia; i < ib; ++i)
-      node_[cell(i, j)] =
-          &tile->nodes[TileGrid::local_of(j) * kTileSize + TileGrid::local_of(i)];
+      node_[cell(i, j)] = &tile->nodes[TileGrid::local_of(j) * kTileSize + TileGrid::local_of(i)];
 }
 
 NodeState &StepWindow::node(int c, TileGrid &grid) {

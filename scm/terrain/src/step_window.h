@@ -40,10 +40,10 @@ public:
   /// The node of cell c or nullptr if its tile does not exist yet.
   NodeState *find(int c) const { return node_[c]; }
 
-  std::vector<double> hit_z;  ///< lowest wheel surface above/below the node [m]; +inf if none
-  std::vector<int> hit_tri;   ///< triangle (index into the step's triangle list) of hit_z, or -1
+  std::vector<double> hit_z; ///< lowest wheel surface above/below the node [m]; +inf if none
+  std::vector<int> hit_tri;  ///< triangle (index into the step's triangle list) of hit_z, or -1
   std::vector<std::uint8_t> flags;
-  std::vector<int> patch;     ///< contact patch id, -1 if none
+  std::vector<int> patch; ///< contact patch id, -1 if none
 
 private:
   void attach_tile(std::int64_t ti, std::int64_t tj, Tile *tile);

@@ -58,8 +58,8 @@ WheelRasteriser::WheelRasteriser(const geometry::TriangleMesh &mesh, int sectors
     if (angle < 0.0)
       angle += two_pi;
     const int s = std::min(sectors - 1, static_cast<int>(angle / two_pi * sectors));
-    const double r = std::max({std::hypot(a.x(), a.z()), std::hypot(b.x(), b.z()),
-                               std::hypot(c.x(), c.z())});
+    const double r =
+        std::max({std::hypot(a.x(), a.z()), std::hypot(b.x(), b.z()), std::hypot(c.x(), c.z())});
     const int band = r_max > 0.0 ? std::min(bands - 1, static_cast<int>(r / r_max * bands)) : 0;
     keyed.push_back({s * bands + band, Triangle{{t[0], t[1], t[2]}, n / len}});
   }
@@ -85,8 +85,8 @@ WheelRasteriser::WheelRasteriser(const geometry::TriangleMesh &mesh, int sectors
   stamp_.assign(vertices_B_.size(), 0);
 }
 
-void WheelRasteriser::rasterise(const Eigen::Matrix3d &R, const Eigen::Vector3d &p,
-                                double z_cut, double delta, int margin, const TileGrid &grid,
+void WheelRasteriser::rasterise(const Eigen::Matrix3d &R, const Eigen::Vector3d &p, double z_cut,
+                                double delta, int margin, const TileGrid &grid,
                                 StepWindow &window) {
   step_normal_W_.clear();
   if (++step_ == 0) { // wrapped: invalidate every stamp
@@ -145,8 +145,7 @@ void WheelRasteriser::rasterise(const Eigen::Matrix3d &R, const Eigen::Vector3d 
       const Triangle &tr = tri_[t];
       if (up_B.dot(tr.n_B) >= 0.0)
         continue; // not facing down: the lowest surface point over a node is on a downward face
-      const Eigen::Vector3d &A = vertex_W(tr.v[0]), &B = vertex_W(tr.v[1]),
-                            &C = vertex_W(tr.v[2]);
+      const Eigen::Vector3d &A = vertex_W(tr.v[0]), &B = vertex_W(tr.v[1]), &C = vertex_W(tr.v[2]);
       if (std::min({A.z(), B.z(), C.z()}) >= z_cut)
         continue;
       const double ax = A.x(), ay = A.y();

@@ -23,8 +23,7 @@ namespace wheelsim::scm::detail {
 
 class WheelRasteriser {
 public:
-  explicit WheelRasteriser(const geometry::TriangleMesh &mesh_B, int sectors = 256,
-                           int bands = 8);
+  explicit WheelRasteriser(const geometry::TriangleMesh &mesh_B, int sectors = 256, int bands = 8);
 
   /// Rasterises the wheel at pose (R_WB, p_WBo_W) onto a new window of `window` (nodes at
   /// spacing delta_m), keeping only triangles that reach below z_cut_m. The window covers the
