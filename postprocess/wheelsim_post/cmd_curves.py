@@ -85,9 +85,30 @@ def sorted_groups(results, group_by):
     return groups
 
 
+EFFICIENCY_AXIS = (-0.5, 1.0)
+
+
+def clip_efficiency_axis(ax, values):
+    """Limits the η axis to EFFICIENCY_AXIS when a point lies outside it (near zero torque η
+    diverges and would flatten the curve); says how many points are not shown."""
+    lo, hi = EFFICIENCY_AXIS
+    outside = [v for v in values if v < lo or v > hi]
+    if not outside:
+        return
+    ax.set_ylim(lo, hi)
+    ax.text(
+        0.02,
+        0.02,
+        f"{len(outside)} point(s) outside [{lo}, {hi}] not shown (T·ω near 0)",
+        transform=ax.transAxes,
+        fontsize=7,
+    )
+
+
 def plot_curves(groups, path, window_text):
     """One panel per quantity of CURVE_QUANTITIES against measured slip, with error bars."""
     fig, axes = panel_grid(len(CURVE_QUANTITIES), columns=2)
+    efficiency_values = []
     slip_q = QUANTITIES["slip"]
     for ax, name in zip(axes, CURVE_QUANTITIES):
         q = QUANTITIES[name]
@@ -99,10 +120,14 @@ def plot_curves(groups, path, window_text):
             else:
                 y = np.array([r.mean(name) for r in members])
             yerr = np.array([r.std(name) for r in members])
+            if name == "tractive_efficiency":
+                # The std of the per-step η is meaningless where T·ω crosses 0: no error bars.
+                yerr = None
+                efficiency_values.extend(v for v in y if np.isfinite(v))
             ax.errorbar(
                 x,
                 y * q.plot_scale,
-                yerr=yerr * q.plot_scale,
+                yerr=None if yerr is None else yerr * q.plot_scale,
                 xerr=xerr,
                 marker="o",
                 capsize=3,
@@ -112,6 +137,7 @@ def plot_curves(groups, path, window_text):
         ax.set_ylabel(q.axis_label())
         if name == "tractive_efficiency":
             ax.set_title("η = mean DP·mean v / (mean T·mean ω)", fontsize=9)
+            clip_efficiency_axis(ax, efficiency_values)
         ax.xaxis.set_major_locator(MaxNLocator(5))
         ax.grid(True, alpha=0.3)
     axes[0].legend(fontsize=8)
