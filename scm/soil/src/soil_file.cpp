@@ -13,8 +13,14 @@
 
 #include <toml++/toml.h>
 
+#include "wheelsim/config_messages.h"
+
 namespace wheelsim::scm {
 namespace {
+
+using config::closest;
+using config::fmt;
+using config::type_name;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -57,73 +63,11 @@ std::vector<std::string> keys_of(const std::string &table) {
   return out;
 }
 
-std::size_t edit_distance(const std::string &a, const std::string &b) {
-  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j)
-    prev[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j)
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
-
-/// The closest of `candidates` to `word`, or "" if none is plausibly meant (same rule as the rig
-/// configuration: containment wins, else edit distance up to a third of the word, at least 2).
-std::string closest(const std::string &word, const std::vector<std::string> &candidates) {
-  std::string best;
-  std::size_t best_score = static_cast<std::size_t>(-1);
-  for (const auto &c : candidates) {
-    std::size_t score;
-    if (word.size() >= 3 &&
-        (c.find(word) != std::string::npos || word.find(c) != std::string::npos))
-      score = 0;
-    else {
-      const std::size_t d = edit_distance(word, c);
-      if (d > std::max<std::size_t>(2, word.size() / 3))
-        continue;
-      score = d;
-    }
-    if (score < best_score) {
-      best_score = score;
-      best = c;
-    }
-  }
-  return best;
-}
-
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-
 std::string join(const std::vector<std::string> &v) {
   std::string s;
   for (std::size_t i = 0; i < v.size(); ++i)
     s += (i ? ", " : "") + v[i];
   return s;
-}
-
-const char *type_name(const toml::node &n) {
-  switch (n.type()) {
-  case toml::node_type::string:
-    return "a string";
-  case toml::node_type::integer:
-    return "an integer";
-  case toml::node_type::floating_point:
-    return "a number";
-  case toml::node_type::boolean:
-    return "a boolean";
-  case toml::node_type::table:
-    return "a table";
-  case toml::node_type::array:
-    return "an array";
-  default:
-    return "a date/time";
-  }
 }
 
 class Parser {

@@ -1,0 +1,26 @@
+// Pieces of the error messages of wheelsim's TOML configurations (rig configs, SCM soil files):
+// "did you mean" suggestions, the TOML type of a value in words, numbers as the user wrote them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+namespace wheelsim::config {
+
+/// The closest of `candidates` to `word`, or "" if none is plausibly meant: a candidate that
+/// contains the word (or is contained in it, words of 3+ characters) wins, else the smallest edit
+/// distance up to a third of the word's length (at least 2).
+std::string closest(const std::string &word, const std::vector<std::string> &candidates);
+
+/// Levenshtein distance between a and b.
+std::size_t edit_distance(const std::string &a, const std::string &b);
+
+/// "a string", "an integer", "a number", "a boolean", "a table", "an array" or "a date/time".
+const char *type_name(const toml::node &node);
+
+/// A number in the shortest default stream form (3, 0.5, 1e+07).
+std::string fmt(double value);
+
+} // namespace wheelsim::config
