@@ -11,6 +11,7 @@
 // depend on the machine. Usage: bench-scm [MESH_DIR]
 #include "wheelsim/geometry/mesh_io.h"
 #include "wheelsim/scm/scm_terrain.h"
+#include "wheelsim/scm/soil_file.h"
 
 #include <algorithm>
 #include <chrono>
@@ -30,17 +31,7 @@ constexpr double kSlip = 0.2;
 constexpr double kDt = 5e-4; // s
 
 scm::SoilParameters lete_sand() {
-  scm::SoilParameters s;
-  s.name = "LETE sand";
-  s.Bekker_n = 0.79;
-  s.Bekker_Kc = 102e3;
-  s.Bekker_Kphi = 5301e3;
-  s.Mohr_cohesion = 1.3e3;
-  s.Mohr_friction = 31.1 * M_PI / 180.0;
-  s.Janosi_shear = 0.012;
-  s.elastic_K = 2e8;
-  s.damping_R = 3e4;
-  return s;
+  return scm::load_soil_file(WHEELSIM_SOIL_DIR "/lete_sand.toml");
 }
 
 double outer_radius(const geometry::TriangleMesh &m) {

@@ -4,6 +4,7 @@
 
 #include "wheelsim/geometry/triangle_mesh.h"
 #include "wheelsim/scm/soil.h"
+#include "wheelsim/scm/soil_file.h"
 
 #include <cmath>
 
@@ -61,28 +62,8 @@ inline geometry::TriangleMesh make_box(double lx, double ly, double lz) {
   return m;
 }
 
-inline SoilParameters lete_sand() {
-  SoilParameters s;
-  s.name = "LETE sand";
-  s.Bekker_n = 0.79;
-  s.Bekker_Kc = 102e3;
-  s.Bekker_Kphi = 5301e3;
-  s.Mohr_cohesion = 1.3e3;
-  s.Mohr_friction = 31.1 * M_PI / 180.0;
-  s.Janosi_shear = 0.012;
-  return s;
-}
-
-inline SoilParameters dry_sand() {
-  SoilParameters s;
-  s.name = "dry sand (LLL)";
-  s.Bekker_n = 1.1;
-  s.Bekker_Kc = 0.99e3;
-  s.Bekker_Kphi = 1528.43e3;
-  s.Mohr_cohesion = 1.04e3;
-  s.Mohr_friction = 28.0 * M_PI / 180.0;
-  s.Janosi_shear = 0.025;
-  return s;
-}
+/// The shipped soil files (inputs/scm_soils), the single source of the soil values.
+inline SoilParameters lete_sand() { return load_soil_file(WHEELSIM_SOIL_DIR "/lete_sand.toml"); }
+inline SoilParameters dry_sand() { return load_soil_file(WHEELSIM_SOIL_DIR "/dry_sand.toml"); }
 
 } // namespace wheelsim::scm::test
