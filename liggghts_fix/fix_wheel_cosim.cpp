@@ -368,10 +368,12 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
                      arg[iarg + 1]);
       }
     } else if (std::strcmp(key, "vtk") == 0) {
-      need(iarg, 2, "N PREFIX (write the wheel surface every N steps to PREFIX_<step>.vtk)");
-      const double every = number(iarg + 1, key, "a step interval N >= 1");
-      if (every < 1 || every != std::floor(every))
-        bad_argument("keyword 'vtk' expects a step interval N >= 1, got '%s'", arg[iarg + 1]);
+      need(iarg, 2,
+           "N PREFIX (write the wheel surface every N steps to PREFIX_<step>.vtk; N = 0: off)");
+      const double every = number(iarg + 1, key, "a step interval N >= 0 (0: off)");
+      if (every < 0 || every != std::floor(every))
+        bad_argument("keyword 'vtk' expects a step interval N >= 0 (0: off), got '%s'",
+                     arg[iarg + 1]);
       s_->vtk_every = static_cast<int>(every);
       s_->vtk_prefix = arg[iarg + 2];
       iarg += 3;

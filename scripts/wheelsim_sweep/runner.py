@@ -373,7 +373,8 @@ class Runner:
             while pending:
                 done, pending = wait(pending, timeout=0.5, return_when=FIRST_COMPLETED)
                 for f in done:
-                    f.result()  # re-raise a bug in run_point
+                    if not f.cancelled():  # cancelled: a point not started before a stop
+                        f.result()  # re-raise a bug in run_point
                 if self.stop_signal is not None:
                     for f in pending:
                         f.cancel()
