@@ -59,6 +59,13 @@ const char *type_name(const toml::node &n) {
   }
 }
 
+std::string syntax_error(const toml::parse_error &error, const std::string &source_name) {
+  std::ostringstream os;
+  os << source_name << ':' << error.source().begin.line
+     << ": TOML syntax error: " << error.description();
+  return os.str();
+}
+
 std::string fmt(double v) {
   std::ostringstream os;
   os << v;

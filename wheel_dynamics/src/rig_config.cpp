@@ -314,9 +314,7 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
   try {
     doc = toml::parse(text, source_name);
   } catch (const toml::parse_error &e) {
-    std::ostringstream os;
-    os << source_name << ':' << e.source().begin.line << ": TOML syntax error: " << e.description();
-    throw RigConfigError(os.str());
+    throw RigConfigError(config::syntax_error(e, source_name));
   }
   check_known_keys(p, doc);
 

@@ -1,5 +1,6 @@
 // Pieces of the error messages of wheelsim's TOML configurations (rig configs, SCM soil files):
-// "did you mean" suggestions, the TOML type of a value in words, numbers as the user wrote them.
+// "did you mean" suggestions, the TOML type of a value in words, syntax errors with their line,
+// numbers as the user wrote them.
 #pragma once
 
 #include <string>
@@ -19,6 +20,9 @@ std::size_t edit_distance(const std::string &a, const std::string &b);
 
 /// "a string", "an integer", "a number", "a boolean", "a table", "an array" or "a date/time".
 const char *type_name(const toml::node &node);
+
+/// "<source>:<line>: TOML syntax error: <description>" for a file toml++ could not parse.
+std::string syntax_error(const toml::parse_error &error, const std::string &source_name);
 
 /// A number in the shortest default stream form (3, 0.5, 1e+07).
 std::string fmt(double value);

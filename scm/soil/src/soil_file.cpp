@@ -211,9 +211,7 @@ SoilParameters parse_soil_file(const std::string &text, const std::string &sourc
   try {
     doc = toml::parse(text, source_name);
   } catch (const toml::parse_error &e) {
-    std::ostringstream os;
-    os << source_name << ':' << e.source().begin.line << ": TOML syntax error: " << e.description();
-    throw SoilFileError(os.str());
+    throw SoilFileError(config::syntax_error(e, source_name));
   }
   check_known_keys(p, doc);
 
