@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -17,12 +18,15 @@ struct CliResult {
 };
 
 CliResult run_cli(const std::string &args) {
-  const fs::path log = fs::temp_directory_path() / "wheelsim_test_cli.log";
+  // One log per process: ctest -j runs these tests as parallel processes.
+  const fs::path log =
+      fs::temp_directory_path() / ("wheelsim_test_cli_" + std::to_string(::getpid()) + ".log");
   const std::string cmd = std::string(WHEEL_MESH_EXE) + " " + args + " > " + log.string() + " 2>&1";
   const int raw = std::system(cmd.c_str());
   std::ifstream in(log);
   std::stringstream ss;
   ss << in.rdbuf();
+  fs::remove(log);
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, ss.str()};
 }
 
