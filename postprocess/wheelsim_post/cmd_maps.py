@@ -6,7 +6,7 @@ import os
 import numpy as np
 
 from .errors import PostError
-from .options import split_list
+from .choices import split_list
 from .plotting import panel_grid, save
 from .runfile import RunFile
 from matplotlib.collections import PolyCollection

@@ -4,7 +4,7 @@ import numpy as np
 
 from .csvio import write_csv
 from .errors import PostError
-from .options import split_list
+from .choices import split_list
 from .plotting import panel_grid, save, shade_phases
 from .runfile import RunFile
 

@@ -10,6 +10,7 @@ import math
 import os
 import tomllib
 
+from .choices import parse_choices
 from .errors import PostError
 
 #: Keys a run can be grouped by (``--group-by``).
@@ -107,11 +108,4 @@ def read_metadata(run):
 
 def parse_group_by(text):
     """``--group-by`` text ('wheel,soil') as a tuple of keys (PostError on unknown ones)."""
-    keys = tuple(k.strip() for k in text.split(",") if k.strip())
-    bad = [k for k in keys if k not in GROUP_KEYS]
-    if bad or not keys:
-        raise PostError(
-            f"--group-by: '{text}' is not a comma-separated list of "
-            f"{', '.join(GROUP_KEYS)}"
-        )
-    return keys
+    return tuple(parse_choices(text, GROUP_KEYS, "--group-by"))

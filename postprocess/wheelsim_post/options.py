@@ -32,8 +32,3 @@ def add_window_options(parser):
 def window_from_args(args):
     """The steady.Window of parsed window options."""
     return make_window(args.window_start, args.window_end, args.window_fraction)
-
-
-def split_list(text):
-    """'a, b,c' -> ['a', 'b', 'c'] (empty items dropped)."""
-    return [item.strip() for item in text.split(",") if item.strip()]

@@ -2,7 +2,7 @@
 
 import dataclasses
 
-from .errors import PostError
+from .choices import parse_choices
 
 
 @dataclasses.dataclass(frozen=True)
@@ -66,11 +66,4 @@ EFFICIENCY_OF_MEANS = "tractive_efficiency_of_means"
 
 def parse_quantities(text, option="--quantity"):
     """A comma-separated list of quantity names (PostError naming ``option`` if unknown)."""
-    names = [n.strip() for n in text.split(",") if n.strip()]
-    bad = [n for n in names if n not in QUANTITIES]
-    if bad or not names:
-        raise PostError(
-            f"{option}: '{text}' is not a comma-separated list of "
-            f"{', '.join(QUANTITIES)}"
-        )
-    return names
+    return parse_choices(text, QUANTITIES, option)

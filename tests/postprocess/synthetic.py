@@ -172,6 +172,21 @@ def write_rig_run(
             write_observable(f, name, step, time, value, unit, crashed_rows)
 
 
+def write_sweep_runs(path_of, points, terrain=None):
+    """Writes one standard run per (wheel, soil, slip, dp_mean) of ``points`` with its sweep
+    parameters (and sweep/terrain if given) to ``path_of(wheel, soil, slip, index)``; returns
+    the paths in order."""
+    paths = []
+    for index, (wheel, soil, slip, dp) in enumerate(points):
+        path = path_of(wheel, soil, slip, index)
+        sweep = {"wheel": wheel, "soil": soil, "slip": str(slip)}
+        if terrain is not None:
+            sweep["terrain"] = terrain
+        write_rig_run(path, slip=slip, dp_mean=dp, sweep=sweep)
+        paths.append(path)
+    return paths
+
+
 def write_snapshot(f, field, step, time, value, unit, x0, y0, spacing):
     """One /terrain/<field>/<step as 9 digits> snapshot group."""
     g = f.create_group(f"terrain/{field}/{step:09d}")

@@ -20,27 +20,17 @@ def read(path):
 class CurvesTest(TempDirTestCase):
     def setUp(self):
         super().setUp()
-        self.runs = []
         # two wheels on one soil at two slips, and one wheel on a second soil
-        for wheel, soil, slip, dp in (
-            ("W2", "S1", 0.3, 130.0),
-            ("W1", "S1", 0.3, 120.0),
-            ("W1", "S1", 0.1, 80.0),
-            ("W1", "S2", 0.1, 60.0),
-        ):
-            path = self.path(f"{wheel}_{soil}_{slip}.h5")
-            syn.write_rig_run(
-                path,
-                slip=slip,
-                dp_mean=dp,
-                sweep={
-                    "wheel": wheel,
-                    "soil": soil,
-                    "slip": str(slip),
-                    "terrain": "dem",
-                },
-            )
-            self.runs.append(path)
+        self.runs = syn.write_sweep_runs(
+            lambda wheel, soil, slip, i: self.path(f"{wheel}_{soil}_{slip}.h5"),
+            (
+                ("W2", "S1", 0.3, 130.0),
+                ("W1", "S1", 0.3, 120.0),
+                ("W1", "S1", 0.1, 80.0),
+                ("W1", "S2", 0.1, 60.0),
+            ),
+            terrain="dem",
+        )
 
     def test_csv_groups_sorted_by_slip_with_window_in_header(self):
         out, png = self.path("curves.csv"), self.path("curves.png")

@@ -16,21 +16,15 @@ def read(path):
 class StudyTest(TempDirTestCase):
     def setUp(self):
         super().setUp()
-        self.runs = []
-        for wheel, soil, slip, dp in (
-            ("W2", "S1", 0.3, 130.0),
-            ("W1", "S1", 0.3, 120.0),
-            ("W1", "S1", 0.1, 80.0),
-            ("W1", "S/2", 0.1, 60.0),
-        ):
-            path = self.path(f"{wheel}_{len(self.runs)}.h5")
-            syn.write_rig_run(
-                path,
-                slip=slip,
-                dp_mean=dp,
-                sweep={"wheel": wheel, "soil": soil, "slip": str(slip)},
-            )
-            self.runs.append(path)
+        self.runs = syn.write_sweep_runs(
+            lambda wheel, soil, slip, i: self.path(f"{wheel}_{i}.h5"),
+            (
+                ("W2", "S1", 0.3, 130.0),
+                ("W1", "S1", 0.3, 120.0),
+                ("W1", "S1", 0.1, 80.0),
+                ("W1", "S/2", 0.1, 60.0),
+            ),
+        )
         self.out = self.path("study")
 
     def test_table_layout(self):
