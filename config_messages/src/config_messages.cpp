@@ -59,6 +59,16 @@ const char *type_name(const toml::node &n) {
   }
 }
 
+std::string located(const std::string &source_name, const toml::node *where,
+                    const std::string &message) {
+  std::ostringstream os;
+  os << source_name;
+  if (where && where->source().begin.line > 0)
+    os << ':' << where->source().begin.line;
+  os << ": " << message;
+  return os.str();
+}
+
 std::string syntax_error(const toml::parse_error &error, const std::string &source_name) {
   std::ostringstream os;
   os << source_name << ':' << error.source().begin.line

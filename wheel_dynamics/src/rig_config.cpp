@@ -47,12 +47,7 @@ public:
   Parser(std::string source) : source_(std::move(source)) {}
 
   [[noreturn]] void fail(const toml::node *where, const std::string &message) const {
-    std::ostringstream os;
-    os << source_;
-    if (where && where->source().begin.line > 0)
-      os << ':' << where->source().begin.line;
-    os << ": " << message;
-    throw RigConfigError(os.str());
+    throw RigConfigError(config::located(source_, where, message));
   }
 
   const std::string &source() const { return source_; }

@@ -21,6 +21,11 @@ std::size_t edit_distance(const std::string &a, const std::string &b);
 /// "a string", "an integer", "a number", "a boolean", "a table", "an array" or "a date/time".
 const char *type_name(const toml::node &node);
 
+/// "<source>:<line>: <message>", the line of `where` (just "<source>: <message>" if `where` is
+/// null or has no line).
+std::string located(const std::string &source_name, const toml::node *where,
+                    const std::string &message);
+
 /// "<source>:<line>: TOML syntax error: <description>" for a file toml++ could not parse.
 std::string syntax_error(const toml::parse_error &error, const std::string &source_name);
 

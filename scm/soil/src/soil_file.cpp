@@ -75,12 +75,7 @@ public:
   explicit Parser(std::string source) : source_(std::move(source)) {}
 
   [[noreturn]] void fail(const toml::node *where, const std::string &message) const {
-    std::ostringstream os;
-    os << source_;
-    if (where && where->source().begin.line > 0)
-      os << ':' << where->source().begin.line;
-    os << ": " << message;
-    throw SoilFileError(os.str());
+    throw SoilFileError(config::located(source_, where, message));
   }
 
 private:
