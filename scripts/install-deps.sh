@@ -14,6 +14,8 @@ packages=(
   libtomlplusplus-dev libcli11-dev
   # post-processing (Debian's interpreter and modules; no PyPI)
   python3 python3-numpy python3-h5py python3-matplotlib
+  # the sweep driver writes rig configs with a real TOML writer
+  python3-tomli-w
 )
 
 missing=()
