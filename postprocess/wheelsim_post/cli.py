@@ -1,34 +1,28 @@
 """The ``wheelsim-post`` command line: argparse set-up and error reporting.
 
 Every input error ends the program with one line ``wheelsim-post <command>: error: ...`` on
-stderr and exit status 2.
+stderr and exit status 2; a misspelt option or command names the nearest valid one (usage.py).
 """
 
-import argparse
 import sys
 
 from . import cmd_compare, cmd_curves, cmd_maps, cmd_series, cmd_study
 from .errors import PostError
+from .usage import EXIT_USAGE, UsageParser, add_version
 
 COMMANDS = (cmd_curves, cmd_series, cmd_maps, cmd_compare, cmd_study)
-EXIT_USAGE = 2
-
-
-class _Parser(argparse.ArgumentParser):
-    """An ArgumentParser whose errors are one line (no usage block) and exit status 2."""
-
-    def error(self, message):
-        self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
 
 
 def build_parser():
     """The top-level parser with one subparser per command."""
-    parser = _Parser(
+    parser = UsageParser(
         prog="wheelsim-post",
-        description="Post-processing of wheelsim run files (docs/postprocess.md).",
+        description="Post-processing of wheelsim run files (docs/postprocess.md). "
+        "Exit status: 0 success, 2 usage or input error.",
     )
+    add_version(parser, "wheelsim-post")
     subparsers = parser.add_subparsers(
-        dest="command", metavar="COMMAND", parser_class=_Parser
+        dest="command", metavar="COMMAND", parser_class=UsageParser
     )
     subparsers.required = True
     for command in COMMANDS:
