@@ -19,7 +19,8 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string temp_path(const std::string &name) {
-  const fs::path dir = fs::temp_directory_path() / ("wheelsim_run_file_" + std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("wheelsim_run_file_" + std::to_string(getpid()));
   fs::create_directories(dir);
   return (dir / name).string();
 }
@@ -47,8 +48,9 @@ void expect_series(hid_t f, const std::string &name, const std::vector<std::int6
       components == 1 ? std::vector<hsize_t>{n} : std::vector<hsize_t>{n, hsize_t(components)};
   EXPECT_EQ(h5read::dims(f, g + "/value", &maxdims), value_dims);
   EXPECT_EQ(maxdims[0], H5S_UNLIMITED);
-  const std::vector<hsize_t> chunk =
-      components == 1 ? std::vector<hsize_t>{1024} : std::vector<hsize_t>{1024, hsize_t(components)};
+  const std::vector<hsize_t> chunk = components == 1
+                                         ? std::vector<hsize_t>{1024}
+                                         : std::vector<hsize_t>{1024, hsize_t(components)};
   EXPECT_EQ(h5read::chunk(f, g + "/value"), chunk);
   EXPECT_EQ(h5read::chunk(f, g + "/step"), std::vector<hsize_t>{1024});
   EXPECT_EQ(h5read::type_of(f, g + "/step"), std::make_pair(H5T_INTEGER, std::size_t{8}));
@@ -70,8 +72,8 @@ void expect_series(hid_t f, const std::string &name, const std::vector<std::int6
     for (int c = 0; c < components; ++c)
       if (value[i * components + c] != sample::value(steps[i], c))
         ADD_FAILURE() << "value row " << i << " component " << c << ": "
-                      << value[i * components + c] << ", expected "
-                      << sample::value(steps[i], c) << (++bad, "");
+                      << value[i * components + c] << ", expected " << sample::value(steps[i], c)
+                      << (++bad, "");
   }
 }
 
@@ -92,7 +94,7 @@ TEST(RunFile, SeriesRoundTripOverFlushesAndChunkBoundaries) {
     auto &slip = file.observable("slip", "1", 1);
     auto &pos = file.observable("wheel/position", "m", 3);
     auto &quat = file.observable("wheel/orientation", "1", 4);
-    auto &sparse = file.observable("contact/force", "N", 3); // every 10th step only
+    auto &sparse = file.observable("contact/force", "N", 3);     // every 10th step only
     EXPECT_EQ(&file.observable("wheel/position", "m", 3), &pos); // same series again
     for (std::int64_t i = 0; i < rows; ++i) {
       const std::int64_t step = 2 * i + 1;
@@ -104,12 +106,16 @@ TEST(RunFile, SeriesRoundTripOverFlushesAndChunkBoundaries) {
       if (i == 1234)
         file.flush(); // a manual flush in the middle of a chunk
     }
-    // automatic flushes before rows 701, 1401 (manual after 1235 rows), 1936, ...: several.
-    EXPECT_GE(file.flush_count(), 3);
+    // automatic writes to the working copy before rows 701, 1401 (a manual commit after 1235
+    // rows), 1936, ...; no automatic commit (commit_interval 0): one commit in all.
+    EXPECT_EQ(file.flush_count(), 1);
+    EXPECT_GT(pos.rows_written(), 1235);
     EXPECT_EQ(pos.rows(), rows);
     EXPECT_LE(pos.buffered_rows(), 700);
     EXPECT_EQ(pos.rows_written() + pos.buffered_rows(), rows);
-  } // destructor: writes the rest and closes
+  } // destructor: writes the rest, closes and renames the working copy onto `path`
+  EXPECT_FALSE(std::filesystem::exists(path + ".writing"));
+  EXPECT_FALSE(std::filesystem::exists(path + ".publishing"));
 
   h5read::File f(path);
   expect_series(f.id(), "slip", steps_range(1, rows, 2), 1, "1");
@@ -143,7 +149,8 @@ TEST(RunFile, CloseIsIdempotentAndUseAfterCloseThrows) {
 
 TEST(RunFile, ParametersRoundTrip) {
   const std::string path = temp_path("parameters.h5");
-  const std::string toml = "# rig config\n[wheel]\nmesh = \"wheel.obj\"  # µ-wheel\nradius = 0.15\n";
+  const std::string toml =
+      "# rig config\n[wheel]\nmesh = \"wheel.obj\"  # µ-wheel\nradius = 0.15\n";
   {
     rf::RunFile file(path, kCreator);
     file.set_parameter_text("rig.toml", toml);
@@ -177,9 +184,9 @@ TEST(RunFile, TerrainSnapshotRoundTrip) {
     rf::RunFile file(path, kCreator);
     file.write_snapshot("height/000100", 100, 0.005, rf::Grid2D{grid.data(), 3, 5}, "m",
                         {{"dx", 0.01, "m"}, {"origin_x", -0.5, "m"}});
-    EXPECT_THROW(file.write_snapshot("height/000100", 100, 0.005, rf::Grid2D{grid.data(), 3, 5},
-                                     "m"),
-                 rf::RunFileError);
+    EXPECT_THROW(
+        file.write_snapshot("height/000100", 100, 0.005, rf::Grid2D{grid.data(), 3, 5}, "m"),
+        rf::RunFileError);
     EXPECT_THROW(file.write_snapshot("p", 1, 0.0, rf::Grid2D{grid.data(), 0, 5}, "Pa"),
                  rf::RunFileError);
     EXPECT_THROW(file.write_snapshot("p", 1, 0.0, rf::Grid2D{grid.data(), 3, 5}, "Pa",
@@ -212,7 +219,7 @@ TEST(RunFile, MissingDirectoryIsAClearErrorNamingThePath) {
 }
 
 TEST(RunFile, UnwritableFileIsAnErrorNamingThePath) {
-  // A directory where the file should be: H5Fcreate fails, the message carries HDF5's reason.
+  // A directory where the file should be: the message names the path and says so.
   const std::string path = temp_path("is_a_directory.h5");
   fs::create_directories(path);
   try {
@@ -230,7 +237,7 @@ TEST(RunFile, BadObservableDeclarationsAndAppendsThrow) {
   auto &pos = file.observable("wheel/position", "m", 3);
   EXPECT_THROW(file.observable("wheel/position", "mm", 3), rf::RunFileError); // other unit
   EXPECT_THROW(file.observable("wheel/position", "m", 4), rf::RunFileError);  // other shape
-  EXPECT_THROW(file.observable("wheel", "m", 1), rf::RunFileError);  // is the parent group
+  EXPECT_THROW(file.observable("wheel", "m", 1), rf::RunFileError);           // is the parent group
   EXPECT_THROW(file.observable("slip", "1", 0), rf::RunFileError);
   EXPECT_THROW(file.observable("slip", "", 1), rf::RunFileError);
   EXPECT_THROW(file.observable("/slip", "1", 1), rf::RunFileError);

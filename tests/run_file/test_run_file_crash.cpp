@@ -1,8 +1,7 @@
 // Crash safety: a child process writes a run file and is killed with SIGKILL; the parent reads
-// the file back with the HDF5 C API. Between flushes the writer makes no HDF5 call, so the file
-// must hold exactly the rows of the last flush (manual, row-count or wall-clock), nothing more.
-// The last test kills the writer at random moments (also inside flushes): the file must open and
-// hold no wrong value; how many series a kill inside a flush damaged is printed, not asserted.
+// the file back with the HDF5 C API. The file must hold exactly the rows of the last commit
+// (manual or wall-clock), nothing more — also when the kill lands inside a commit (the last
+// test kills the writer >= 1000 times inside commits).
 #include "h5_read.h"
 #include "sample_values.h"
 #include "wheelsim/run_file/run_file.h"
@@ -18,6 +17,7 @@
 #include <functional>
 #include <random>
 #include <string>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -42,8 +42,8 @@ struct Series {
   const char *unit;
   int components;
 };
-const Series kSeries[] = {{"slip", "1", 1}, {"wheel/position", "m", 3},
-                          {"wheel/orientation", "1", 4}};
+const Series kSeries[] = {
+    {"slip", "1", 1}, {"wheel/position", "m", 3}, {"wheel/orientation", "1", 4}};
 
 /// Appends step `step` (sample values) to all three series.
 void append_row(std::vector<rf::TimeSeries *> &series, std::int64_t step) {
@@ -143,7 +143,7 @@ TEST(RunFileCrash, SigkillAfterManualFlushKeepsExactlyTheFlushedRows) {
   EXPECT_EQ(h5read::string_attr(f.id(), "/h5md/creator", "name"), "test_run_file_crash");
 }
 
-TEST(RunFileCrash, SigkillKeepsTheRowsOfTheLastAutomaticFlush) {
+TEST(RunFileCrash, RowsWrittenToTheWorkingCopyButNotCommittedAreNotInTheFile) {
   const std::string path = temp_path("auto_rows.h5");
   run_child_until_killed([&] {
     rf::RunFile file(path, kCreator, rf::FlushPolicy{500, 0.0});
@@ -152,97 +152,87 @@ TEST(RunFileCrash, SigkillKeepsTheRowsOfTheLastAutomaticFlush) {
       append_row(series, step);
     raise(SIGKILL);
   });
-  EXPECT_EQ(check_consistent_prefix(path), 1000); // flushed before steps 501 and 1001
+  // Steps 1..1000 went to the working copy (memory bound), but no commit followed the
+  // declarations: the published file holds the empty series.
+  EXPECT_EQ(check_consistent_prefix(path), 0);
+  EXPECT_TRUE(fs::exists(path + ".writing"));
 }
 
-TEST(RunFileCrash, SigkillKeepsTheRowsOfTheLastWallClockFlush) {
-  const std::string path = temp_path("auto_interval.h5");
+/// A writer with `policy` that appends steps 1..10, sleeps 0.3 s, appends step 11 and is killed.
+void write_sleep_append_kill(const std::string &path, const rf::FlushPolicy &policy) {
   run_child_until_killed([&] {
-    rf::RunFile file(path, kCreator, rf::FlushPolicy{0, 0.05});
+    rf::RunFile file(path, kCreator, policy);
     auto series = declare(file);
     for (std::int64_t step = 1; step <= 10; ++step)
       append_row(series, step);
-    std::this_thread::sleep_for(std::chrono::milliseconds(150));
-    append_row(series, 11); // first series' append sees 0.15 s > 0.05 s: flushes all 3 series
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    append_row(series, 11); // first series' append sees 0.3 s since the last commit
     raise(SIGKILL);
   });
-  // The due flush ran at the start of the first append of step 11: steps 1..10 of all series.
+}
+
+TEST(RunFileCrash, SigkillKeepsTheRowsOfTheLastWallClockCommit) {
+  // No cost stretch: the commit due after 0.2 s ran at the start of the first append of step 11,
+  // steps 1..10 of all series.
+  const std::string path = temp_path("auto_interval.h5");
+  write_sleep_append_kill(path, rf::FlushPolicy{0, 0.2, 0.0});
   EXPECT_EQ(check_consistent_prefix(path), 10);
+  // A cost factor of 1e9 stretches the interval to >= 1e9 x (a commit's duration, > 1 us): no
+  // automatic commit after the declarations.
+  const std::string stretched = temp_path("auto_interval_stretched.h5");
+  write_sleep_append_kill(stretched, rf::FlushPolicy{0, 0.2, 1e9});
+  EXPECT_EQ(check_consistent_prefix(stretched), 0);
 }
 
-/// What a kill at a random moment left of one series.
-enum class Left { Exact, Torn, Unreadable };
+/// What the writer of the random-kill test shares with the parent: whether it is inside a
+/// commit (flush()) and how many rows its last completed commit held. Lives in a MAP_SHARED page
+/// mapped before fork(), so the parent reads it after the kill.
+struct WriterProgress {
+  volatile std::sig_atomic_t in_commit;
+  volatile std::int64_t committed_rows;
+};
 
-/// Classifies one series of a file killed at any moment. Exact: step, time and value have the
-/// same length and every row is the written step 1..n with its values. Torn (a kill inside a
-/// flush): the datasets may differ in length, and after the leading correct rows only unwritten
-/// fill rows follow (step -1, NaN) — a wrong value anywhere fails the test. Unreadable: a read
-/// failed (HDF5 metadata of the interrupted flush half on disk).
-Left classify(hid_t f, const Series &s) {
-  const std::string g = std::string("/observables/") + s.name;
-  SCOPED_TRACE(g);
-  std::vector<std::int64_t> step;
-  std::vector<double> time, value;
-  try {
-    step = h5read::int64s(f, g + "/step");
-    time = h5read::doubles(f, g + "/time");
-    value = h5read::doubles(f, g + "/value");
-  } catch (const std::exception &) {
-    H5Eclear2(H5E_DEFAULT);
-    return Left::Unreadable;
-  }
-  const std::size_t n = std::min({step.size(), time.size(), value.size() / s.components});
-  bool fill_started = false;
-  for (std::size_t i = 0; i < n; ++i) {
-    const bool fill = step[i] == rf::kUnwrittenStep && std::isnan(time[i]);
-    if (fill) {
-      fill_started = true;
-      continue;
-    }
-    bool ok = !fill_started && step[i] == static_cast<std::int64_t>(i + 1) &&
-              time[i] == sample::time_s(i + 1);
-    for (int c = 0; c < s.components; ++c)
-      ok = ok && value[i * s.components + c] == sample::value(i + 1, c);
-    if (!ok) {
-      ADD_FAILURE() << "row " << i << ": step " << step[i] << " time " << time[i]
-                    << " is neither the written row nor a fill row";
-      return Left::Torn;
-    }
-  }
-  const bool exact = !fill_started && step.size() == time.size() &&
-                     value.size() == step.size() * s.components;
-  return exact ? Left::Exact : Left::Torn;
-}
-
-TEST(RunFileCrash, SigkillAtRandomMomentsLeavesAFileThatOpens) {
-  // The writer flushes every 50 rows, as fast as it can, so that many kills land inside a flush
-  // (the window that "no HDF5 call between flushes" does not cover). Asserted: every file opens
-  // and /h5md and /parameters read back; no series holds a wrong value (only correct rows, then
-  // fill rows). Measured and printed, not asserted: how many series a kill inside a flush left
-  // torn (datasets of unequal length, fill rows) or unreadable — HDF5 1.10 without SWMR does not
-  // order its metadata writes, so the series being flushed can be damaged (docs/hdf5-layout.md).
-  // The child reports through a pipe once its series are declared; the kill comes 1-40 ms later.
-  const int kills = 40;
+TEST(RunFileCrash, SigkillInsideCommitsLosesNoCommittedRow) {
+  // The writer commits every 50 rows, as fast as it can, so that nearly every kill lands inside a
+  // commit (writing the rows, H5Fflush, copying, renaming). The test goes on until 1000 kills
+  // have landed inside a commit. After every kill the published file must open and hold, in every
+  // series, exactly the rows 1..n with their values, where n is the last completed commit's row
+  // count, or the next one if the kill came after the rename but before the writer noted it. No
+  // series may be torn, unreadable or short: 0 of >= 3000 series.
+  constexpr int kKillsInsideCommit = 1000, kMaxKills = 3000, kCommitRows = 50;
+  auto *progress = static_cast<WriterProgress *>(mmap(
+      nullptr, sizeof(WriterProgress), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0));
+  ASSERT_NE(progress, MAP_FAILED);
   std::mt19937 rng(12345);
-  std::uniform_int_distribution<int> delay_us(1000, 40000);
-  int exact = 0, torn = 0, unreadable = 0;
-  for (int k = 0; k < kills; ++k) {
-    SCOPED_TRACE("kill " + std::to_string(k));
-    const std::string path = temp_path("random_" + std::to_string(k) + ".h5");
+  std::uniform_int_distribution<int> delay_us(200, 8000);
+  int kills = 0, inside_commit = 0, at_next_commit = 0;
+  for (; kills < kMaxKills && inside_commit < kKillsInsideCommit; ++kills) {
+    SCOPED_TRACE("kill " + std::to_string(kills));
+    const std::string path = temp_path("random.h5");
     const int delay = delay_us(rng);
+    progress->in_commit = 0;
+    progress->committed_rows = -1;
     int ready[2];
     ASSERT_EQ(pipe(ready), 0);
     run_child_until_killed(
         [&] {
           close(ready[0]);
-          rf::RunFile file(path, kCreator, rf::FlushPolicy{50, 0.0});
+          rf::RunFile file(path, kCreator, rf::FlushPolicy{0, 0.0});
           file.set_parameter("rig/seed", std::int64_t{7}, "1");
           auto series = declare(file);
+          progress->committed_rows = 0;
           const char byte = 1;
           if (write(ready[1], &byte, 1) != 1)
             _exit(5);
-          for (std::int64_t step = 1;; ++step)
+          for (std::int64_t step = 1;; ++step) {
             append_row(series, step);
+            if (step % kCommitRows == 0) {
+              progress->in_commit = 1;
+              file.flush();
+              progress->committed_rows = step;
+              progress->in_commit = 0;
+            }
+          }
         },
         [&](pid_t pid) {
           close(ready[1]);
@@ -253,23 +243,33 @@ TEST(RunFileCrash, SigkillAtRandomMomentsLeavesAFileThatOpens) {
           kill(pid, SIGKILL);
           ASSERT_TRUE(declared) << "the child died before declaring its series";
         });
+    if (::testing::Test::HasFatalFailure())
+      break;
+    const bool in_commit = progress->in_commit != 0;
+    const std::int64_t committed = progress->committed_rows;
+    inside_commit += in_commit ? 1 : 0;
+    std::int64_t rows = -1;
     try {
       h5read::File f(path);
       EXPECT_EQ(h5read::string_attr(f.id(), "/h5md/creator", "name"), "test_run_file_crash");
       EXPECT_EQ(h5read::int64s(f.id(), "/parameters/rig/seed"), std::vector<std::int64_t>{7});
-      for (const auto &s : kSeries) {
-        switch (classify(f.id(), s)) {
-        case Left::Exact: ++exact; break;
-        case Left::Torn: ++torn; break;
-        case Left::Unreadable: ++unreadable; break;
-        }
-      }
     } catch (const std::exception &e) {
-      ADD_FAILURE() << "the file does not open after a kill " << delay << " us into writing: "
-                    << e.what();
+      ADD_FAILURE() << "the file does not open after a kill " << delay
+                    << " us into writing: " << e.what();
+      break;
     }
+    rows = check_consistent_prefix(path);
+    const bool expected = rows == committed || (in_commit && rows == committed + kCommitRows);
+    EXPECT_TRUE(expected) << "the file holds " << rows << " rows; the last commit held "
+                          << committed << (in_commit ? " (killed inside the next)" : "");
+    at_next_commit += (in_commit && rows == committed + kCommitRows) ? 1 : 0;
+    if (::testing::Test::HasFailure())
+      break;
+    for (const char *suffix : {"", ".writing", ".publishing"})
+      std::remove((path + suffix).c_str());
   }
-  std::printf("[ info     ] %d kills x 3 series: %d exact, %d torn, %d unreadable\n", kills, exact,
-              torn, unreadable);
-  EXPECT_GT(exact, 0);
+  munmap(progress, sizeof(WriterProgress));
+  std::printf("[ info     ] %d kills, %d inside a commit (%d after its rename), 3 series each\n",
+              kills, inside_commit, at_next_commit);
+  EXPECT_GE(inside_commit, kKillsInsideCommit);
 }

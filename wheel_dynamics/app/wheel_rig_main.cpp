@@ -317,7 +317,7 @@ int main(int argc, char **argv) {
   try {
     rig::RigSimulation sim(config);
     runfile::FlushPolicy flush;
-    flush.flush_every = config.output.flush_interval;
+    flush.write_every_rows = config.output.flush_interval;
     file = std::make_unique<runfile::RunFile>(
         config.output.file,
         runfile::Creator{"wheel-rig", WHEELSIM_VERSION, WHEELSIM_GIT_REVISION}, flush);

@@ -1,11 +1,13 @@
 // wheelsim::runfile — implementation over the HDF5 C API (1.10). See run_file.h and
-// docs/hdf5-layout.md. All HDF5 identifiers live in RAII Handles; every public method silences
-// HDF5's automatic error printing for its duration and turns a failure into a RunFileError that
-// carries the library's error stack as text.
+// docs/hdf5-layout.md. HDF5 writes the working copy; commit() publishes it by copy and rename. All
+// HDF5 identifiers live in RAII Handles; every public method silences HDF5's automatic error
+// printing for its duration and turns a failure into a RunFileError that carries the library's
+// error stack as text.
 #include "wheelsim/run_file/run_file.h"
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -126,7 +128,9 @@ std::vector<std::string> split_name(const std::string &kind, const std::string &
 
 // ------------------------------------------------------------------------------------------------
 struct RunFile::Impl {
-  std::string path;
+  std::string path;         // the published file readers open
+  std::string working_path; // what HDF5 writes: path + ".writing"
+  std::string staging_path; // the copy being published: path + ".publishing"
   Handle file, parameters, observables, terrain;
   Handle lcpl;        // link creation: intermediate groups, UTF-8 names
   Handle gcpl;        // group creation: no object time stamps (files that diff)
@@ -167,17 +171,16 @@ struct RunFile::Impl {
 
   void write_string_attribute(hid_t obj, const char *name, const std::string &value) const {
     Handle space(check(H5Screate(H5S_SCALAR), "creating a dataspace"), H5Sclose);
-    Handle attr(check(H5Acreate2(obj, name, string_type.get(), space.get(), H5P_DEFAULT,
-                                 H5P_DEFAULT),
-                      std::string("creating attribute '") + name + "'"),
-                H5Aclose);
+    Handle attr(
+        check(H5Acreate2(obj, name, string_type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+              std::string("creating attribute '") + name + "'"),
+        H5Aclose);
     const char *p = value.c_str();
     check_status(H5Awrite(attr.get(), string_type.get(), &p),
                  std::string("writing attribute '") + name + "'");
   }
 
-  void write_int_array_attribute(hid_t obj, const char *name, const int *values,
-                                 hsize_t n) const {
+  void write_int_array_attribute(hid_t obj, const char *name, const int *values, hsize_t n) const {
     Handle space(check(H5Screate_simple(1, &n, nullptr), "creating a dataspace"), H5Sclose);
     Handle attr(check(H5Acreate2(obj, name, H5T_STD_I32LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
                       std::string("creating attribute '") + name + "'"),
@@ -230,11 +233,26 @@ struct RunFile::Impl {
       write_scalar_dataset(parameters.get(), name, H5T_STD_I64LE, H5T_NATIVE_INT64, value, unit);
       break;
     }
-    flush_file();
   }
 
   void flush_file() const {
     check_status(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "flushing (H5Fflush)");
+  }
+
+  /// Publishes the flushed working copy as `path`: copy to the staging name, then rename(2) onto
+  /// `path`, which replaces it atomically — a reader (or a crash) sees the old or the new file,
+  /// never a mix. Nothing is synced to the device: the guarantee is for process death.
+  void publish() const {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::copy_file(working_path, staging_path, fs::copy_options::overwrite_existing, ec);
+    if (ec)
+      throw RunFileError("run file '" + path + "': copying the working copy '" + working_path +
+                         "' to '" + staging_path + "': " + ec.message());
+    fs::rename(staging_path, path, ec);
+    if (ec)
+      throw RunFileError("run file '" + path + "': renaming '" + staging_path +
+                         "' onto it: " + ec.message());
   }
 };
 
@@ -293,9 +311,9 @@ void TimeSeries::write_buffered() {
     Handle fspace(f.check(H5Dget_space(ds.get()), where + ": dataspace"), H5Sclose);
     const hsize_t start[2] = {old_rows, 0};
     const hsize_t count[2] = {n, comps};
-    f.check_status(H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count,
-                                       nullptr),
-                   where + ": selecting rows");
+    f.check_status(
+        H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
+        where + ": selecting rows");
     Handle mspace(f.check(H5Screate_simple(rank, count, nullptr), where + ": memory space"),
                   H5Sclose);
     f.check_status(H5Dwrite(ds.get(), mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, data),
@@ -325,6 +343,8 @@ RunFile::RunFile(const std::string &path, const Creator &creator, const FlushPol
   QuietHdf5Errors quiet;
   Impl &f = *impl_;
   f.path = path;
+  f.working_path = working_path();
+  f.staging_path = path + ".publishing";
 
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
   std::error_code ec;
@@ -337,9 +357,13 @@ RunFile::RunFile(const std::string &path, const Creator &creator, const FlushPol
   Handle fapl(f.check(H5Pcreate(H5P_FILE_ACCESS), "creating a property list"), H5Pclose);
   f.check_status(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18),
                  "setting the file format version");
-  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  if (std::filesystem::is_directory(path, ec))
+    throw RunFileError("cannot create run file '" + path + "': it is a directory");
+  std::filesystem::remove(f.staging_path, ec); // left by a writer that was killed
+  const hid_t file = H5Fcreate(f.working_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
   if (file < 0)
-    throw RunFileError("cannot create run file '" + path + "': " + hdf5_error_text());
+    throw RunFileError("cannot create run file '" + path + "' (working copy '" + f.working_path +
+                       "'): " + hdf5_error_text());
   f.file = Handle(file, H5Fclose);
 
   f.lcpl = Handle(f.check(H5Pcreate(H5P_LINK_CREATE), "creating a property list"), H5Pclose);
@@ -369,8 +393,7 @@ RunFile::RunFile(const std::string &path, const Creator &creator, const FlushPol
   f.parameters = f.create_group(file, "parameters");
   f.observables = f.create_group(file, "observables");
   f.terrain = f.create_group(file, "terrain");
-  f.flush_file();
-  last_flush_s_ = now_s();
+  commit();
 }
 
 RunFile::~RunFile() {
@@ -389,11 +412,13 @@ void RunFile::require_open(const char *what) const {
 }
 
 void RunFile::set_flush_policy(const FlushPolicy &policy) {
-  if (policy.flush_every < 0 || !(policy.flush_interval_s >= 0.0))
-    throw RunFileError("run file '" + path_ + "': flush_every must be >= 0 rows and " +
-                       "flush_interval >= 0 s (0 disables), got " +
-                       std::to_string(policy.flush_every) + " rows and " +
-                       std::to_string(policy.flush_interval_s) + " s");
+  if (policy.write_every_rows < 0 || !(policy.commit_interval_s >= 0.0) ||
+      !(policy.commit_cost_factor >= 0.0))
+    throw RunFileError("run file '" + path_ + "': write_every_rows must be >= 0 rows, " +
+                       "commit_interval >= 0 s and commit_cost_factor >= 0 (0 disables each), " +
+                       "got " + std::to_string(policy.write_every_rows) + " rows, " +
+                       std::to_string(policy.commit_interval_s) + " s and " +
+                       std::to_string(policy.commit_cost_factor));
   policy_ = policy;
 }
 
@@ -402,6 +427,7 @@ void RunFile::set_parameter_text(const std::string &name, const std::string &tex
   require_open("set a parameter");
   QuietHdf5Errors quiet;
   impl_->write_parameter(name, Impl::ParamKind::Text, &text, "");
+  commit();
 }
 
 void RunFile::set_parameter(const std::string &name, const std::string &value) {
@@ -418,13 +444,14 @@ void RunFile::set_parameter(const std::string &name, double value, const std::st
   require_open("set a parameter");
   QuietHdf5Errors quiet;
   impl_->write_parameter(name, Impl::ParamKind::Float, &value, unit);
+  commit();
 }
 
-void RunFile::set_parameter(const std::string &name, std::int64_t value,
-                            const std::string &unit) {
+void RunFile::set_parameter(const std::string &name, std::int64_t value, const std::string &unit) {
   require_open("set a parameter");
   QuietHdf5Errors quiet;
   impl_->write_parameter(name, Impl::ParamKind::Integer, &value, unit);
+  commit();
 }
 
 void RunFile::set_parameter(const std::string &name, int value, const std::string &unit) {
@@ -432,8 +459,7 @@ void RunFile::set_parameter(const std::string &name, int value, const std::strin
 }
 
 // --- observables ---------------------------------------------------------------------------------
-TimeSeries &RunFile::observable(const std::string &name, const std::string &unit,
-                                int components) {
+TimeSeries &RunFile::observable(const std::string &name, const std::string &unit, int components) {
   require_open("declare an observable");
   auto found = series_.find(name);
   if (found != series_.end()) {
@@ -466,13 +492,11 @@ TimeSeries &RunFile::observable(const std::string &name, const std::string &unit
   // flush): step -1, time and value NaN. See docs/hdf5-layout.md, "Crash guarantees".
   const std::int64_t step_fill = kUnwrittenStep;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  auto make = [&](const char *what, int rank, hid_t file_type, hid_t fill_type,
-                  const void *fill) {
+  auto make = [&](const char *what, int rank, hid_t file_type, hid_t fill_type, const void *fill) {
     const hsize_t dims[2] = {0, static_cast<hsize_t>(components)};
     const hsize_t maxdims[2] = {H5S_UNLIMITED, static_cast<hsize_t>(components)};
     const hsize_t chunk[2] = {kChunkRows, static_cast<hsize_t>(components)};
-    Handle space(f.check(H5Screate_simple(rank, dims, maxdims), "creating a dataspace"),
-                 H5Sclose);
+    Handle space(f.check(H5Screate_simple(rank, dims, maxdims), "creating a dataspace"), H5Sclose);
     Handle dcpl = f.dataset_creation();
     f.check_status(H5Pset_chunk(dcpl.get(), rank, chunk), "setting the chunk size");
     f.check_status(H5Pset_fill_value(dcpl.get(), fill_type, fill), "setting the fill value");
@@ -486,7 +510,7 @@ TimeSeries &RunFile::observable(const std::string &name, const std::string &unit
   f.write_string_attribute(ds->time.get(), "unit", "s");
   ds->value = make("value", components == 1 ? 1 : 2, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &nan);
   f.write_string_attribute(ds->value.get(), "unit", unit);
-  f.flush_file();
+  commit();
 
   std::unique_ptr<TimeSeries> series(new TimeSeries(*this, name, unit, components, std::move(ds)));
   TimeSeries &ref = *series;
@@ -495,12 +519,16 @@ TimeSeries &RunFile::observable(const std::string &name, const std::string &unit
 }
 
 void RunFile::before_append(const TimeSeries &series) {
-  if (policy_.flush_every > 0 && series.buffered_rows() >= policy_.flush_every) {
+  if (policy_.commit_interval_s > 0.0 &&
+      now_s() - last_commit_s_ >= std::max(policy_.commit_interval_s,
+                                           policy_.commit_cost_factor * last_commit_duration_s_)) {
     flush();
     return;
   }
-  if (policy_.flush_interval_s > 0.0 && now_s() - last_flush_s_ >= policy_.flush_interval_s)
-    flush();
+  if (policy_.write_every_rows > 0 && series.buffered_rows() >= policy_.write_every_rows) {
+    QuietHdf5Errors quiet;
+    write_buffered_rows();
+  }
 }
 
 // --- terrain -------------------------------------------------------------------------------------
@@ -537,38 +565,49 @@ void RunFile::write_snapshot(const std::string &group_name, std::int64_t step, d
                                  dcpl.get(), H5P_DEFAULT),
                       where + ": creating 'value'"),
               H5Dclose);
-    f.check_status(H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                            grid.values),
-                   where + ": writing 'value'");
+    f.check_status(
+        H5Dwrite(ds.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, grid.values),
+        where + ": writing 'value'");
     f.write_string_attribute(ds.get(), "unit", unit);
   }
   for (const auto &s : scalars)
     f.write_scalar_dataset(group.get(), s.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &s.value,
                            s.unit);
-  f.flush_file();
+  commit();
 }
 
 // --- flush / close -------------------------------------------------------------------------------
+void RunFile::write_buffered_rows() {
+  for (auto &entry : series_)
+    entry.second->write_buffered();
+}
+
+void RunFile::commit() {
+  const double start_s = now_s();
+  impl_->flush_file();
+  impl_->publish();
+  last_commit_s_ = now_s();
+  last_commit_duration_s_ = last_commit_s_ - start_s;
+}
+
 void RunFile::flush() {
   require_open("flush");
   QuietHdf5Errors quiet;
-  for (auto &entry : series_)
-    entry.second->write_buffered();
-  impl_->flush_file();
+  write_buffered_rows();
+  commit();
   ++flush_count_;
-  last_flush_s_ = now_s();
 }
 
 void RunFile::close() {
   if (!is_open())
     return;
   std::string first_error;
+  QuietHdf5Errors quiet;
   try {
-    flush();
+    write_buffered_rows();
   } catch (const RunFileError &e) {
     first_error = e.what();
   }
-  QuietHdf5Errors quiet;
   for (auto &entry : series_)
     entry.second->close_datasets();
   Impl &f = *impl_;
@@ -580,8 +619,14 @@ void RunFile::close() {
   f.lcpl.reset();
   if (!f.file.reset() && first_error.empty())
     first_error = "run file '" + path_ + "': closing (H5Fclose): " + hdf5_error_text();
-  if (!first_error.empty())
-    throw RunFileError(first_error);
+  if (!first_error.empty()) // `path` keeps the last commit; the working copy stays beside it
+    throw RunFileError(first_error + " (the last commit is in '" + path_ + "')");
+  // The closed working copy is complete: it replaces the last commit without a copy.
+  std::error_code ec;
+  std::filesystem::rename(f.working_path, path_, ec);
+  if (ec)
+    throw RunFileError("run file '" + path_ + "': renaming the closed working copy '" +
+                       f.working_path + "' onto it: " + ec.message());
 }
 
 } // namespace wheelsim::runfile

@@ -73,16 +73,17 @@ enum class TerrainType { flat, dem, scm };
 
 /// The SCM terrain's settings (terrain.type = "scm"); units in the names. docs/scm.md.
 struct ScmTerrainConfig {
-  std::string soil;                     ///< soil file (inputs/scm_soils/*.toml), resolved path
-  double grid_spacing_m = 0.0;          ///< Δ [m]
-  std::optional<double> grid_length_m;  ///< domain along x from -(rim radius) [m]; unset: unbounded
-  std::optional<double> grid_width_m;   ///< domain along y, centred on the wheel [m]; unset: unbounded
-  bool vertical_normal = false;         ///< normal_direction = "vertical" (Chrono) vs "surface"
+  std::string soil;                    ///< soil file (inputs/scm_soils/*.toml), resolved path
+  double grid_spacing_m = 0.0;         ///< Δ [m]
+  std::optional<double> grid_length_m; ///< domain along x from -(rim radius) [m]; unset: unbounded
+  std::optional<double>
+      grid_width_m;             ///< domain along y, centred on the wheel [m]; unset: unbounded
+  bool vertical_normal = false; ///< normal_direction = "vertical" (Chrono) vs "surface"
   std::optional<double> elastic_stiffness_Pa_m; ///< overrides the soil file's Ke [Pa/m]
   std::optional<double> damping_Pa_s_m;         ///< overrides the soil file's damping R [Pa s/m]
   bool bulldozing = true;
-  double erosion_angle_deg = 40.0;      ///< angle of repose [deg]
-  double flow_factor = 1.0;             ///< [-]
+  double erosion_angle_deg = 40.0; ///< angle of repose [deg]
+  double flow_factor = 1.0;        ///< [-]
   long long erosion_iterations = 3;
   long long erosion_rings = 10;
   std::vector<double> snapshot_times_s; ///< simulated times [s] of terrain snapshots
@@ -103,8 +104,9 @@ struct TerrainConfig {
 
 struct OutputConfig {
   std::string file = "run.h5";
-  long long every = 1;               ///< record every N-th step
-  long long flush_interval = 1000;   ///< flush the run file every N recorded steps
+  long long every = 1; ///< record every N-th step
+  long long flush_interval =
+      1000; ///< recorded steps kept in memory before they go to the working copy
   double progress_interval_s = 10.0; ///< wall-clock seconds between progress lines; 0 = off
 };
 

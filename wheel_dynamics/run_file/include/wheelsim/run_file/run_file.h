@@ -6,14 +6,19 @@
 //   /observables/<name>/{step,time,value}   time series, value with a `unit` attribute
 //   /terrain/<name>/{step,time,value,...}   2-D snapshots (SCM maps)
 //
-// Crash safety: the HDF5 library is only called inside the public methods, and every method that
-// changes the file ends with H5Fflush. Between calls the file on disk is therefore complete and
-// consistent; rows appended since the last flush live only in memory. A process killed with
-// SIGKILL between flushes leaves a file that reads back with every row up to the last flush()
-// (manual or automatic) and nothing after it. A kill *during* a flush leaves a file that opens,
-// with every row of the previous flush intact and part of the interrupted flush's rows; rows
-// whose extent but not data reached the disk read as step kUnwrittenStep (-1), time and value
-// NaN. tests/run_file proves both; docs/hdf5-layout.md has the measurements.
+// Crash safety (docs/hdf5-layout.md, "Crash guarantees"): the HDF5 library writes to a working
+// copy, `<path>.writing`, never to `path` itself. A commit (flush(), the automatic commit of the
+// FlushPolicy, and every method that adds an object: a parameter, an observable, a snapshot)
+// writes the buffered rows to the working copy, calls H5Fflush, copies the working copy to
+// `<path>.publishing` and renames that onto `path` (rename(2) replaces `path` atomically). So at
+// any moment, `path` is a complete file holding exactly what the last commit held: a process
+// killed with SIGKILL at any instant — also inside a commit — loses no committed row and leaves no
+// torn series. close() commits and renames the closed working copy onto `path`. A crash leaves the
+// working copy (and perhaps the staging copy) beside `path`; the next RunFile at `path` removes
+// them. Between commits, rows go to the working copy when a series buffers `write_every_rows`
+// rows (a memory bound, not a commit). tests/run_file kills writers >= 1000 times inside commits.
+// What this does not cover: a power loss or kernel crash (no fsync: the guarantee is for process
+// death, where the page cache survives).
 //
 // No HDF5 header is included here: the handles live in the .cpp.
 #pragma once
@@ -43,16 +48,23 @@ struct Creator {
   std::string author = {};  ///< /h5md/author name; empty: $USER, or "unknown"
 };
 
-/// When RunFile flushes by itself (checked at every append). 0 disables a criterion.
+/// When RunFile writes and commits by itself (checked at every append). 0 disables a criterion.
 struct FlushPolicy {
-  std::int64_t flush_every = 1000; ///< rows buffered in any one series (memory bound per series)
-  double flush_interval_s = 10.0;  ///< wall-clock seconds since the last flush [s]
+  /// Rows buffered in memory in any one series before every series' buffered rows are written to
+  /// the working copy (a memory bound; readers of `path` see them at the next commit).
+  std::int64_t write_every_rows = 1000;
+  /// Wall-clock time between automatic commits [s].
+  double commit_interval_s = 10.0;
+  /// Automatic commits are at least this many times the last commit's duration apart, so that
+  /// copying a large file costs at most ~1/commit_cost_factor of the run's wall time; 0: no
+  /// stretch (commit_interval_s alone).
+  double commit_cost_factor = 50.0;
 };
 
 class RunFile;
 
-/// The `step` fill value: a row with this step was never written (a kill inside a flush left the
-/// dataset's extent on disk but not the row's data); its time and value read as NaN.
+/// The `step` fill value of every series (time and value: NaN). A committed file never holds such
+/// a row; it marks rows of a working copy whose extent but not data reached the disk.
 constexpr std::int64_t kUnwrittenStep = -1;
 
 /// One time series /observables/<name>/{step,time,value}. Obtained from RunFile::observable();
@@ -64,11 +76,11 @@ public:
   TimeSeries &operator=(const TimeSeries &) = delete;
 
   /// Buffers one row: `values` points to components() doubles in the series' unit. `step` must
-  /// be >= 0 and greater than the previous step of this series. If an automatic flush of the whole file
-  /// is due (FlushPolicy: this series holds flush_every rows, or flush_interval has passed), it
-  /// is done first, before the row is buffered — so when every observable of step n is appended
-  /// before any of step n+1, flushes end at step boundaries. Throws RunFileError if that flush
-  /// fails or the file is closed.
+  /// be >= 0 and greater than the previous step of this series. If an automatic write or commit
+  /// is due (FlushPolicy: this series holds write_every_rows rows, or commit_interval has
+  /// passed), it is done first, before the row is buffered — so when every observable of step n
+  /// is appended before any of step n+1, commits end at step boundaries. Throws RunFileError if
+  /// that write or commit fails or the file is closed.
   void append(std::int64_t step, double time_s, const double *values);
   /// Convenience for scalar series (components() == 1).
   void append(std::int64_t step, double time_s, double value);
@@ -78,7 +90,7 @@ public:
   int components() const { return components_; }
   /// Rows appended so far (written or buffered).
   std::int64_t rows() const { return rows_written_ + buffered_rows(); }
-  /// Rows in the file as of the last flush.
+  /// Rows in the working copy (committed or not).
   std::int64_t rows_written() const { return rows_written_; }
   std::int64_t buffered_rows() const { return static_cast<std::int64_t>(steps_.size()); }
 
@@ -87,7 +99,7 @@ private:
   struct Datasets; // HDF5 handles, defined in the .cpp
   TimeSeries(RunFile &owner, std::string name, std::string unit, int components,
              std::unique_ptr<Datasets> datasets);
-  void write_buffered(); // called by RunFile::flush()
+  void write_buffered(); // called by RunFile::write_buffered_rows()
   void close_datasets();
 
   RunFile *owner_;
@@ -117,9 +129,9 @@ struct Grid2D {
 
 class RunFile {
 public:
-  /// Creates (truncates) `path` and writes /h5md and the empty /parameters, /observables,
-  /// /terrain groups. Throws RunFileError naming the path if it cannot be created (e.g. its
-  /// directory does not exist).
+  /// Creates (replaces) `path` and writes /h5md and the empty /parameters, /observables,
+  /// /terrain groups (committed). Throws RunFileError naming the path if it cannot be created
+  /// (e.g. its directory does not exist).
   RunFile(const std::string &path, const Creator &creator, const FlushPolicy &policy = {});
   /// Closes the file (close()); an error there is printed to stderr, not thrown.
   ~RunFile();
@@ -138,7 +150,7 @@ public:
   void set_parameter(const std::string &name, int value, const std::string &unit);
 
   // --- /observables ---
-  /// The series /observables/<name>; created (and flushed to the file, empty) on first use.
+  /// The series /observables/<name>; created (and committed, empty) on first use.
   /// `name` may contain '/' ("wheel/position"). `unit` is stored on `value` ("1" for
   /// dimensionless); `components` is 1 (value is [n]) or more (value is [n x components], e.g. 3
   /// for a vector, 4 for a quaternion w x y z). Asking again for an existing name returns the
@@ -153,23 +165,28 @@ public:
                       const Grid2D &grid, const std::string &unit,
                       const std::vector<SnapshotScalar> &scalars = {});
 
-  /// Writes every buffered row and calls H5Fflush: after it returns, the file on disk holds
-  /// everything appended so far.
+  /// Commits: writes every buffered row to the working copy, H5Fflush, and publishes it as `path`
+  /// (copy, then atomic rename). After it returns, `path` holds everything appended so far.
   void flush();
-  /// flush(), then closes every HDF5 handle and the file. Idempotent. Any use afterwards throws.
+  /// Writes the buffered rows, closes every HDF5 handle and the working copy, and renames it onto
+  /// `path`. Idempotent. Any use afterwards throws.
   void close();
   bool is_open() const;
 
   const std::string &path() const { return path_; }
   const FlushPolicy &flush_policy() const { return policy_; }
   void set_flush_policy(const FlushPolicy &policy);
-  /// Number of flushes done (manual and automatic), for tests and progress reports.
+  /// Number of flush() commits done (manual and automatic), for tests and progress reports.
   std::int64_t flush_count() const { return flush_count_; }
+  /// The working copy HDF5 writes to (`path` + ".writing"); gone after close().
+  std::string working_path() const { return path_ + ".writing"; }
 
 private:
   friend class TimeSeries;
   struct Impl; // HDF5 handles, defined in the .cpp
   void before_append(const TimeSeries &series);
+  void write_buffered_rows(); // every series' buffered rows to the working copy (no commit)
+  void commit();              // H5Fflush, then publish the working copy as path_
   void require_open(const char *what) const;
 
   std::string path_;
@@ -177,7 +194,8 @@ private:
   std::unique_ptr<Impl> impl_;
   std::map<std::string, std::unique_ptr<TimeSeries>> series_;
   std::int64_t flush_count_ = 0;
-  double last_flush_s_ = 0.0; // steady clock [s]
+  double last_commit_s_ = 0.0;          // steady clock at the end of the last commit [s]
+  double last_commit_duration_s_ = 0.0; // wall time the last commit took [s]
 };
 
 } // namespace wheelsim::runfile
