@@ -14,12 +14,13 @@ import os
 import shutil
 import signal
 import subprocess
+import sys
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
 from pathlib import Path
 
-from . import toml_out
+from . import toml_out, watchdog
 
 RUN_FILE = "run.h5"
 PART_FILE = "run.part.h5"
@@ -70,6 +71,8 @@ class Runner:
         self.dry_run = dry_run
         self.lock = threading.RLock()
         self.procs = {}  # Popen -> True once we signalled it
+        self.watchdog = None  # the watchdog process (watchdog.py), while points run
+        self.preexec = watchdog.child_preexec(os.getpid())
         self.stop_signal = None
         self.status = {}  # point index -> done | failed | interrupted | pending
         self.exit_status = {}
@@ -80,8 +83,35 @@ class Runner:
             print(msg, flush=True)
 
     # ---- child processes ------------------------------------------------------------------------
+    def start_watchdog(self):
+        """Starts the watchdog that kills the children's sessions if this process dies."""
+        self.watchdog = subprocess.Popen(
+            [sys.executable, str(Path(watchdog.__file__).resolve())], stdin=subprocess.PIPE,
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+
+    def stop_watchdog(self):
+        if self.watchdog is not None:
+            try:
+                self.watchdog.stdin.close()
+            except OSError:
+                pass
+            self.watchdog.wait()
+            self.watchdog = None
+
+    def _tell_watchdog(self, line):
+        if self.watchdog is None:
+            return
+        try:
+            self.watchdog.stdin.write(f"{line}\n".encode())
+            self.watchdog.stdin.flush()
+        except OSError:
+            self.say("wheel-sweep: warning: the watchdog is gone; children may outlive a killed "
+                     "driver")
+            self.watchdog = None
+
     def _run_child(self, cmd, log, cwd=None):
-        """Runs cmd in its own process group; returns its exit status or raises Interrupted."""
+        """Runs cmd in a session of its own that dies with this process (watchdog.py); returns
+        its exit status or raises Interrupted."""
         env = dict(os.environ, WHEELSIM_BUILD_DIR=str(self.build))
         with open(log, "w") as f:
             with self.lock:
@@ -89,21 +119,30 @@ class Runner:
                     raise Interrupted()
                 proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT,
                                         stdin=subprocess.DEVNULL, cwd=cwd, env=env,
-                                        start_new_session=True)
+                                        preexec_fn=self.preexec)
                 self.procs[proc] = False
+                self._tell_watchdog(f"+{proc.pid}")
             try:
                 rc = proc.wait()
             finally:
+                # what the child left behind in its session (e.g. an MPI rank) goes with it
+                watchdog.kill_sessions_until_empty([proc.pid])
                 with self.lock:
                     killed = self.procs.pop(proc)
+                    self._tell_watchdog(f"-{proc.pid}")
         if killed:
             raise Interrupted()
         return rc
 
     def _signal_children(self, sig):
+        """SIGTERM: to each child's process group (mpirun forwards it to its ranks); SIGKILL:
+        to every process of each child's session."""
         with self.lock:
             for proc in self.procs:
                 self.procs[proc] = True
+                if sig == signal.SIGKILL:
+                    watchdog.kill_session(proc.pid, sig)
+                    continue
                 try:
                     os.killpg(proc.pid, sig)
                 except ProcessLookupError:
@@ -336,6 +375,7 @@ class Runner:
             shutil.copyfile(sw.path, self.out / "sweep.toml")
         for sig in (signal.SIGINT, signal.SIGTERM):
             signal.signal(sig, self._on_signal)
+        self.start_watchdog()
         if skipped:
             self.say(f"wheel-sweep: skipping {skipped} finished point(s) (--force re-runs them):")
             for p in sw.points:
@@ -357,6 +397,8 @@ class Runner:
             self._run_points(todo)
         except Interrupted:
             pass
+        finally:
+            self.stop_watchdog()
         self.write_manifest()
         return self._summary(n, skipped, len(todo))
 

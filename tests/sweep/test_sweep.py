@@ -3,7 +3,8 @@
 
   test_sweep.py CASE --sweep scripts/wheel-sweep --build-dir BUILD --work DIR
 
-CASE: matrix, resume_marker, resume_sigterm, bad_config, examples_dry_run (see each function).
+CASE: matrix, resume_marker, resume_sigterm, bad_config, examples_dry_run, scm_smoke, kill_flat,
+kill_dem, ... (see each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (wheel-rig or the wheel meshes not built).
 """
 
@@ -29,6 +30,7 @@ FRICTION = 0.5
 SOIL = (f'{{ name = "mu05", friction = {FRICTION}, friction_model = "regularized", '
         'slip_velocity_scale = 1.0e-3 }')
 DURATION_SIGTERM = 400.0  # s simulated: a point takes ~2 s of wall time (1e-4 s steps)
+DURATION_KILL = 1.0e5  # s simulated: ~10 min of wall time, far longer than a kill test
 
 
 class Fail(Exception):
@@ -239,6 +241,134 @@ def case_resume_sigterm(a, work):
     check("skipping 1 finished point(s)" in r.stdout and "running 3 point(s)" in r.stdout,
           "resume did not skip exactly the finished point")
     check_complete(out, ["wheel1", "small"], [0.1, 0.2])
+
+
+def _proc_stat(pid):
+    """(ppid, session, start time) of a process, or None if it is gone or a zombie (dead; the
+    init of a container may take seconds to reap an orphan)."""
+    try:
+        text = Path(f"/proc/{pid}/stat").read_bytes()
+    except OSError:
+        return None
+    f = text[text.rindex(b")") + 2:].split()
+    return None if f[0] == b"Z" else (int(f[1]), int(f[3]), int(f[19]))
+
+
+def _cmdline(pid):
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode().strip()
+    except OSError:
+        return "?"
+
+
+def descendants(root):
+    """{pid: (start time, command line)} of every descendant of `root` and every process in
+    the session of one of them (the tree of each point)."""
+    procs = {}
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            st = _proc_stat(int(d.name))
+            if st is not None:
+                procs[int(d.name)] = st
+    found, todo = set(), [root]
+    while todo:
+        parent = todo.pop()
+        for pid, (ppid, _, _) in procs.items():
+            if ppid == parent and pid not in found:
+                found.add(pid)
+                todo.append(pid)
+    sessions = {procs[p][1] for p in found} - {procs.get(root, (0, -1, 0))[1]}
+    found |= {pid for pid, (_, sid, _) in procs.items() if sid in sessions}
+    return {pid: (procs[pid][2], _cmdline(pid)) for pid in found if pid != os.getpid()}
+
+
+def still_alive(snapshot):
+    return {pid: cmd for pid, (start, cmd) in snapshot.items()
+            if (_proc_stat(pid) or (0, 0, None))[2] == start}
+
+
+def kill_driver_and_check(a, cmd, wait_for, need, timeout=40):
+    """Starts the driver, waits until `need(descendants)` holds, SIGKILLs the driver and checks
+    that every descendant (and every process of a child's session) is gone within 5 s."""
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    tree = {}
+    try:
+        t0 = time.monotonic()
+        for line in p.stdout:
+            print(line, end="")
+            if wait_for in line:
+                break
+        while time.monotonic() - t0 < timeout:
+            tree = descendants(p.pid)
+            if need(tree):
+                break
+            time.sleep(0.2)
+        print("driver's tree before SIGKILL:")
+        for pid, (_, c) in sorted(tree.items()):
+            print(f"  {pid} {c[:150]}")
+        check(need(tree), "the sweep's children did not start")
+        time.sleep(0.5)
+        tree.update(descendants(p.pid))
+        p.kill()
+        p.wait()
+        t1 = time.monotonic()
+        left = still_alive(tree)
+        while left and time.monotonic() - t1 < 5.0:
+            time.sleep(0.1)
+            left = still_alive(tree)
+        check(not left, "processes left 5 s after SIGKILL of the driver: "
+              + "; ".join(f"{pid} {c[:100]}" for pid, c in left.items()))
+        print(f"all {len(tree)} processes gone {time.monotonic() - t1:.2f} s after SIGKILL")
+    finally:
+        if p.poll() is None:
+            p.kill()
+        for pid in still_alive(tree):  # leave nothing behind when the check failed
+            os.kill(pid, signal.SIGKILL)
+
+
+def case_kill_flat(a, work):
+    """SIGKILL of the driver while 2 wheel-rig points run: no child outlives it."""
+    cfg = work / "sweep.toml"
+    sweep_config(cfg, a.build_dir, duration=DURATION_KILL, every=100000, slips=[0.1, 0.2])
+    cmd = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--out-dir", str(work / "out"),
+           "--jobs", "2"]
+    kill_driver_and_check(a, cmd, "[started 2/", lambda t: sum(
+        "wheel-rig" in c for _, c in t.values()) == 2)
+
+
+def case_kill_dem(a, work):
+    """SIGKILL of the driver during 2 DEM points: wheel-cosim, its rig, mpirun and mpirun's 2
+    ranks each (a stand-in liggghts-wheel that sleeps, in a build dir of links) all die."""
+    build = work / "build"
+    (build / "bin").mkdir(parents=True)
+    (build / "bin" / "wheel-rig").symlink_to(Path(a.build_dir).resolve() / "bin" / "wheel-rig")
+    (build / "meshes").symlink_to(Path(a.build_dir).resolve() / "meshes")
+    fake = build / "bin" / "liggghts-wheel"
+    fake.write_text("#!/bin/sh\nexec sleep 300\n")
+    fake.chmod(0o755)
+    bed = work / "soilbin_ci.restart"
+    bed.write_text("not a restart\n")
+    Path(f"{bed}.vars").write_text("variable bed_depth equal 0.035\nvariable soil string ci\n")
+    (work / "in.deck").write_text("# never read: liggghts-wheel is a stand-in\n")
+    repo = Path(a.sweep).resolve().parents[1]
+    cfg = work / "sweep.toml"
+    cfg.write_text(f"""terrain = "dem"
+base = "{repo}/inputs/rigs/ci_small_wheel.toml"
+wheels = ["test_small"]
+soils = ["{bed}"]
+slips = [0.1, 0.2]
+[dem]
+np = 2
+deck = "in.deck"
+""")
+    cmd = [a.sweep, str(cfg), "--build-dir", str(build), "--out-dir", str(work / "out"),
+           "--jobs", "2"]
+
+    def started(tree):
+        cmds = [c for _, c in tree.values()]
+        return (sum(c.startswith("sleep 300") for c in cmds) == 4
+                and sum("bin/wheel-rig" in c and "--endpoint" in c for c in cmds) == 2)
+    kill_driver_and_check(a, cmd, "[started 2/", started)
 
 
 BAD = [
