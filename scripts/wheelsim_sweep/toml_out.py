@@ -1,48 +1,18 @@
-"""A small TOML writer for rig configs: nested tables of scalars and arrays of scalars."""
+"""Writes the points' rig configs as TOML with tomli_w (Debian: python3-tomli-w), so any key or
+string (non-ASCII, quotes, control characters) reads back with tomllib as it was written."""
 
-import json
-import math
-
-
-def _value(v, where):
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, int):
-        return str(v)
-    if isinstance(v, float):
-        if math.isnan(v):
-            return "nan"
-        if math.isinf(v):
-            return "inf" if v > 0 else "-inf"
-        return repr(v)
-    if isinstance(v, str):
-        return json.dumps(v, ensure_ascii=False)  # a valid TOML basic string
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_value(x, where) for x in v) + "]"
-    raise TypeError(f"{where}: cannot write a {type(v).__name__} to TOML")
+import tomli_w
 
 
-def _key(k):
-    if k and all(c.isalnum() or c in "_-" for c in k):
-        return k
-    return json.dumps(k)
+def _comment(line):
+    """A comment line's text: control characters (not allowed in TOML comments) as escapes."""
+    return "".join(c if c == "\t" or (ord(c) >= 32 and ord(c) != 127) else repr(c)[1:-1]
+                   for c in line)
 
 
 def dumps(doc, header=""):
-    """TOML text of a dict whose values are scalars, arrays of scalars or dicts (tables)."""
-    lines = [f"# {line}" if line else "#" for line in header.splitlines()]
-
-    def table(d, path):
-        scalars = [(k, v) for k, v in d.items() if not isinstance(v, dict)]
-        tables = [(k, v) for k, v in d.items() if isinstance(v, dict)]
-        if path and (scalars or not tables):
-            if lines:
-                lines.append("")
-            lines.append("[" + ".".join(_key(p) for p in path) + "]")
-        for k, v in scalars:
-            lines.append(f"{_key(k)} = {_value(v, '.'.join(path + [k]))}")
-        for k, v in tables:
-            table(v, path + [k])
-
-    table(doc, [])
-    return "\n".join(lines) + "\n"
+    """TOML text of a dict of scalars, arrays and tables, after `header` as '# ' comment lines.
+    Raises TypeError for a value TOML cannot hold (e.g. None)."""
+    lines = [f"# {_comment(line)}" if line else "#" for line in header.splitlines()]
+    body = tomli_w.dumps(doc)
+    return ("\n".join(lines) + "\n\n" if lines else "") + body
