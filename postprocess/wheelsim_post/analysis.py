@@ -3,37 +3,56 @@
 import dataclasses
 import math
 
+from .health import Health, postprocess_findings
 from .metadata import read_metadata
 from .runfile import RunFile
 from .steady import steady_state
+from .wheelinfo import lug_count
 
 
 @dataclasses.dataclass
 class RunResult:
-    """A run's path, grouping metadata and steady_state() statistics."""
+    """A run's path, grouping metadata, steady_state() statistics and health."""
 
     path: str
     metadata: object
     stats: dict
+    health: Health
 
     def mean(self, quantity):
         """Window mean of ``quantity`` (a name of quantities.QUANTITIES)."""
-        return self.stats[quantity][0]
+        return self.stats[quantity].mean
 
     def std(self, quantity):
-        """Window standard deviation of ``quantity``."""
-        return self.stats[quantity][1]
+        """Window standard deviation (ddof 0) of ``quantity``."""
+        return self.stats[quantity].std
+
+    def sem(self, quantity):
+        """Standard error of the window mean of ``quantity`` (batch means)."""
+        return self.stats[quantity].sem
+
+    @property
+    def span(self):
+        """The steady.WindowSpan."""
+        return self.stats["span"]
 
 
-def analyse_runs(paths, window):
+def analyse_run(path, window, lugs=None):
+    """The RunResult of one run file (PostError if it is unusable).
+
+    ``lugs``: lug count from the command line (None: found by wheelinfo.lug_count)."""
+    with RunFile(path) as run:
+        metadata = read_metadata(run)
+        count, source = lug_count(run, metadata.wheel, lugs)
+        stats = steady_state(run, window, count, source)
+        health = run.health()
+    health.findings = health.findings + postprocess_findings(stats)
+    return RunResult(path, metadata, stats, health)
+
+
+def analyse_runs(paths, window, lugs=None):
     """RunResults of ``paths`` (in order); PostError on the first unusable file."""
-    results = []
-    for path in paths:
-        with RunFile(path) as run:
-            results.append(
-                RunResult(path, read_metadata(run), steady_state(run, window))
-            )
-    return results
+    return [analyse_run(path, window, lugs) for path in paths]
 
 
 def group_label(metadata, group_by):
@@ -44,3 +63,11 @@ def group_label(metadata, group_by):
 def slip_text(value):
     """A target slip for tables and labels ('0.2', or 'none' if NaN)."""
     return "none" if math.isnan(value) else f"{value:g}"
+
+
+def window_lines(result):
+    """Console lines: the window chosen for a run and its notes."""
+    span = result.span
+    lines = [f"{result.path}: {span.describe()}"]
+    lines += [f"{result.path}: note: {note}" for note in span.notes]
+    return lines

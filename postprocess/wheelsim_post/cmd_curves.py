@@ -6,12 +6,19 @@ import textwrap
 import numpy as np
 from matplotlib.ticker import MaxNLocator
 
-from .analysis import analyse_runs, group_label
+from .analysis import analyse_runs, group_label, window_lines
 from .csvio import write_csv
 from .metadata import parse_group_by
 from .options import add_window_options, window_from_args
 from .plotting import panel_grid, save
-from .quantities import CURVE_QUANTITIES, EFFICIENCY_OF_MEANS, QUANTITIES, SLIP_OF_MEANS
+from .quantities import (
+    CURVE_QUANTITIES,
+    EFFICIENCY_OF_MEANS,
+    NORMALISED_CURVE_QUANTITIES,
+    NORMALISED_QUANTITIES,
+    QUANTITIES,
+    SLIP_OF_MEANS,
+)
 
 HELP = "steady-state drawbar pull, torque, sinkage, efficiency, ... against slip"
 
@@ -27,8 +34,14 @@ LEAD_COLUMNS = (
     "window_start_s",
     "window_end_s",
     "n_samples",
+    "lug_count",
+    "window_passes",
     "r_eff_m",
+    "vertical_load_N",
 )
+
+#: Columns after the quantities.
+TAIL_COLUMNS = ("health", "health_codes", "window_notes")
 
 
 def add_parser(subparsers):
@@ -45,33 +58,45 @@ def add_parser(subparsers):
     )
     parser.add_argument("--csv", metavar="OUT.csv", help="write the table here")
     parser.add_argument("--png", metavar="OUT.png", help="write the plot here")
+    parser.add_argument(
+        "--normalised",
+        action="store_true",
+        help="plot DP/W and T/(W R_eff) (W = vertical load) instead of DP, T and T/R_eff",
+    )
     parser.set_defaults(func=run)
     return parser
+
+
+def _stat_columns(name):
+    q = QUANTITIES[name]
+    return [q.mean_column, q.std_column, q.sem_column]
 
 
 def csv_header():
     """Column names of the curves CSV (units in the names; see docs/postprocess.md)."""
     columns = list(LEAD_COLUMNS)
-    columns += ["slip_mean", "slip_std", SLIP_OF_MEANS]
-    for name in CURVE_QUANTITIES:
-        q = QUANTITIES[name]
-        columns += [q.mean_column, q.std_column]
+    columns += _stat_columns("slip") + [SLIP_OF_MEANS, SLIP_OF_MEANS + "_sem"]
+    for name in CURVE_QUANTITIES + NORMALISED_QUANTITIES:
+        columns += _stat_columns(name)
         if name == "tractive_efficiency":
-            columns.append(EFFICIENCY_OF_MEANS)
-    return columns
+            columns += [EFFICIENCY_OF_MEANS, EFFICIENCY_OF_MEANS + "_sem"]
+    return columns + list(TAIL_COLUMNS)
 
 
 def csv_row(result, group):
     """One CSV row of a RunResult, in the order of csv_header()."""
     m, s = result.metadata, result.stats
     span = s["span"]
+    lugs = "unknown" if span.lug_count is None else span.lug_count
     row = [group, m.wheel, m.soil, m.terrain, m.target_slip, result.path]
-    row += [span.test_start, span.start, span.end, s["n_samples"], s["r_eff"]]
-    row += [s["slip"][0], s["slip"][1], s[SLIP_OF_MEANS]]
-    for name in CURVE_QUANTITIES:
+    row += [span.test_start, span.start, span.end, s["n_samples"], lugs, span.passes]
+    row += [s["r_eff"], s["vertical_load"]]
+    row += list(s["slip"]) + [s[SLIP_OF_MEANS].mean, s[SLIP_OF_MEANS].sem]
+    for name in CURVE_QUANTITIES + NORMALISED_QUANTITIES:
         row += list(s[name])
         if name == "tractive_efficiency":
-            row.append(s[EFFICIENCY_OF_MEANS])
+            row += [s[EFFICIENCY_OF_MEANS].mean, s[EFFICIENCY_OF_MEANS].sem]
+    row += [result.health.verdict, result.health.codes, "; ".join(span.notes)]
     return row
 
 
@@ -83,6 +108,17 @@ def sorted_groups(results, group_by):
     for members in groups.values():
         members.sort(key=lambda r: (math.isnan(r.mean("slip")), r.mean("slip")))
     return groups
+
+
+def footnotes(results):
+    """Lines for the CSV footer and the plot: runs whose health is not ok, window notes."""
+    lines = []
+    for r in results:
+        if r.health.verdict != "ok":
+            codes = f" ({r.health.codes})" if r.health.codes else ""
+            lines.append(f"{r.path}: health {r.health.verdict}{codes}")
+        lines += [f"{r.path}: {note}" for note in r.span.notes]
+    return lines
 
 
 EFFICIENCY_AXIS = (-0.5, 1.0)
@@ -105,33 +141,39 @@ def clip_efficiency_axis(ax, values):
     )
 
 
-def plot_curves(groups, path, window_text):
-    """One panel per quantity of CURVE_QUANTITIES against measured slip, with error bars."""
-    fig, axes = panel_grid(len(CURVE_QUANTITIES), columns=2)
+def plot_curves(groups, path, window_text, normalised=False, notes=()):
+    """One panel per quantity against measured slip, error bars ± SEM; points whose health
+    is not ok hollow, listed with the window notes in a footnote."""
+    names = NORMALISED_CURVE_QUANTITIES if normalised else CURVE_QUANTITIES
+    fig, axes = panel_grid(len(names), columns=2)
     efficiency_values = []
     slip_q = QUANTITIES["slip"]
-    for ax, name in zip(axes, CURVE_QUANTITIES):
+    for ax, name in zip(axes, names):
         q = QUANTITIES[name]
-        for label, members in groups.items():
+        for index, (label, members) in enumerate(groups.items()):
+            colour = f"C{index % 10}"
             x = np.array([r.mean("slip") for r in members])
-            xerr = np.array([r.std("slip") for r in members])
+            xerr = np.array([r.sem("slip") for r in members])
             if name == "tractive_efficiency":
-                y = np.array([r.stats[EFFICIENCY_OF_MEANS] for r in members])
+                y = np.array([r.stats[EFFICIENCY_OF_MEANS].mean for r in members])
+                yerr = np.array([r.stats[EFFICIENCY_OF_MEANS].sem for r in members])
+                efficiency_values.extend(v for v in y if np.isfinite(v))
             else:
                 y = np.array([r.mean(name) for r in members])
-            yerr = np.array([r.std(name) for r in members])
-            if name == "tractive_efficiency":
-                # The std of the per-step η is meaningless where T·ω crosses 0: no error bars.
-                yerr = None
-                efficiency_values.extend(v for v in y if np.isfinite(v))
+                yerr = np.array([r.sem(name) for r in members])
+            ok = np.array([r.health.verdict == "ok" for r in members], dtype=bool)
             ax.errorbar(
                 x,
                 y * q.plot_scale,
-                yerr=None if yerr is None else yerr * q.plot_scale,
+                yerr=yerr * q.plot_scale,
                 xerr=xerr,
-                marker="o",
+                color=colour,
                 capsize=3,
                 label=label,
+            )
+            ax.plot(x[ok], y[ok] * q.plot_scale, "o", color=colour)
+            ax.plot(
+                x[~ok], y[~ok] * q.plot_scale, "o", color=colour, mfc="white", zorder=3
             )
         ax.set_xlabel(f"measured {slip_q.axis_label()}")
         ax.set_ylabel(q.axis_label())
@@ -141,8 +183,17 @@ def plot_curves(groups, path, window_text):
         ax.xaxis.set_major_locator(MaxNLocator(5))
         ax.grid(True, alpha=0.3)
     axes[0].legend(fontsize=8)
-    fig.suptitle(textwrap.fill(f"mean ± std; {window_text}", 110), fontsize=8)
-    save(fig, path)
+    fig.suptitle(
+        textwrap.fill(f"mean ± standard error of the mean (batch means); {window_text}", 110),
+        fontsize=8,
+    )
+    if notes:
+        text = ["hollow markers: health not ok; notes:"] + [f"  {n}" for n in notes]
+        if len(text) > 12:
+            text = text[:11] + [f"  ... and {len(text) - 11} more (see the CSV)"]
+        fig.tight_layout(rect=(0, 0.02 + 0.018 * len(text), 1, 1))
+        fig.text(0.01, 0.01, "\n".join(text), fontsize=6, va="bottom", family="monospace")
+    save(fig, path, tight=not notes)
 
 
 def run(args):
@@ -150,29 +201,38 @@ def run(args):
     window = window_from_args(args)
     group_by = parse_group_by(args.group_by)
     print(window.describe())
-    results = analyse_runs(args.runs, window)
+    results = analyse_runs(args.runs, window, args.lugs)
     groups = sorted_groups(results, group_by)
     rows = []
     for label, members in groups.items():
         for r in members:
             rows.append(csv_row(r, label))
+            for line in window_lines(r):
+                print(line)
+            codes = f" ({r.health.codes})" if r.health.codes else ""
             print(
                 f"{label}: target slip {r.metadata.target_slip:g}, "
-                f"slip {r.mean('slip'):.4g} ± {r.std('slip'):.2g}, "
-                f"DP {r.mean('drawbar_pull'):.4g} ± {r.std('drawbar_pull'):.2g} N, "
-                f"T {r.mean('driving_torque'):.4g} ± {r.std('driving_torque'):.2g} N m, "
-                f"η {r.stats[EFFICIENCY_OF_MEANS]:.3g}  ({r.path})"
+                f"slip {r.mean('slip'):.4g} ± {r.sem('slip'):.2g}, "
+                f"DP {r.mean('drawbar_pull'):.4g} ± {r.sem('drawbar_pull'):.2g} N, "
+                f"T {r.mean('driving_torque'):.4g} ± {r.sem('driving_torque'):.2g} N m, "
+                f"DP/W {r.mean('dp_over_w'):.4g} ± {r.sem('dp_over_w'):.2g}, "
+                f"η {r.stats[EFFICIENCY_OF_MEANS].mean:.3g}, "
+                f"health {r.health.verdict}{codes}  ({r.path})"
             )
+    notes = footnotes(results)
     if args.csv:
         comments = [
-            "wheelsim-post curves: steady-state mean and std (ddof 0) per run",
+            "wheelsim-post curves: steady-state mean, std (ddof 0) and standard error of the "
+            "mean (_sem: batch means, 20 batches) per run",
             window.describe(),
             "units: see column suffixes (_N, _Nm, _m, _s; none = dimensionless); "
-            "tractive_efficiency_of_means = DP_mean*v_mean/(T_mean*omega_mean) is plotted",
+            "tractive_efficiency_of_means = DP_mean*v_mean/(T_mean*omega_mean) is plotted; "
+            "dp_over_w = DP/W, torque_over_w_reff = T/(W*R_eff), W = vertical_load_N",
         ]
-        write_csv(args.csv, comments, csv_header(), rows)
+        footer = ["notes:"] + notes if notes else []
+        write_csv(args.csv, comments, csv_header(), rows, footer)
         print(f"wrote {args.csv}")
     if args.png:
-        plot_curves(groups, args.png, window.describe())
+        plot_curves(groups, args.png, window.describe(), args.normalised, notes)
         print(f"wrote {args.png}")
     return 0

@@ -14,8 +14,9 @@ def format_value(value):
     return str(value)
 
 
-def write_csv(path, comments, header, rows):
-    """Writes ``comments`` (lines, '# ' prepended), the ``header`` row and ``rows``."""
+def write_csv(path, comments, header, rows, footer=()):
+    """Writes ``comments`` (lines, '# ' prepended), the ``header`` row, ``rows`` and the
+    ``footer`` comment lines (a footnote; read_csv skips them like the header comments)."""
     directory = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(directory):
         raise PostError(
@@ -28,6 +29,8 @@ def write_csv(path, comments, header, rows):
         writer.writerow(header)
         for row in rows:
             writer.writerow([format_value(v) for v in row])
+        for line in footer:
+            out.write(f"# {line}\n")
 
 
 def read_csv(path, option):

@@ -44,6 +44,11 @@ def _rig_config(run):
         return {}
 
 
+def rig_config(run):
+    """The rig config (``/parameters/rig_config``) parsed with tomllib, or {}."""
+    return _rig_config(run)
+
+
 def _stem(path_text):
     """Basename without extension of a path ('meshes/lugged_12.stl' -> 'lugged_12')."""
     return os.path.splitext(os.path.basename(path_text.strip()))[0]

@@ -55,14 +55,16 @@ def shade_phases(ax, time, phase, label=True):
         seen.add(code)
 
 
-def save(fig, path):
-    """Saves ``fig`` as PNG to ``path`` and closes it (PostError if the directory is missing)."""
+def save(fig, path, tight=True):
+    """Saves ``fig`` as PNG to ``path`` and closes it (PostError if the directory is missing);
+    ``tight``: apply tight_layout first (False if the caller laid the figure out)."""
     directory = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(directory):
         plt.close(fig)
         raise PostError(
             f"cannot write '{path}': directory '{directory}' does not exist"
         )
-    fig.tight_layout()
+    if tight:
+        fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)

@@ -30,6 +30,11 @@ class Quantity:
         """CSV column of the window standard deviation, e.g. 'drawbar_pull_std_N'."""
         return f"{self.name}_std{self.suffix}"
 
+    @property
+    def sem_column(self):
+        """CSV column of the standard error of the window mean, e.g. 'drawbar_pull_sem_N'."""
+        return f"{self.name}_sem{self.suffix}"
+
     def axis_label(self):
         """Plot axis label with unit, e.g. 'drawbar pull [N]'."""
         unit = "-" if self.plot_unit == "1" else self.plot_unit
@@ -46,6 +51,8 @@ QUANTITIES = {
         Quantity("tractive_efficiency", "1", "tractive efficiency", "1"),
         Quantity("traction_force", "N", "traction force T/R_eff", "N"),
         Quantity("lateral_force", "N", "lateral force", "N"),
+        Quantity("dp_over_w", "1", "drawbar pull coefficient DP/W", "1"),
+        Quantity("torque_over_w_reff", "1", "torque coefficient T/(W·R_eff)", "1"),
     )
 }
 
@@ -57,6 +64,17 @@ CURVE_QUANTITIES = (
     "tractive_efficiency",
     "traction_force",
     "lateral_force",
+)
+
+#: The normalised quantities (W = vertical load, R_eff = effective radius).
+NORMALISED_QUANTITIES = ("dp_over_w", "torque_over_w_reff")
+
+#: Panels of ``curves --normalised``.
+NORMALISED_CURVE_QUANTITIES = (
+    "dp_over_w",
+    "torque_over_w_reff",
+    "sinkage",
+    "tractive_efficiency",
 )
 
 #: Extra CSV columns: values computed from the window means (see docs/postprocess.md).

@@ -11,6 +11,7 @@ import h5py
 import numpy as np
 
 from .errors import PostError
+from .health import read_health
 
 #: Fields of SCM terrain snapshots (``/terrain/<field>/<step as 9 digits>``), in display
 #: order; others the file has follow, sorted.
@@ -134,6 +135,10 @@ class RunFile:
                 f"run file '{self.path}': parameter '/parameters/{name}' "
                 f"is missing or not a number (got {value!r})"
             ) from None
+
+    def health(self):
+        """The rig's health.Health of the run (status 'unchecked' without /health)."""
+        return read_health(self._file)
 
     # Observables --------------------------------------------------------------------------
 

@@ -34,7 +34,9 @@ class CurvesTest(TempDirTestCase):
 
     def test_csv_groups_sorted_by_slip_with_window_in_header(self):
         out, png = self.path("curves.csv"), self.path("curves.png")
-        result = run_cli("curves", *self.runs, "--csv", out, "--png", png)
+        result = run_cli(
+            "curves", *self.runs, "--csv", out, "--png", png, "--window-fraction", "0.5", "1"
+        )
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn(
             "steady-state window: test phase (phase == 3) from 0.5 to 1", result.stdout

@@ -43,9 +43,9 @@ class StudyTest(TempDirTestCase):
                 f"{soil}_{q}{kind}.csv"
                 for soil in ("S1", "S_2")
                 for q in ("drawbar_pull", "sinkage")
-                for kind in ("", "_std")
+                for kind in ("", "_std", "_sem")
             )
-            + ["study.md"],
+            + ["runs.csv", "study.md"],
         )
         table = read(os.path.join(self.out, "S1_drawbar_pull.csv"))
         self.assertEqual(table[0], ["wheel", "0.1", "0.3"])

@@ -1,0 +1,130 @@
+"""Run health: the rig's ``/health`` group and the findings of post-processing.
+
+Layout written by the rig (docs/hdf5-layout.md): group ``/health`` with attribute ``status``
+("running" while the run is in progress or after a crash, then "healthy", "warnings" or
+"unhealthy") and equal-length datasets ``step`` (int64), ``time`` (float64, s), ``code``,
+``severity`` ("warning" or "error") and ``message`` (strings). A run file without it is
+"unchecked".
+
+The ``health`` column: the worst of the rig's verdict and post-processing's findings, in the
+order ok < unchecked < warning < incomplete < unhealthy (findings are warnings).
+"""
+
+import dataclasses
+import math
+
+import h5py
+import numpy as np
+
+from .quantities import EFFICIENCY_OF_MEANS, SLIP_OF_MEANS
+
+HEALTH_ORDER = ("ok", "unchecked", "warning", "incomplete", "unhealthy")
+STATUS_HEALTH = {
+    "healthy": "ok",
+    "warnings": "warning",
+    "unhealthy": "unhealthy",
+    "running": "incomplete",
+}
+#: Tolerance of the efficiency bound, in standard errors.
+EFFICIENCY_BOUND_SEM = 2.0
+#: A drawbar-pull trend is reported when the fitted change over the window exceeds this many
+#: standard errors of that change (and TREND_MEAN_SEM standard errors of the mean).
+TREND_SLOPE_SE = 3.0
+TREND_MEAN_SEM = 2.0
+
+
+@dataclasses.dataclass
+class Finding:
+    """One health entry: a code, 'warning' or 'error', and a message."""
+
+    code: str
+    severity: str
+    message: str
+
+
+@dataclasses.dataclass
+class Health:
+    """The health of one run: its verdict, findings (rig's first) and the rig's status."""
+
+    status: str  # the rig's /health status, or "unchecked"
+    findings: list
+
+    @property
+    def verdict(self):
+        """ok / unchecked / warning / incomplete / unhealthy."""
+        verdict = STATUS_HEALTH.get(self.status, "unchecked")
+        if self.status not in STATUS_HEALTH and self.status != "unchecked":
+            verdict = "incomplete"  # an unknown status: do not trust it
+        for finding in self.findings:
+            level = "unhealthy" if finding.severity == "error" else "warning"
+            verdict = worst(verdict, level)
+        return verdict
+
+    @property
+    def codes(self):
+        """Distinct codes in order of first appearance, ';'-joined."""
+        return ";".join(dict.fromkeys(f.code for f in self.findings))
+
+
+def worst(a, b):
+    """The worse of two health values."""
+    return max(a, b, key=HEALTH_ORDER.index)
+
+
+def _strings(dataset):
+    data = dataset[()]
+    return [d.decode("utf-8") if isinstance(d, bytes) else str(d) for d in np.ravel(data)]
+
+
+def read_health(h5file):
+    """The rig's Health of an open h5py.File ('unchecked', no findings, without /health)."""
+    group = h5file.get("health")
+    if not isinstance(group, h5py.Group):
+        return Health("unchecked", [])
+    status = group.attrs.get("status", "running")
+    status = status.decode("utf-8") if isinstance(status, bytes) else str(status)
+    columns = []
+    for name in ("code", "severity", "message"):
+        columns.append(_strings(group[name]) if name in group else [])
+    n = min(len(c) for c in columns)
+    findings = [Finding(*(c[i] for c in columns)) for i in range(n)]
+    return Health(status, findings)
+
+
+def postprocess_findings(stats):
+    """Findings of the window statistics (steady.steady_state's dict)."""
+    findings = []
+    slip, eta = stats[SLIP_OF_MEANS], stats[EFFICIENCY_OF_MEANS]
+    if slip.mean >= 0.0 and math.isfinite(eta.mean):
+        bound = 1.0 - slip.mean
+        tolerance = EFFICIENCY_BOUND_SEM * math.hypot(
+            eta.sem if math.isfinite(eta.sem) else 0.0,
+            slip.sem if math.isfinite(slip.sem) else 0.0,
+        )
+        if eta.mean > bound + tolerance:
+            findings.append(
+                Finding(
+                    "efficiency_bound",
+                    "warning",
+                    f"tractive efficiency of the means {eta.mean:.4g} exceeds 1 - s = "
+                    f"{bound:.4g} by more than {EFFICIENCY_BOUND_SEM:g} SEM ({tolerance:.2g})",
+                )
+            )
+    change, change_se = stats["dp_trend"]
+    dp_sem = stats["drawbar_pull"].sem
+    if (
+        math.isfinite(change)
+        and change_se > 0.0
+        and abs(change) > TREND_SLOPE_SE * change_se
+        and abs(change) > TREND_MEAN_SEM * dp_sem
+    ):
+        findings.append(
+            Finding(
+                "steady_state_trend",
+                "warning",
+                f"drawbar pull changes by {change:.4g} N over the window (linear fit to the "
+                f"batch means; > {TREND_SLOPE_SE:g} standard errors {change_se:.2g} N and > "
+                f"{TREND_MEAN_SEM:g} SEM of the mean {dp_sem:.2g} N)",
+            )
+        )
+    return findings
