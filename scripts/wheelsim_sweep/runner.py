@@ -76,6 +76,7 @@ class Runner:
         self.stop_signal = None
         self.status = {}  # point index -> done | failed | interrupted | pending
         self.exit_status = {}
+        self._file_hashes = {}  # path -> sha256 of its contents (file_hash)
 
     # ---- output ---------------------------------------------------------------------------------
     def say(self, msg):
@@ -185,13 +186,44 @@ class Runner:
         return [str(self.build / "bin" / "wheel-rig"), "--config", str(d / "rig.toml"),
                 "--out", str(d / PART_FILE), "--quiet"] + params
 
+    def file_hash(self, path):
+        """sha256 of a file's contents ("missing" if it cannot be read); computed once per file
+        and run of the driver (a bed restart may be large)."""
+        path = str(path)
+        if path not in self._file_hashes:
+            h = hashlib.sha256()
+            try:
+                with open(path, "rb") as f:
+                    for block in iter(lambda: f.read(1 << 20), b""):
+                        h.update(block)
+                self._file_hashes[path] = h.hexdigest()
+            except OSError:
+                self._file_hashes[path] = "missing"
+        return self._file_hashes[path]
+
     def inputs_hash(self, p):
-        """What decides a point's result: its rig config and its run settings (not the out dir)."""
+        """What decides a point's result (not the out dir): its rig config, its run settings, and
+        the contents of the files they name: the mesh, the SCM soil file; for DEM the deck, the
+        bed (a restart and its .vars, or the bin recipe with in.soilbin and the DEM soil's
+        include file), the np and LIGGGHTS arguments. docs/sweeps.md, "Resume semantics"."""
         ident = {"rig": self.rig_text(p), "terrain": self.sweep.terrain, "wheel": p.wheel.label,
-                 "soil": p.soil.label, "slip": p.slip, "mesh": str(p.wheel.mesh)}
+                 "soil": p.soil.label, "slip": p.slip, "mesh": str(p.wheel.mesh),
+                 "mesh_sha256": self.file_hash(p.wheel.mesh)}
+        if p.soil.soil_file is not None:
+            ident["soil_file_sha256"] = self.file_hash(p.soil.soil_file)
         if self.sweep.terrain == "dem":
-            ident.update(bed=str(self.bed_restart(p.soil)), deck=str(self.sweep.deck),
+            bed = self.bed_restart(p.soil)
+            ident.update(bed=str(bed), deck=str(self.sweep.deck),
+                         deck_sha256=self.file_hash(self.sweep.deck),
                          np=self.sweep.np, liggghts_args=self.sweep.liggghts_args)
+            if p.soil.recipe is not None:  # the bed is made from these (it may not exist yet)
+                ident.update(bed_recipe=p.soil.recipe,
+                             soilbin_sha256=self.file_hash(self.repo / "inputs" / "in.soilbin"),
+                             bed_soil_sha256=self.file_hash(
+                                 self.repo / "inputs" / "soils" / f"{p.soil.recipe['soil']}.in"))
+            else:
+                ident.update(bed_sha256=self.file_hash(bed),
+                             bed_vars_sha256=self.file_hash(f"{bed}.vars"))
         return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
 
     def finished(self, p):

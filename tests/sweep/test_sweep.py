@@ -469,6 +469,69 @@ grid_length = 3.0
             check(np.all(o["sinkage/value"][()][test] > 0), "no sinkage on soft soil")
 
 
+def scm_tiny_config(cfg, repo, soils, wheels='["wheel2"]', slips="[0.2]", extra=""):
+    """A tiny SCM sweep (a fraction of a second of test phase on a short grid)."""
+    cfg.write_text(f"""terrain = "scm"
+base = "{repo}/inputs/sweeps/scm_study_rig.toml"
+wheels = {wheels}
+soils = {soils}
+slips = {slips}
+[override.motor]
+ramp_time = 0.1
+[override.run]
+duration = 0.1
+[override.terrain]
+grid_length = 2.0
+{extra}""")
+
+
+def skip_without_scm(out, r):
+    logs = list(out.glob("*/*/*/run.log"))
+    if r.returncode != 0 and logs and "not available in this build" in logs[0].read_text():
+        raise Skip("the built wheel-rig has no SCM terrain yet")
+
+
+def case_resume_contents(a, work):
+    """The resume hash covers file contents: a changed soil file (same path) re-runs the point,
+    an unchanged one is skipped; a changed mesh file shows as 'inputs changed' in --dry-run."""
+    repo = Path(a.sweep).resolve().parents[1]
+    soil = work / "soil.toml"
+    shutil.copyfile(repo / "inputs" / "scm_soils" / "dry_sand.toml", soil)
+    mesh = work / "wheel.stl"
+    shutil.copyfile(Path(a.build_dir) / "meshes" / "wheel2.stl", mesh)
+    cfg = work / "sweep.toml"
+    scm_tiny_config(cfg, repo, '["soil.toml"]', wheels='["wheel.stl"]')
+    out = work / "out"
+    r = run_sweep(a, cfg, "--out-dir", str(out), timeout=100)
+    skip_without_scm(out, r)
+    check(r.returncode == 0 and "running 1 point(s)" in r.stdout, "first sweep failed")
+    run_h5 = out / "wheel/soil/s0.200/run.h5"
+    t0 = run_h5.stat().st_mtime_ns
+    r = run_sweep(a, cfg, "--out-dir", str(out), timeout=100)
+    check(r.returncode == 0 and "skipping 1 finished point(s)" in r.stdout
+          and "running" not in r.stdout, "unchanged inputs: the point was not skipped")
+    check(run_h5.stat().st_mtime_ns == t0, "unchanged inputs: run.h5 rewritten")
+    # same path, other contents: a higher cohesion
+    text = soil.read_text()
+    check("cohesion = 1040.0" in text, "dry_sand.toml has no 'cohesion = 1040.0' line")
+    soil.write_text(text.replace("cohesion = 1040.0", "cohesion = 1500.0"))
+    r = run_sweep(a, cfg, "--out-dir", str(out), timeout=100)
+    check(r.returncode == 0 and "running 1 point(s)" in r.stdout
+          and "(inputs changed since it finished)" in r.stdout,
+          "a changed soil file (same path) did not re-run the point")
+    with h5py.File(run_h5, "r") as f:
+        check("cohesion = 1500.0" in f["parameters/terrain/soil_file_text"].asstr()[()],
+              "the re-run did not read the changed soil file")
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--dry-run")
+    check(r.returncode == 0 and "0 point(s) to run, 1 finished" in r.stdout,
+          "after the re-run the point is not finished")
+    with open(mesh, "ab") as f:  # the dry run only hashes the mesh: any change will do
+        f.write(b"\0")
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--dry-run")
+    check(r.returncode == 0 and "would run wheel soil s=0.2 (inputs changed since it finished)"
+          in r.stdout, "a changed mesh file (same path) does not make the point re-run")
+
+
 class Skip(Exception):
     pass
 
