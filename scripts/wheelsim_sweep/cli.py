@@ -1,9 +1,15 @@
-"""wheel-sweep's command line. Reference: docs/sweeps.md."""
+"""wheel-sweep's command line. Reference: docs/sweeps.md.
 
-import argparse
+Bad usage is one line on stderr and exit status 2, naming the nearest valid option
+(wheelsim_post.usage, shared with wheelsim-post; scripts/wheel-sweep puts postprocess/ on the
+path).
+"""
+
 import os
 import sys
 from pathlib import Path
+
+from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 
 from . import config, runner
 
@@ -17,10 +23,15 @@ def default_jobs(sweep):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(
+    ap = UsageParser(
         prog="wheel-sweep",
         description="Run a slip sweep or a study matrix (wheels x soils x slips) of wheel tests "
-                    "(SCM, DEM or flat) from one config file. Docs: docs/sweeps.md.")
+                    "(SCM, DEM or flat) from one config file. Docs: docs/sweeps.md.",
+        epilog="Exit status: 0 every point done and none unhealthy; 1 a point or a bed failed, "
+               "or a run is unhealthy; 2 bad command line or config (with --dry-run also a "
+               "point's rig config that wheel-rig --check rejects); 128 + signal number when "
+               "interrupted.")
+    add_version(ap, "wheel-sweep", start=__file__)
     ap.add_argument("config", help="sweep config (TOML)")
     ap.add_argument("--jobs", "-j", type=int, metavar="N",
                     help="points run at once (default: cores // dem.np for DEM, cores otherwise)")
@@ -34,14 +45,14 @@ def main(argv=None):
                     help="build directory (default: $WHEELSIM_BUILD_DIR, else <repo>/build)")
     a = ap.parse_args(argv)
 
+    if a.jobs is not None and a.jobs < 1:
+        ap.error(f"--jobs must be >= 1, got {a.jobs}")
     build = Path(a.build_dir or os.environ.get("WHEELSIM_BUILD_DIR") or REPO / "build").resolve()
     try:
         sweep = config.load(a.config, REPO, build)
     except config.ConfigError as e:
         print(f"wheel-sweep: error: {e}", file=sys.stderr)
-        return 2
-    if a.jobs is not None and a.jobs < 1:
-        ap.error(f"--jobs must be >= 1, got {a.jobs}")
+        return EXIT_USAGE
     needed = [build / "bin" / "wheel-rig"]
     if sweep.terrain == "dem":
         needed += [REPO / "scripts" / "wheel-cosim", build / "bin" / "liggghts-wheel"]
@@ -49,7 +60,7 @@ def main(argv=None):
         if not os.access(f, os.X_OK) and not a.dry_run:
             print(f"wheel-sweep: error: {f} not found or not executable (build it, or pass "
                   "--build-dir)", file=sys.stderr)
-            return 2
+            return EXIT_USAGE
     out = Path(a.out_dir) if a.out_dir else REPO / "runs" / "sweeps" / Path(a.config).stem
     jobs = a.jobs or default_jobs(sweep)
     try:

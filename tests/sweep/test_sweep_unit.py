@@ -3,13 +3,15 @@
 
   test_sweep_unit.py CASE --sweep scripts/wheel-sweep --work DIR
 
-CASE: toml_roundtrip, health_table (see each function and tests/sweep/CMakeLists.txt).
+CASE: toml_roundtrip, cli, health_table (see each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (a prerequisite missing).
 """
 
 import argparse
 import math
+import re
 import shutil
+import subprocess
 import sys
 import tomllib
 from pathlib import Path
@@ -62,6 +64,43 @@ def case_toml_roundtrip(a, work):
         raise Fail("None was written")
     except TypeError:
         pass
+
+
+def _run(a, *args):
+    r = subprocess.run([a.sweep, *args], capture_output=True, text=True, timeout=30)
+    print(f"$ wheel-sweep {' '.join(args)}  -> exit {r.returncode}\n{r.stdout}{r.stderr}")
+    return r
+
+
+def case_cli(a, work):
+    """--version and --help exit 0; bad usage exits 2 with one line naming the bad flag and the
+    nearest valid one; nothing is written."""
+    r = _run(a, "--version")
+    check(r.returncode == 0 and re.match(r"wheel-sweep \d+\.\d+\.\d+", r.stdout),
+          "--version: expected exit 0 and 'wheel-sweep X.Y.Z'")
+    r = _run(a, "--help")
+    check(r.returncode == 0 and "--dry-run" in r.stdout and "Exit status" in r.stdout,
+          "--help: expected exit 0 and the options with the exit statuses")
+    cfg = work / "sweep.toml"
+    cfg.write_text('terrain = "flat"\n')
+    bad = [  # (arguments, the bad flag, the suggestion)
+        ([str(cfg), "--jbos", "2"], "--jbos", "--jobs"),
+        (["--verison"], "--verison", "--version"),
+        ([str(cfg), "--dryrun"], "--dryrun", "--dry-run"),
+        ([str(cfg), "--out-dri", str(work / "out")], "--out-dri", "--out-dir"),
+        ([str(cfg), "--froce"], "--froce", "--force"),
+    ]
+    for args, flag, near in bad:
+        r = _run(a, *args)
+        check(r.returncode == 2, f"{args}: exit {r.returncode}, expected 2")
+        lines = r.stderr.strip().splitlines()
+        check(len(lines) == 1 and f"'{flag}'" in lines[0] and f"'{near}'" in lines[0],
+              f"{args}: stderr does not name '{flag}' and '{near}' in one line: {r.stderr!r}")
+    r = _run(a, str(cfg), "--jobs", "0")
+    check(r.returncode == 2 and "--jobs must be >= 1" in r.stderr, "--jobs 0: expected exit 2")
+    r = _run(a)
+    check(r.returncode == 2 and "config" in r.stderr, "no config: expected exit 2")
+    check(not (work / "out").exists(), "bad usage wrote output")
 
 
 def main():
