@@ -1,5 +1,9 @@
 // wheel-mesh: writes the closed triangle mesh of a rigid lugged (or smooth) wheel in metres and
 // prints its mass properties. Reference: docs/wheel-mesh.md.
+//
+// Exit status (wheelsim/cli.h): 0 done (also --help, --version), 1 a mesh could not be written,
+// 2 bad command line, parameters (WheelSpecError: out of range, implausible size, lugs that
+// overlap) or catalogue.
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -9,6 +13,7 @@
 
 #include "catalog.h"
 #include "wheel_output.h"
+#include "wheelsim/cli.h"
 #include "wheelsim/geometry/mesh_error.h"
 
 namespace wm = wheelsim::meshes;
@@ -85,22 +90,21 @@ int main(int argc, char **argv) {
       "--catalog", catalog_path, "generate every [[wheel]] of this TOML catalogue into --out-dir");
   app.add_option("--out-dir", out_dir, "output directory for --catalog")->needs(catalog_opt);
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError &e) {
-    return app.exit(e);
-  }
+  wheelsim::cli::setup(app, "wheel-mesh");
+  if (const auto status = wheelsim::cli::parse(app, argc, argv))
+    return *status;
+  using wheelsim::cli::UsageError;
 
   try {
     if (!catalog_path.empty()) {
       for (const char *opt : {"--diameter", "--width", "--lugs", "--type", "--out", "--props"}) {
         if (app.count(opt) > 0) {
-          throw wm::WheelSpecError(std::string(opt) +
-                                   " cannot be combined with --catalog (set it in the catalogue)");
+          throw UsageError(std::string(opt) +
+                           " cannot be combined with --catalog (set it in the catalogue)");
         }
       }
       if (out_dir.empty())
-        throw wm::WheelSpecError("--catalog needs --out-dir");
+        throw UsageError("--catalog needs --out-dir");
       const auto entries = wm::read_catalog(catalog_path);
       std::filesystem::create_directories(out_dir);
       const auto t0 = std::chrono::steady_clock::now();
@@ -112,36 +116,41 @@ int main(int argc, char **argv) {
       return 0;
     }
     if (app.count("--diameter") == 0)
-      throw wm::WheelSpecError("--diameter is required [m]");
+      throw UsageError("--diameter is required [m]");
     if (app.count("--width") == 0)
-      throw wm::WheelSpecError("--width is required [m]");
+      throw UsageError("--width is required [m]");
     if (!spec.smooth) {
       if (app.count("--lugs") == 0) {
-        throw wm::WheelSpecError("--lugs is required (or --smooth for a smooth cylinder)");
+        throw UsageError("--lugs is required (or --smooth for a smooth cylinder)");
       }
       if (spec.lug_count == 0 && !type_name) {
         spec.smooth = true; // --lugs 0 without a lug type: smooth cylinder
       } else {
         if (!type_name)
-          throw wm::WheelSpecError("--type is required for a lugged wheel");
+          throw UsageError("--type is required for a lugged wheel");
         spec.type = wm::parse_lug_type(*type_name);
         if (app.count("--lug-height") == 0 && spec.lug_count > 0) {
-          throw wm::WheelSpecError("--lug-height is required for a lugged wheel [m]");
+          throw UsageError("--lug-height is required for a lugged wheel [m]");
         }
         if (spec.type != wm::LugType::straight && app.count("--centre-length") == 0) {
-          throw wm::WheelSpecError(std::string("--centre-length is required for ") +
-                                   wm::to_string(spec.type) + " lugs [m]");
+          throw UsageError(std::string("--centre-length is required for ") +
+                           wm::to_string(spec.type) + " lugs [m]");
         }
       }
     } else if (type_name) {
-      throw wm::WheelSpecError("--type cannot be combined with --smooth");
+      throw UsageError("--type cannot be combined with --smooth");
     }
     const std::string name =
         out_prefix.empty() ? "wheel" : std::filesystem::path(out_prefix).filename().string();
     run_one(name, spec, density, out_prefix, formats, props_path);
-    return 0;
+    return wheelsim::cli::kExitSuccess;
+  } catch (const UsageError &e) {
+    return wheelsim::cli::report_usage_error("wheel-mesh", e.what());
+  } catch (const wm::WheelSpecError &e) {
+    std::cerr << "wheel-mesh: error: " << e.what() << "\n";
+    return wheelsim::cli::kExitUsage;
   } catch (const std::exception &e) {
     std::cerr << "wheel-mesh: error: " << e.what() << "\n";
-    return 1;
+    return wheelsim::cli::kExitFailure;
   }
 }

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include <toml++/toml.h>
 
@@ -97,14 +98,14 @@ void write_properties(const std::string &path, const std::string &name, const Wh
   toml::table root{{"wheel", wheel}, {"mesh", mesh}, {"mass_properties", mass}};
   std::ofstream out(path);
   if (!out)
-    throw WheelSpecError(path + ": cannot open for writing");
+    throw std::runtime_error(path + ": cannot open for writing");
   if (ends_with(path, ".json")) {
     out << toml::json_formatter{root} << "\n";
   } else {
     out << "# written by wheel-mesh; units in the key names\n" << root << "\n";
   }
   if (!out)
-    throw WheelSpecError(path + ": write failed");
+    throw std::runtime_error(path + ": write failed");
 }
 
 std::string format_properties(const std::string &name, const WheelSpec &spec,

@@ -1,5 +1,6 @@
 #include "wheel_spec.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -13,7 +14,33 @@ namespace {
   throw WheelSpecError(os.str());
 }
 
+/// "--diameter 200 m is implausible for a wheel diameter (expected 0.05–5 m); the generator
+/// takes metres: did you mean --diameter 0.2?" (the suggestion when value / 1000 is plausible).
+void check_plausible(const std::string &option, double value, PlausibleRange range,
+                     const char *what) {
+  if (value >= range.min_m && value <= range.max_m)
+    return;
+  std::ostringstream os;
+  os << option << " " << value << " m is implausible for " << what << " (expected "
+     << range.min_m << "–" << range.max_m << " m); the generator takes metres";
+  const double in_metres = value / 1000.0;
+  if (in_metres >= range.min_m && in_metres <= range.max_m)
+    os << ": did you mean " << option << " " << in_metres << "?";
+  throw WheelSpecError(os.str());
+}
+
 } // namespace
+
+double estimated_triangle_count(const WheelSpec &s) {
+  const double pi = std::acos(-1.0);
+  const Resolution &r = s.resolution;
+  const double outer = 0.5 * s.diameter_m;
+  const double segment_rad = std::min(r.max_arc_m / outer, r.max_angle_deg * pi / 180.0);
+  const double segments = std::ceil(2.0 * pi / segment_rad);
+  const double bands = std::ceil(s.width_m / r.max_width_edge_m) + (s.smooth ? 0 : 4);
+  const double rings = std::ceil(s.rim_radius_m() / r.max_width_edge_m) + 1;
+  return segments * (2.0 * bands * (s.smooth ? 1.0 : 2.0) + 2.0 * 2.0 * rings);
+}
 
 const char *to_string(LugType type) {
   switch (type) {
@@ -37,6 +64,23 @@ LugType parse_lug_type(const std::string &name) {
   throw WheelSpecError("--type '" + name + "': expected straight, combined or nondirectional");
 }
 
+namespace {
+
+void check_triangle_count(const WheelSpec &s) {
+  const double n = estimated_triangle_count(s);
+  if (n <= kMaxEstimatedTriangles)
+    return;
+  std::ostringstream os;
+  os << "--max-arc " << s.resolution.max_arc_m << " m, --max-angle " << s.resolution.max_angle_deg
+     << " deg, --max-width-edge " << s.resolution.max_width_edge_m << " m: the mesh of this "
+     << s.diameter_m << " m x " << s.width_m << " m wheel would have about " << n
+     << " triangles (at most " << kMaxEstimatedTriangles
+     << "); coarsen the resolution (the study wheels use 0.008 m, 3 deg, 0.02 m)";
+  throw WheelSpecError(os.str());
+}
+
+} // namespace
+
 void validate(const WheelSpec &s) {
   if (!(s.diameter_m > 0.0) || !std::isfinite(s.diameter_m)) {
     fail("--diameter", s.diameter_m, "m", "the outer diameter must be > 0 m");
@@ -44,6 +88,8 @@ void validate(const WheelSpec &s) {
   if (!(s.width_m > 0.0) || !std::isfinite(s.width_m)) {
     fail("--width", s.width_m, "m", "the width must be > 0 m");
   }
+  check_plausible("--diameter", s.diameter_m, kPlausibleDiameter_m, "a wheel diameter");
+  check_plausible("--width", s.width_m, kPlausibleWidth_m, "a wheel width");
   const Resolution &r = s.resolution;
   if (!(r.max_arc_m > 0.0))
     fail("--max-arc", r.max_arc_m, "m", "must be > 0 m");
@@ -57,6 +103,7 @@ void validate(const WheelSpec &s) {
     if (s.lug_count != 0) {
       fail("--lugs", s.lug_count, "", "a smooth wheel has no lugs: drop --lugs or --smooth");
     }
+    check_triangle_count(s);
     return;
   }
   if (s.lug_count < 1) {
@@ -70,6 +117,7 @@ void validate(const WheelSpec &s) {
   if (!(s.lug_height_m > 0.0)) {
     fail("--lug-height", s.lug_height_m, "m", "must be > 0 m (use --smooth for no lugs)");
   }
+  check_plausible("--lug-height", s.lug_height_m, kPlausibleLugHeight_m, "a lug height");
   if (!(s.lug_height_m < 0.5 * s.diameter_m)) {
     std::ostringstream os;
     os << "must be less than the outer radius D0/2 = " << 0.5 * s.diameter_m
@@ -78,6 +126,7 @@ void validate(const WheelSpec &s) {
   }
   if (!(s.lug_width_m > 0.0))
     fail("--lug-width", s.lug_width_m, "m", "must be > 0 m");
+  check_plausible("--lug-width", s.lug_width_m, kPlausibleLugWidth_m, "a lug width");
   if (!(s.lug_angle_deg >= 0.0 && s.lug_angle_deg <= 70.0)) {
     fail("--lug-angle", s.lug_angle_deg, "deg", "must be in [0, 70] deg (angle to the axle)");
   }
@@ -89,6 +138,7 @@ void validate(const WheelSpec &s) {
       fail("--centre-length", s.centre_length_m, "m", os.str());
     }
   }
+  check_triangle_count(s);
 }
 
 std::string describe(const WheelSpec &s) {

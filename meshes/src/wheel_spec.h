@@ -63,8 +63,31 @@ struct WheelSpec {
 /// this would touch (or leave sliver triangles) and are rejected.
 inline constexpr double kMinLugClearance_m = 0.001;
 
-/// Checks the parameters one by one; throws WheelSpecError naming the option. Lug overlap is
-/// checked by build_wheel_mesh, which knows the footprint.
+/// Plausible wheel sizes [m]: a value outside is almost surely millimetres given for metres (or
+/// a typo), and the generator would spend minutes on a wheel hundreds of metres across at a
+/// millimetre resolution. From planetary-rover wheels (D0 ~ 0.1-0.3 m, lugs of a few mm) to large
+/// tyres (D0 up to ~4 m). docs/wheel-mesh.md lists them.
+struct PlausibleRange {
+  double min_m;
+  double max_m;
+};
+inline constexpr PlausibleRange kPlausibleDiameter_m{0.05, 5.0};
+inline constexpr PlausibleRange kPlausibleWidth_m{0.01, 3.0};
+inline constexpr PlausibleRange kPlausibleLugHeight_m{0.0005, 0.5};
+inline constexpr PlausibleRange kPlausibleLugWidth_m{0.0005, 0.5};
+
+/// Most triangles a wheel may have by estimated_triangle_count (about 5 s of generation and
+/// 1 GB of ASCII STL; the study wheels have 30 000-70 000).
+inline constexpr double kMaxEstimatedTriangles = 1.0e7;
+
+/// Upper estimate of the triangle count from the size and the resolution (tread: circumferential
+/// segments x width bands x 2, times 2 for the lugs' walls; side discs: rings x segments x 2
+/// each), cheap enough to run before the mesh is built.
+double estimated_triangle_count(const WheelSpec &spec);
+
+/// Checks the parameters one by one; throws WheelSpecError naming the option. Sizes outside the
+/// plausible ranges above and resolutions giving more than kMaxEstimatedTriangles are rejected
+/// at once. Lug overlap is checked by build_wheel_mesh, which knows the footprint.
 void validate(const WheelSpec &spec);
 
 /// One-line human summary, e.g. "D0 1.234 m, w 0.479 m, 15 combined lugs, lh 0.06 m, ...".

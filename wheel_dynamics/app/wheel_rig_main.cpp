@@ -5,19 +5,24 @@
 //
 //   wheel-rig --config rig.toml [--out run.h5] [--endpoint ipc:///tmp/x.sock]
 //             [--surface-height Z] [--quiet]
+//   wheel-rig --config rig.toml --check      (validate as a run would; no run, no run file)
 //
-// Exit status: 0 finished, 1 error (the message names the side and what failed), 2 bad command
-// line or config. The run file is closed on every error; a signal ends the process at once and
-// the file keeps what was flushed (every [output] flush_interval recorded steps).
+// Exit status (wheelsim/cli.h): 0 finished (or --check: valid; --help, --version), 1 error while
+// running (the message names the side and what failed), 2 bad command line or config (the
+// message names the option or the key). The run file is closed on every error; a signal ends the
+// process at once and the file keeps what was flushed (every [output] flush_interval recorded
+// steps).
 #include "progress.h"
 #include "run_recorder.h"
 #include "terrain_snapshots.h"
 
 #include "coupler/coupling.h"
 #include "coupler/transport.h"
+#include "wheelsim/cli.h"
 #include "wheelsim/rig/flat_ground.h"
 #include "wheelsim/rig/rig_config.h"
 #include "wheelsim/rig/rig_simulation.h"
+#include "wheelsim/rig/run_health.h"
 #include "wheelsim/rig/scm_ground.h"
 #include "wheelsim/run_file/run_file.h"
 #include "wheelsim_version.h"
@@ -57,29 +62,40 @@ coupler::WheelState to_wire(const rig::WheelState &s, const Eigen::Vector3d &off
   return w;
 }
 
-/// Records every output.every-th step, with `step_offset` added to the rig's step.
+/// Advances the rig one step at a time with the run's health checks (docs/run-health.md) and
+/// records every output.every-th step, with `step_offset` added to the rig's step.
 struct Sink {
   rig::RunRecorder &recorder;
   rig::ProgressLine &progress;
-  const rig::RigSimulation &sim;
+  rig::RigSimulation &sim;
+  rig::RunHealth &health;
   long long every;
-  std::int64_t step_offset;
-  void operator()(const rig::RigOutputs &o, double contacts) {
+  std::int64_t &step_offset; ///< LIGGGHTS' start step in a DEM run, else 0
+  /// One step with the terrain's wrench at the current state and its contact count.
+  const rig::RigOutputs &advance(const rig::ContactWrench &wrench, double contacts) {
+    health.before_step(wrench);
+    const rig::RigOutputs &o = sim.advance(wrench);
+    health.after_step(o, contacts);
     if (o.step % every == 0)
       recorder.record(step_offset + o.step, o, contacts);
     progress.update(sim, o);
+    return o;
   }
 };
 
 /// The in-process flat ground.
-void run_flat(rig::RigSimulation &sim, Sink &sink) {
+void run_flat(Sink &sink) {
+  rig::RigSimulation &sim = sink.sim;
   rig::FlatGround ground = rig::make_flat_ground(sim.config(), sim.wheel());
-  sim.run(ground, [&sink](const rig::RigOutputs &o) { sink(o, 1.0); });
+  sink.health.set_contact_stiffness(sim.config().terrain.flat.stiffness_N_m);
+  while (!sim.finished())
+    sink.advance(ground.contact(sim.wheel_state(), sim.time_s()), 1.0);
 }
 
 /// The in-process SCM soft soil: records the soil and settings in /parameters and writes the
 /// terrain snapshots.
-void run_scm(rig::RigSimulation &sim, Sink &sink, runfile::RunFile &file) {
+void run_scm(Sink &sink, runfile::RunFile &file) {
+  rig::RigSimulation &sim = sink.sim;
   const rig::RigConfig &config = sim.config();
   rig::ScmGround ground(config, sim.wheel());
   const scm::SoilParameters &soil = ground.terrain().soil();
@@ -101,11 +117,13 @@ void run_scm(rig::RigSimulation &sim, Sink &sink, runfile::RunFile &file) {
   file.set_parameter("terrain/grid_spacing", settings.grid_spacing_m, "m");
   file.set_parameter("terrain/normal_direction",
                      settings.normal == scm::NormalDirection::vertical ? "vertical" : "surface");
+  sink.health.set_grid(settings.grid_spacing_m, soil.elastic_K);
   rig::TerrainSnapshots snapshots(config.terrain.scm, file);
-  sim.run(ground, [&](const rig::RigOutputs &o) {
-    sink(o, ground.last_contact().contact_nodes);
+  while (!sim.finished()) {
+    const rig::ContactWrench wrench = ground.contact(sim.wheel_state(), sim.time_s());
+    const rig::RigOutputs &o = sink.advance(wrench, ground.last_contact().contact_nodes);
     snapshots.after_step(ground.terrain(), o.step, o.time_s);
-  });
+  }
   snapshots.at_end(ground.terrain(), sim.step(), sim.time_s());
 }
 
@@ -131,7 +149,7 @@ public:
     return to_wire(sim_.wheel_state(), offset_);
   }
   coupler::WheelState advance(const rig::ContactWrench &wrench, double contacts) override {
-    sink_(sim_.advance(wrench), contacts);
+    sink_.advance(wrench, contacts);
     return to_wire(sim_.wheel_state(), offset_);
   }
   bool finished() const override { return sim_.finished(); }
@@ -267,6 +285,38 @@ void run_dem(const rig::RigConfig &config, DemDriver &driver, runfile::RunFile &
   }
 }
 
+/// --check: what a run builds from its config before its first step, without running it: the rig
+/// (the wheel: mesh loaded and checked, mass properties, release position) and the in-process
+/// terrain (SCM: soil file and grid). Throws rig::RigConfigError naming the key.
+void check_run_inputs(const rig::RigConfig &config) {
+  rig::RigSimulation sim(config);
+  if (config.terrain.type == rig::TerrainType::scm)
+    rig::ScmGround ground(config, sim.wheel());
+  else if (config.terrain.type == rig::TerrainType::flat)
+    rig::make_flat_ground(config, sim.wheel());
+}
+
+/// Runs the rig on the terrain of `config` (or the --kinematic twist) to its end.
+void run_terrain(const rig::RigConfig &config, const std::vector<double> &kinematic, Sink &sink,
+                 runfile::RunFile &file, bool quiet) {
+  if (!kinematic.empty()) {    KinematicDriver driver(Eigen::Vector3d(kinematic[0], kinematic[1], kinematic[2]),
+                           Eigen::Vector3d(kinematic[3], kinematic[4], kinematic[5]),
+                           config.run.dt_s, file);
+    std::ostringstream twist;
+    for (double value : kinematic)
+      twist << (twist.tellp() > 0 ? " " : "") << value;
+    file.set_parameter("kinematic_twist", twist.str() + " (vx vy vz [m/s] wx wy wz [rad/s])");
+    run_dem(config, driver, file, quiet);
+  } else if (config.terrain.type == rig::TerrainType::dem) {
+    RigDriver driver(sink.sim, sink);
+    run_dem(config, driver, file, quiet);
+  } else if (config.terrain.type == rig::TerrainType::scm) {
+    run_scm(sink, file);
+  } else {
+    run_flat(sink);
+  }
+}
+
 } // namespace
 
 int main(int argc, char **argv) {
@@ -277,6 +327,7 @@ int main(int argc, char **argv) {
   bool quiet = false;
   std::vector<double> kinematic;
   std::vector<std::string> parameters;
+  bool check = false;
   app.add_option("--config", config_path, "rig configuration (TOML)")->required();
   app.add_option("--out", out_path, "HDF5 run file (default: [output] file of the config)");
   app.add_option("--endpoint", endpoint,
@@ -291,9 +342,14 @@ int main(int argc, char **argv) {
   app.add_option("--parameter", parameters,
                  "KEY=VALUE stored as /parameters/KEY of the run file (repeatable; the launcher "
                  "records the LIGGGHTS side: deck, command line, bed, soil, mesh and its hash)");
-  app.set_version_flag("--version", std::string(WHEELSIM_VERSION) + " (git " +
-                                        WHEELSIM_GIT_REVISION + ")");
-  CLI11_PARSE(app, argc, argv);
+  app.add_flag("--check", check,
+               "only check: load and validate the config with the other options exactly as a run "
+               "would (keys, wheel mesh, SCM soil file, DEM endpoint), print 'CONFIG: ok' (nothing "
+               "with --quiet); exit 0 if valid, 2 naming the key if not; runs nothing, writes no "
+               "run file");
+  cli::setup(app, "wheel-rig");
+  if (const auto status = cli::parse(app, argc, argv))
+    return *status;
 
   rig::RigConfig config;
   try {
@@ -307,9 +363,22 @@ int main(int argc, char **argv) {
     if (config.terrain.type == rig::TerrainType::dem && config.terrain.endpoint.empty())
       throw rig::RigConfigError(config_path +
                                 ": terrain.type = \"dem\" needs terrain.endpoint (or --endpoint)");
+    if (!kinematic.empty() && config.terrain.type != rig::TerrainType::dem)
+      throw cli::UsageError("--kinematic needs terrain.type = \"dem\" (" + config_path + ")");
+    for (const std::string &p : parameters)
+      if (p.find('=') == std::string::npos || p.find('=') == 0)
+        throw cli::UsageError("--parameter expects KEY=VALUE, got '" + p + "'");
+    if (check) {
+      check_run_inputs(config);
+      if (!quiet)
+        std::printf("%s: ok\n", config_path.c_str());
+      return cli::kExitSuccess;
+    }
+  } catch (const cli::UsageError &e) {
+    return cli::report_usage_error("wheel-rig", e.what());
   } catch (const std::exception &e) {
     std::fprintf(stderr, "wheel-rig: %s\n", e.what());
-    return 2;
+    return cli::kExitUsage;
   }
 
   std::unique_ptr<runfile::RunFile> file;
@@ -334,44 +403,58 @@ int main(int argc, char **argv) {
     file->set_parameter("wheel/source", sim.wheel().source);
     file->set_parameter("terrain/surface_height", config.terrain.surface_height_m, "m");
     for (const std::string &p : parameters) {
-      const auto eq = p.find('=');
-      if (eq == std::string::npos || eq == 0)
-        throw std::invalid_argument("--parameter expects KEY=VALUE, got '" + p + "'");
+      const auto eq = p.find('='); // KEY=VALUE, checked before the run
       file->set_parameter(p.substr(0, eq), p.substr(eq + 1));
     }
 
+    // Run health (docs/run-health.md): findings go to the terminal and to /health as they come.
+    const bool checked = kinematic.empty(); // --kinematic has no rig to check
+    std::int64_t step_offset = 0;
+    rig::RunHealth health(sim, [&](const rig::HealthFinding &f) {
+      std::fprintf(stderr, "wheel-rig: health %s [%s]: %s\n", rig::to_string(f.severity),
+                   f.code.c_str(), f.message.c_str());
+      file->add_health_finding(
+          {step_offset + f.step, f.time_s, f.code, rig::to_string(f.severity), f.message});
+    });
+    if (checked)
+      file->begin_health("running");
     rig::RunRecorder recorder(*file);
     rig::ProgressLine progress(quiet ? 0.0 : config.output.progress_interval_s, stdout);
-    Sink sink{recorder, progress, sim, std::max(1LL, config.output.every), 0};
-    if (!kinematic.empty()) {
-      if (config.terrain.type != rig::TerrainType::dem)
-        throw rig::RigConfigError("--kinematic needs terrain.type = \"dem\"");
-      KinematicDriver driver(Eigen::Vector3d(kinematic[0], kinematic[1], kinematic[2]),
-                             Eigen::Vector3d(kinematic[3], kinematic[4], kinematic[5]),
-                             config.run.dt_s, *file);
-      std::ostringstream twist;
-      for (double value : kinematic)
-        twist << (twist.tellp() > 0 ? " " : "") << value;
-      file->set_parameter("kinematic_twist", twist.str() + " (vx vy vz [m/s] wx wy wz [rad/s])");
-      run_dem(config, driver, *file, quiet);
-    } else if (config.terrain.type == rig::TerrainType::dem) {
-      RigDriver driver(sim, sink);
-      run_dem(config, driver, *file, quiet);
-    } else if (config.terrain.type == rig::TerrainType::scm) {
-      run_scm(sim, sink, *file);
-    } else {
-      run_flat(sim, sink);
+    Sink sink{recorder, progress, sim, health, std::max(1LL, config.output.every), step_offset};
+    try {
+      run_terrain(config, kinematic, sink, *file, quiet);
+      if (checked)
+        health.finish();
+    } catch (const rig::RunHealthError &) {
+      file->set_health_status(health.status());
+      throw;
+    } catch (const std::exception &e) {
+      if (checked) {
+        health.run_failed(e.what());
+        file->set_health_status(health.status());
+      }
+      throw;
     }
-    for (const std::string &w : sim.warnings())
-      std::fprintf(stderr, "wheel-rig: warning: %s\n", w.c_str());
+    if (checked) {
+      file->set_health_status(health.status());
+      if (health.has_error()) {
+        std::fprintf(stderr, "wheel-rig: error: the run is unhealthy (see the health lines above "
+                             "and /health in %s)\n",
+                     config.output.file.c_str());
+        status = 1;
+      }
+    }
     if (!quiet && kinematic.empty())
       std::printf("wheel-rig: done at t = %.4f s; run file %s\n", sim.time_s(),
                   config.output.file.c_str());
     else if (!quiet)
       std::printf("wheel-rig: done (kinematic); run file %s\n", config.output.file.c_str());
+  } catch (const rig::RigConfigError &e) { // the wheel or the terrain the config names
+    std::fprintf(stderr, "wheel-rig: error: %s\n", e.what());
+    status = cli::kExitUsage;
   } catch (const std::exception &e) {
     std::fprintf(stderr, "wheel-rig: error: %s\n", e.what());
-    status = 1;
+    status = cli::kExitFailure;
   }
   try {
     if (file)

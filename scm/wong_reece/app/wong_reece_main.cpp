@@ -3,6 +3,7 @@
 // Usage and output columns: docs/wong-reece.md.
 #include "wheelsim/scm/soil_file.h"
 #include "wheelsim/scm/wong_reece.h"
+#include "wheelsim/cli.h"
 
 #include "wheelsim_version.h"
 
@@ -23,9 +24,7 @@ using namespace wheelsim::scm;
 constexpr double kRadToDeg = 57.295779513082320876;
 
 /// Bad command-line value: the message names the option, the expected range and the value.
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+using UsageError = wheelsim::cli::UsageError;
 
 std::string fmt(double v) {
   std::ostringstream os;
@@ -65,9 +64,9 @@ int main(int argc, char **argv) {
   app.add_option("--distribution-points", dist_points,
                  "angles in the distribution, >= 2 (default 91)");
   app.add_option("--distribution-csv", dist_csv_path, "also write the distribution to this CSV");
-  app.set_version_flag("--version",
-                       std::string(WHEELSIM_VERSION) + " (git " + WHEELSIM_GIT_REVISION + ")");
-  CLI11_PARSE(app, argc, argv);
+  wheelsim::cli::setup(app, "wong-reece");
+  if (const auto status = wheelsim::cli::parse(app, argc, argv))
+    return *status;
 
   SoilParameters soil;
   WongReeceWheel wheel{radius, width};
@@ -95,7 +94,7 @@ int main(int argc, char **argv) {
     soil = load_soil_file(soil_path);
   } catch (const std::exception &e) {
     std::fprintf(stderr, "wong-reece: %s\n", e.what());
-    return 2;
+    return wheelsim::cli::kExitUsage;
   }
 
   try {
@@ -150,10 +149,10 @@ int main(int argc, char **argv) {
     }
   } catch (const UsageError &e) {
     std::fprintf(stderr, "wong-reece: %s\n", e.what());
-    return 2;
+    return wheelsim::cli::kExitUsage;
   } catch (const std::exception &e) {
     std::fprintf(stderr, "wong-reece: %s\n", e.what());
-    return 1;
+    return wheelsim::cli::kExitFailure;
   }
-  return 0;
+  return wheelsim::cli::kExitSuccess;
 }
