@@ -55,7 +55,8 @@ class Wheel:
 
 @dataclass
 class Soil:
-    label: str
+    label: str  # the point directories' name
+    name: str = ""  # the soil name of the run files (sweep/soil) and the manifest; soil_name()
     terrain_keys: dict = field(default_factory=dict)  # scm/flat: [terrain] keys of this soil
     soil_file: Path | None = None  # scm: the soil file
     restart: Path | None = None  # dem: the bed restart (prepared if recipe is set)
@@ -213,6 +214,29 @@ def _wheels(ctx, entries, terrain, build_dir):
     return out
 
 
+def soil_name(soil_file=None, bed_vars=None, default=""):
+    """The soil name a direct run records for this soil, so that a sweep's runs group with
+    direct runs of the same soil (wheelsim-post --group-by soil): wheel-rig writes an SCM soil
+    file's `name` as /parameters/terrain/soil_name, wheel-cosim writes a bed's `soil` variable
+    (its .vars file) as /parameters/bed/soil. `default` when the file does not say."""
+    if soil_file is not None:
+        try:
+            with open(soil_file, "rb") as f:
+                name = tomllib.load(f).get("name")
+        except (OSError, tomllib.TOMLDecodeError):
+            name = None  # wheel-rig reports a bad soil file when the point runs
+        return name if isinstance(name, str) and name else default
+    if bed_vars is not None:
+        try:
+            for line in Path(bed_vars).read_text().splitlines():
+                f = line.split()
+                if len(f) >= 4 and f[0] == "variable" and f[1] == "soil":
+                    return f[3]
+        except OSError:
+            pass
+    return default
+
+
 def _soils(ctx, entries, terrain, repo):
     if entries is None:
         if terrain == "flat":
@@ -225,14 +249,15 @@ def _soils(ctx, entries, terrain, repo):
         key = f"soils[{i}]"
         if terrain == "flat":
             if isinstance(e, str):
-                out.append(Soil(ctx.label(e, key)))
+                out.append(Soil(ctx.label(e, key), name=e))
             elif isinstance(e, dict):
                 if "name" not in e:
                     raise ctx.err(f"{key} needs 'name'")
                 tk = {k: v for k, v in e.items() if k != "name"}
                 if "type" in tk:
                     raise ctx.err(f"{key}.type: the terrain type is the top-level key 'terrain'")
-                out.append(Soil(ctx.label(e["name"], f"{key}.name"), terrain_keys=tk))
+                out.append(Soil(ctx.label(e["name"], f"{key}.name"), name=e["name"],
+                                terrain_keys=tk))
             else:
                 raise ctx.err(f"{key} must be a label or a table of [terrain] keys, got {e!r}")
         elif terrain == "scm":
@@ -260,7 +285,8 @@ def _soils(ctx, entries, terrain, repo):
                                   + (f"; known: {', '.join(known)})" if known else ")"))
             label = ctx.label(name if name is not None else Path(spec).stem,
                               f"{key}.name" if name is not None else key)
-            out.append(Soil(label, terrain_keys=tk, soil_file=f.resolve()))
+            out.append(Soil(label, name=name if name is not None else soil_name(f, default=label),
+                            terrain_keys=tk, soil_file=f.resolve()))
         else:  # dem
             if isinstance(e, str):
                 p = ctx.path_of(e, key)
@@ -270,7 +296,9 @@ def _soils(ctx, entries, terrain, repo):
                                   "0.36, bin_width = 0.12, fill_height = 0.035 })")
                 if not Path(f"{p}.vars").is_file():
                     raise ctx.err(f"{key}: '{p}.vars' not found (written by inputs/in.soilbin)")
-                out.append(Soil(ctx.label(p.stem, key), restart=p.resolve()))
+                label = ctx.label(p.stem, key)
+                out.append(Soil(label, name=soil_name(bed_vars=f"{p}.vars", default=label),
+                                restart=p.resolve()))
             elif isinstance(e, dict):
                 ctx.check_keys(e, ("name", "soil", "restart") + SOILBIN_VARS, key)
                 recipe = {k: v for k, v in e.items() if k not in ("name", "restart")}
@@ -285,7 +313,7 @@ def _soils(ctx, entries, terrain, repo):
                                       f"({soil_in} not found)")
                     label = ctx.label(e.get("name", e["soil"]),
                                       f"{key}.name" if "name" in e else f"{key}.soil")
-                    out.append(Soil(label, restart=restart, recipe=recipe))
+                    out.append(Soil(label, name=label, restart=restart, recipe=recipe))
                 else:
                     if restart is None:
                         raise ctx.err(f"{key} needs 'soil' (a bin recipe) or 'restart' (a bed)")
@@ -296,7 +324,8 @@ def _soils(ctx, entries, terrain, repo):
                         raise ctx.err(f"{key}.restart: '{restart}.vars' not found")
                     label = ctx.label(e.get("name", restart.stem),
                                       f"{key}.name" if "name" in e else f"{key}.restart")
-                    out.append(Soil(label, restart=restart.resolve()))
+                    name = e.get("name") or soil_name(bed_vars=f"{restart}.vars", default=label)
+                    out.append(Soil(label, name=name, restart=restart.resolve()))
             else:
                 raise ctx.err(f"{key} must be a bed restart path or a bin recipe table, got {e!r}")
     return out
@@ -331,6 +360,14 @@ def _unique(ctx, items, key):
         if it.label in seen:
             raise ctx.err(f"{key}: two entries are named '{it.label}' (give one a 'name')")
         seen.add(it.label)
+    names = {}
+    for i, it in enumerate(items):
+        name = getattr(it, "name", it.label)
+        if name in names:
+            raise ctx.err(f"{key}[{names[name]}] and {key}[{i}] have the same soil name "
+                          f"'{name}' (their files say so): their runs could not be told apart; "
+                          "give one a 'name'")
+        names[name] = i
 
 
 def load(path, repo, build_dir):

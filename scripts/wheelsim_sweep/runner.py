@@ -172,7 +172,7 @@ class Runner:
     def command(self, p):
         d = self.point_dir(p)
         params = []
-        for k, v in (("wheel", p.wheel.label), ("soil", p.soil.label), ("slip", repr(p.slip)),
+        for k, v in (("wheel", p.wheel.label), ("soil", p.soil.name), ("slip", repr(p.slip)),
                      ("terrain", self.sweep.terrain), ("config", str(self.sweep.path))):
             params += ["--parameter", f"sweep/{k}={v}"]
         if self.sweep.terrain == "dem":
@@ -254,7 +254,7 @@ class Runner:
         for name in (DONE_FILE, RUN_FILE, PART_FILE):
             (d / name).unlink(missing_ok=True)
         header = (f"written by wheel-sweep from {self.sweep.path}\npoint {p.reldir}: wheel "
-                  f"{p.wheel.label}, soil {p.soil.label}, slip {p.slip!r}, terrain "
+                  f"{p.wheel.label}, soil {p.soil.name}, slip {p.slip!r}, terrain "
                   f"{self.sweep.terrain}\n")
         _write_atomic(d / "rig.toml", toml_out.dumps(p.rig, header))
         with self.lock:
@@ -282,7 +282,7 @@ class Runner:
             note = ""
         if rc == 0:
             os.replace(d / PART_FILE, d / RUN_FILE)
-        done = {"wheel": p.wheel.label, "soil": p.soil.label, "slip": p.slip,
+        done = {"wheel": p.wheel.label, "soil": p.soil.name, "slip": p.slip,
                 "terrain": self.sweep.terrain, "exit_status": rc,
                 "status": "done" if rc == 0 else "failed", "wall_time_s": round(wall, 3),
                 "run_file": RUN_FILE if rc == 0 else None, "inputs_sha256": self.inputs_hash(p)}
@@ -366,7 +366,7 @@ class Runner:
         rows = []
         for p in self.sweep.points:
             st = self.status.get(p.index, "pending")
-            rows.append({"wheel": p.wheel.label, "soil": p.soil.label, "slip": repr(p.slip),
+            rows.append({"wheel": p.wheel.label, "soil": p.soil.name, "slip": repr(p.slip),
                          "terrain": self.sweep.terrain, "status": st,
                          "run_file": f"{p.reldir}/{RUN_FILE}" if st == "done" else "",
                          "point_dir": p.reldir,

@@ -455,11 +455,16 @@ grid_length = 3.0
         raise Skip("the built wheel-rig has no SCM terrain yet")
     check(r.returncode == 0, "SCM sweep failed")
     rows = manifest(out)
-    check([(x["soil"], x["slip"], x["status"]) for x in rows]
-          == [("dry_sand", "0.1", "done"), ("dry_sand", "0.3", "done")], f"manifest {rows}")
+    # the soil's name is the one wheel-rig records (the soil file's `name`), not the file stem
+    check([(x["soil"], x["slip"], x["status"], x["point_dir"]) for x in rows]
+          == [("dry sand", "0.1", "done", "wheel2/dry_sand/s0.100"),
+              ("dry sand", "0.3", "done", "wheel2/dry_sand/s0.300")], f"manifest {rows}")
     for x in rows:
         with h5py.File(out / x["run_file"], "r") as f:
             check(f["parameters/sweep/terrain"].asstr()[()] == "scm", "sweep/terrain")
+            names = [f[f"parameters/{k}"].asstr()[()] for k in ("sweep/soil", "terrain/soil_name")]
+            check(names == ["dry sand", "dry sand"],
+                  f"/parameters/sweep/soil and terrain/soil_name differ: {names}")
             check("dry_sand.toml" in f["parameters/rig_config"].asstr()[()], "soil file in config")
             o = f["observables"]
             test = o["phase/value"][()] == 3

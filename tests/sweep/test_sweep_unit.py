@@ -3,7 +3,7 @@
 
   test_sweep_unit.py CASE --sweep scripts/wheel-sweep --work DIR
 
-CASE: toml_roundtrip, cli, health_table (see each function and tests/sweep/CMakeLists.txt).
+CASE: toml_roundtrip, cli, soil_names, health_table (see each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (a prerequisite missing).
 """
 
@@ -101,6 +101,49 @@ def case_cli(a, work):
     r = _run(a)
     check(r.returncode == 2 and "config" in r.stderr, "no config: expected exit 2")
     check(not (work / "out").exists(), "bad usage wrote output")
+
+
+def case_soil_names(a, work):
+    """Each soil's name is the one a direct run records: an SCM soil file's `name` (wheel-rig's
+    /parameters/terrain/soil_name), a DEM bed's `soil` variable (wheel-cosim's bed/soil), a
+    recipe's soil; an explicit `name` is kept; two soils of one name are an error."""
+    from wheelsim_sweep import config
+    repo = Path(a.sweep).resolve().parents[1]
+    mesh = work / "w.stl"
+    mesh.write_text("solid w\nendsolid w\n")  # only its existence is checked here
+    (work / "base.toml").write_text("[run]\ndt = 1e-4\n")
+    bed = work / "soilbin_x.restart"
+    bed.write_text("")
+    Path(f"{bed}.vars").write_text("variable bed_depth equal 0.03\nvariable soil string ci\n")
+
+    def load(text):
+        (work / "sweep.toml").write_text(f'base = "base.toml"\nwheels = ["w.stl"]\n'
+                                         f'slips = [0.1]\n{text}')
+        return config.load(work / "sweep.toml", repo, work)
+
+    sw = load('terrain = "scm"\nsoils = ["dry_sand", "lete_sand", '
+              '{ name = "fine", soil = "dry_sand", grid_spacing = 0.01 }]\n')
+    got = [(x.label, x.name) for x in sw.soils]
+    check(got == [("dry_sand", "dry sand"), ("lete_sand", "LETE sand"), ("fine", "fine")],
+          f"SCM soil names {got}")
+    sw = load(f'terrain = "dem"\nsoils = ["{bed}", {{ name = "mine", restart = "{bed}" }}, '
+              '{ name = "loose", soil = "ci" }]\n')
+    got = [(x.label, x.name) for x in sw.soils]
+    check(got == [("soilbin_x", "ci"), ("mine", "mine"), ("loose", "loose")],
+          f"DEM soil names {got}")
+    sw = load('terrain = "dem"\nsoils = [{ soil = "ci" }]\n')
+    check([(x.label, x.name) for x in sw.soils] == [("ci", "ci")], "DEM recipe soil name")
+    try:  # the bed's soil and a recipe's soil are both 'ci'
+        load(f'terrain = "dem"\nsoils = ["{bed}", {{ soil = "ci" }}]\n')
+        raise Fail("two soils named 'ci' were accepted")
+    except config.ConfigError as e:
+        check("soils[0] and soils[1] have the same soil name 'ci'" in str(e), str(e))
+    shutil.copyfile(repo / "inputs" / "scm_soils" / "dry_sand.toml", work / "dry_copy.toml")
+    try:
+        load('terrain = "scm"\nsoils = ["dry_sand", "dry_copy.toml"]\n')
+        raise Fail("two soils named 'dry sand' were accepted")
+    except config.ConfigError as e:
+        check("soils[0] and soils[1] have the same soil name 'dry sand'" in str(e), str(e))
 
 
 def main():
