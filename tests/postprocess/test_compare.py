@@ -62,8 +62,10 @@ class CompareTest(TempDirTestCase):
             list(rows[0]),
             [
                 "slip",
-                "measured_drawbar_pull_N",
+                "reference_drawbar_pull_N",
                 "simulated_drawbar_pull_N",
+                "difference_drawbar_pull_N",
+                "normalised_difference",
                 "error_percent",
                 "in_range",
             ],

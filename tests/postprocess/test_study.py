@@ -58,7 +58,9 @@ class StudyTest(TempDirTestCase):
         self.assertAlmostEqual(float(sinkage[1][1]), syn.SINKAGE, places=9)
         self.assertIn("### soil S1: drawbar pull [N]", result.stdout)
         self.assertIn("| wheel | s = 0.1 | s = 0.3 |", result.stdout)
-        self.assertIn("| W2 | – | 130 ± 14 |", result.stdout)
+        # cells: mean ± SEM (batch means); unchecked runs (no /health) are not marked
+        self.assertRegex(result.stdout, r"\| W2 \| – \| 130 ± [0-9.]+ \|\n")
+        self.assertIn("4 run(s) have no /health group (unchecked", result.stdout)
 
     def test_two_runs_in_one_cell_are_an_error(self):
         twin = self.path("twin.h5")
