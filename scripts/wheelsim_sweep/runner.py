@@ -15,6 +15,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
@@ -169,6 +170,13 @@ class Runner:
     def rig_text(self, p):
         return toml_out.dumps(p.rig)
 
+    def rig_file_text(self, p):
+        """The point's rig.toml: a comment header, then the rig config."""
+        header = (f"written by wheel-sweep from {self.sweep.path}\npoint {p.reldir}: wheel "
+                  f"{p.wheel.label}, soil {p.soil.name}, slip {p.slip!r}, terrain "
+                  f"{self.sweep.terrain}\n")
+        return toml_out.dumps(p.rig, header)
+
     def command(self, p):
         d = self.point_dir(p)
         params = []
@@ -253,10 +261,7 @@ class Runner:
         d.mkdir(parents=True, exist_ok=True)
         for name in (DONE_FILE, RUN_FILE, PART_FILE):
             (d / name).unlink(missing_ok=True)
-        header = (f"written by wheel-sweep from {self.sweep.path}\npoint {p.reldir}: wheel "
-                  f"{p.wheel.label}, soil {p.soil.name}, slip {p.slip!r}, terrain "
-                  f"{self.sweep.terrain}\n")
-        _write_atomic(d / "rig.toml", toml_out.dumps(p.rig, header))
+        _write_atomic(d / "rig.toml", self.rig_file_text(p))
         with self.lock:
             counter["started"] += 1
             self.say(f"[started {counter['started']}/{counter['total']}] {self.describe(p)} "
@@ -467,9 +472,70 @@ class Runner:
                 self.say("      " + " ".join(self.command(p)))
             else:
                 self.say(f"  finished  {self.describe(p)}: {p.reldir}/{RUN_FILE}")
+        bad = self.check_points()
+        if bad is None:
+            pass
+        elif bad:
+            for p, msg in bad:
+                print(f"wheel-sweep: error: point {p.reldir} ({self.describe(p)}): {msg}",
+                      file=sys.stderr, flush=True)
+            self.say(f"wheel-sweep: dry run: {len(bad)} of {len(self.sweep.points)} point(s) "
+                     "have an invalid rig config (wheel-rig --check); nothing written")
+            return 2
+        else:
+            self.say(f"wheel-sweep: dry run: the {len(self.sweep.points)} rig config(s) pass "
+                     "wheel-rig --check")
         self.say(f"wheel-sweep: dry run: {len(todo)} point(s) to run, "
                  f"{len(self.sweep.points) - len(todo)} finished; nothing written")
         return 0
+
+    def check_points(self):
+        """Every point's rig config through `wheel-rig --check` (the checks of a run, nothing
+        run): [(point, message)] of the invalid ones; None (with a warning) when this build's
+        wheel-rig cannot check. The configs go to a temporary directory; messages name the
+        point's rig.toml."""
+        rig = self.build / "bin" / "wheel-rig"
+        try:
+            helptext = subprocess.run([str(rig), "--help"], capture_output=True, text=True,
+                                      timeout=30).stdout
+        except (OSError, subprocess.SubprocessError):
+            helptext = ""
+        if "--check" not in helptext:
+            self.say(f"wheel-sweep: warning: rig configs not checked ({rig} not built, or "
+                     "without --check)")
+            return None
+        with tempfile.TemporaryDirectory(prefix="wheel-sweep-check-") as tmp:
+            def check(p):
+                path = Path(tmp) / f"{p.index}.toml"
+                path.write_text(self.rig_file_text(p))  # as rig.toml: same line numbers
+                cmd = [str(rig), "--check", "--quiet", "--config", str(path)]
+                if self.sweep.terrain == "dem":  # what wheel-cosim adds
+                    cmd += ["--endpoint", f"ipc://{tmp}/rig.sock"]
+                    depth = self._bed_depth(p.soil)
+                    if depth is not None:
+                        cmd += ["--surface-height", depth]
+                r = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp,
+                                   stdin=subprocess.DEVNULL)
+                if r.returncode == 0:
+                    return None
+                msg = (r.stderr.strip() or r.stdout.strip()
+                       or f"wheel-rig --check exited {r.returncode}")
+                msg = msg.replace(str(path), str(self.point_dir(p) / "rig.toml"))
+                return p, msg.removeprefix("wheel-rig: ")
+            with ThreadPoolExecutor(max_workers=max(1, self.jobs)) as ex:
+                results = list(ex.map(check, self.sweep.points))
+        return [r for r in results if r is not None]
+
+    def _bed_depth(self, soil):
+        """A DEM bed's bed_depth (its .vars file) as text, or None before it is prepared."""
+        try:
+            for line in Path(f"{self.bed_restart(soil)}.vars").read_text().splitlines():
+                f = line.split()
+                if len(f) >= 4 and f[0] == "variable" and f[1] == "bed_depth":
+                    return f[3]
+        except OSError:
+            pass
+        return None
 
     def _summary(self, n, skipped, ran):
         counts = {}

@@ -419,6 +419,45 @@ def case_bad_config(a, work):
     check(not (work / "out").exists(), "a bad config wrote output")
 
 
+def case_dry_run_check(a, work):
+    """--dry-run runs `wheel-rig --check` on every point's rig config: a bad value or a misspelt
+    key exits 2 naming the point and the key; a valid sweep exits 0; nothing is written."""
+    rig = Path(a.build_dir) / "bin" / "wheel-rig"
+    if "--check" not in subprocess.run([rig, "--help"], capture_output=True, text=True).stdout:
+        raise Skip(f"{rig} has no --check yet")
+    out = work / "out"
+    cfg = work / "sweep.toml"
+    sweep_config(cfg, a.build_dir)
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--dry-run")
+    check(r.returncode == 0 and "the 6 rig config(s) pass wheel-rig --check" in r.stdout,
+          "a valid sweep does not pass --dry-run")
+    cases = [
+        # (name, sweep config text, base rig text change, [(point, message regex)])
+        ("dt", "[override.run]\ndt = -1\n", None,
+         [(p, r"run\.dt must be > 0 s, got -1") for p in (
+             "wheel1/mu05/s0.100", "small/mu05/s0.500")]),
+        ("base_key", "", ("duration", "durration"),
+         [("wheel1/mu05/s0.250", r"unknown key 'run\.durration'; did you mean 'run\.duration'")]),
+        ("one_wheel", "", None, [("small/mu05/s0.100", r"wheel\.mass")]),
+    ]
+    for name, extra, change, expect in cases:
+        sweep_config(cfg, a.build_dir, extra=extra)
+        if change:
+            base = work / "base.toml"
+            base.write_text(base.read_text().replace(*change))
+        if name == "one_wheel":
+            cfg.write_text(cfg.read_text().replace('name = "small",', 'name = "small", mass = -3.0,'))
+        r = run_sweep(a, cfg, "--out-dir", str(out), "--dry-run")
+        check(r.returncode == 2, f"{name}: exit {r.returncode}, expected 2")
+        for point, regex in expect:
+            rx = (r"wheel-sweep: error: point " + re.escape(point) + r" \(.*\): "
+                  + re.escape(f"{out}/{point}/rig.toml") + r":\d+: .*" + regex)
+            check(re.search(rx, r.stderr), f"{name}: stderr does not match /{rx}/")
+        n_bad = len(re.findall(r"^wheel-sweep: error: point ", r.stderr, re.M))
+        check(n_bad == (6 if name != "one_wheel" else 3), f"{name}: {n_bad} points reported")
+    check(not out.exists(), "--dry-run wrote output")
+
+
 def case_examples_dry_run(a, work):
     """The example configs of inputs/sweeps/ load and list their points (no runs)."""
     repo = Path(a.sweep).resolve().parents[1]
