@@ -239,3 +239,101 @@ def write_vtk(path, points, triangles, pressure, count=None, step=1000, time=0.5
         out.write("SCALARS contact_count double 1\nLOOKUP_TABLE default\n")
         for c in count:
             out.write("%.6g\n" % c)
+
+
+def write_health(f, status, entries=()):
+    """The rig's /health group: attribute ``status`` and equal-length datasets step, time,
+    code, severity, message from ``entries`` [(step, time, code, severity, message)]."""
+    g = f.create_group("health")
+    g.attrs["status"] = status
+    entries = list(entries)
+    g.create_dataset(
+        "step", data=np.array([e[0] for e in entries], dtype=np.int64), maxshape=(None,)
+    )
+    t = g.create_dataset(
+        "time", data=np.array([e[1] for e in entries], dtype=np.float64), maxshape=(None,)
+    )
+    t.attrs["unit"] = "s"
+    for index, name in ((2, "code"), (3, "severity"), (4, "message")):
+        g.create_dataset(
+            name, data=[e[index] for e in entries], dtype=STRING, maxshape=(None,)
+        )
+
+
+def write_run(path, time, phase, series, parameters=None, health=None, config=None):
+    """A run file from arrays, one row per step (step = 0, 1, ...).
+
+    time [s], phase codes; series {name: (value, unit)}; parameters {name: value or
+    (value, unit)} (wheel/effective_radius defaults to R_EFF); health None (no /health) or
+    (status, entries) as write_health; config: the rig config text (default rig_config(0.2)).
+    """
+    step = np.arange(len(time), dtype=np.int64)
+    with h5py.File(path, "w") as f:
+        write_header(f)
+        params = {"wheel/effective_radius": (R_EFF, "m")}
+        params.update(parameters or {})
+        for name, value in params.items():
+            if isinstance(value, tuple):
+                write_parameter(f, name, value[0], value[1])
+            else:
+                write_parameter(f, name, value)
+        write_parameter(f, "rig_config", config or rig_config(0.2))
+        write_observable(f, "phase", step, time, np.asarray(phase, dtype=float), "1")
+        for name, (value, unit) in series.items():
+            write_observable(f, name, step, time, value, unit)
+        if health is not None:
+            write_health(f, *health)
+
+
+def steady_run_series(n_test, dt, omega, slip, dp, torque, load=None, n_before=100):
+    """(time, phase, series) of a run with ``n_before`` samples in each of release, settle
+    and ramp, then ``n_test`` test-phase samples; ``omega``, ``dp``, ``torque`` are scalars
+    or arrays over the test phase (the earlier phases repeat their first value); v from
+    ``slip``: v = (1 - slip) omega R_EFF."""
+    n = 3 * n_before + n_test
+    time = np.arange(n) * dt
+    phase = np.concatenate([np.full(n_before, c, dtype=float) for c in (0, 1, 2)]
+                           + [np.full(n_test, 3.0)])
+
+    def full(x):
+        x = np.broadcast_to(np.asarray(x, dtype=float), (n_test,))
+        return np.concatenate([np.full(3 * n_before, x[0]), x])
+
+    om, dpv, tq = full(omega), full(dp), full(torque)
+    series = {
+        "wheel/omega": (om, "rad/s"),
+        "carriage/velocity": ((1.0 - slip) * om * R_EFF, "m/s"),
+        "drawbar_pull": (dpv, "N"),
+        "driving_torque": (tq, "N m"),
+        "sinkage": (np.full(n, SINKAGE), "m"),
+        "lateral_force": (np.zeros(n), "N"),
+    }
+    if load is not None:
+        series["vertical_load"] = (np.full(n, float(load)), "N")
+    return time, phase, series
+
+
+def ar1(a, n, rng, sigma=1.0, block=512):
+    """An AR(1) series x_t = a x_(t-1) + e_t, e_t ~ N(0, sigma²), x_(-1) = 0 (numpy only:
+    blocks of ``block`` samples through a lower-triangular matrix, carried over)."""
+    e = rng.normal(0.0, sigma, n)
+    blocks = -(-n // block)
+    e = np.concatenate([e, np.zeros(blocks * block - n)]).reshape(blocks, block)
+    j = np.arange(block)
+    lag = j[:, None] - j[None, :]
+    lower = np.where(lag >= 0, float(a) ** np.clip(lag, 0, None), 0.0)
+    y = e @ lower.T
+    carry = float(a) ** (j + 1)
+    x = np.empty_like(y)
+    last = 0.0
+    for b in range(blocks):
+        x[b] = y[b] + carry * last
+        last = x[b, -1]
+    return x.ravel()[:n]
+
+
+def ar1_sem(a, n, sigma=1.0):
+    """Exact standard deviation of the mean of n samples of a stationary AR(1) series."""
+    var_x = sigma**2 / (1.0 - a * a)
+    factor = (1.0 + a) / (1.0 - a) - 2.0 * a * (1.0 - a**n) / (n * (1.0 - a) ** 2)
+    return math.sqrt(var_x / n * factor)
