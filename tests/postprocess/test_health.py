@@ -1,0 +1,144 @@
+"""Run health in curves and study: the rig's /health group (status and entries), runs
+without it ("unchecked"), and post-processing's own findings over the window
+(efficiency_bound, steady_state_trend)."""
+
+import csv
+import os
+import unittest
+
+import numpy as np
+
+import synthetic as syn
+from helpers import TempDirTestCase, is_png, run_cli
+from wheelsim_post.analysis import analyse_run
+from wheelsim_post.steady import make_window
+
+N_TEST = 4000
+HALF = make_window(None, None, (0.5, 1.0))
+
+
+def read_rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+class HealthTest(TempDirTestCase):
+    def write(self, name, dp=100.0, torque=60.0, health=None, slip=0.2):
+        time, phase, series = syn.steady_run_series(
+            N_TEST, 1e-3, 2.0, slip, dp, torque, load=1000.0
+        )
+        path = self.path(name)
+        syn.write_run(
+            path,
+            time,
+            phase,
+            series,
+            parameters={"sweep/wheel": "W", "sweep/soil": "S", "sweep/slip": str(slip)},
+            health=health,
+        )
+        return path
+
+    def verdict(self, path):
+        r = analyse_run(path, HALF)
+        return r.health.verdict, r.health.codes
+
+    def test_rig_status_and_codes(self):
+        cases = {
+            "healthy.h5": (("healthy", []), ("ok", "")),
+            "warnings.h5": (
+                (
+                    "warnings",
+                    [
+                        (10, 0.01, "grid_coarse", "warning", "grid 4 cm > 2 cm"),
+                        (900, 0.9, "slip_not_held", "warning", "slip 0.26, target 0.2"),
+                        (950, 0.95, "grid_coarse", "warning", "again"),
+                    ],
+                ),
+                ("warning", "grid_coarse;slip_not_held"),
+            ),
+            "running.h5": (("running", []), ("incomplete", "")),
+            "unhealthy.h5": (
+                (
+                    "unhealthy",
+                    [(500, 0.5, "nonfinite_state", "error", "wheel z is nan")],
+                ),
+                ("unhealthy", "nonfinite_state"),
+            ),
+            "old.h5": (None, ("unchecked", "")),
+        }
+        for name, (health, expected) in cases.items():
+            with self.subTest(name):
+                self.assertEqual(self.verdict(self.write(name, health=health)), expected)
+
+    def test_efficiency_above_one_minus_slip(self):
+        # η = DP v/(T ω) = 1000·0.16/(60·2) = 1.33 > 1 − s = 0.8
+        path = self.write("eta.h5", dp=1000.0, health=("healthy", []))
+        self.assertEqual(self.verdict(path), ("warning", "efficiency_bound"))
+        # within the bound: no finding
+        self.assertEqual(self.verdict(self.write("fine.h5")), ("unchecked", ""))
+
+    def test_drawbar_pull_trend(self):
+        rng = np.random.default_rng(3)
+        noise = 5.0 * syn.ar1(0.9, N_TEST, rng)
+        ramp = 100.0 + 40.0 * np.arange(N_TEST) / N_TEST  # +20 N over the window
+        trending = self.write("trend.h5", dp=ramp + noise, health=("healthy", []))
+        verdict, codes = self.verdict(trending)
+        self.assertEqual((verdict, codes), ("warning", "steady_state_trend"))
+        steady = self.write("steady.h5", dp=100.0 + noise, health=("healthy", []))
+        self.assertEqual(self.verdict(steady), ("ok", ""))
+
+    def test_false_alarm_rate_of_the_trend_check(self):
+        # stationary AR(1) noise: the trend check (3 standard errors of the fitted change)
+        # must stay quiet in nearly all of 40 runs
+        alarms = 0
+        for seed in range(40):
+            noise = 5.0 * syn.ar1(0.95, N_TEST, np.random.default_rng(100 + seed))
+            path = self.write(f"s{seed}.h5", dp=100.0 + noise, health=("healthy", []))
+            alarms += "steady_state_trend" in self.verdict(path)[1]
+        self.assertLessEqual(alarms, 3)
+
+    def test_curves_and_study_columns(self):
+        paths = [
+            self.write("a.h5", slip=0.1, health=("healthy", [])),
+            self.write(
+                "b.h5",
+                slip=0.3,
+                health=("warnings", [(5, 0.005, "lost_contact", "warning", "no contact")]),
+            ),
+            self.write("c.h5", slip=0.5),
+        ]
+        out, png = self.path("curves.csv"), self.path("curves.png")
+        result = run_cli(
+            "curves", *paths, "--window-fraction", "0.5", "1", "--csv", out, "--png", png
+        )
+        self.assertEqual(result.returncode, 0, result.stderr)
+        rows = read_rows(out)
+        self.assertEqual(
+            [(r["health"], r["health_codes"]) for r in rows],
+            [("ok", ""), ("warning", "lost_contact"), ("unchecked", "")],
+        )
+        with open(out) as f:
+            text = f.read()
+        self.assertIn("# notes:", text)
+        self.assertIn("b.h5: health warning (lost_contact)", text)
+        self.assertIn("health warning (lost_contact)", result.stdout)
+        self.assertTrue(is_png(png))
+        norm_png = self.path("normalised.png")
+        result = run_cli("curves", *paths, "--normalised", "--png", norm_png)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertTrue(is_png(norm_png))
+
+        study = self.path("study")
+        result = run_cli("study", *paths, "--quantity", "drawbar_pull", "--out-dir", study)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        runs = read_rows(os.path.join(study, "runs.csv"))
+        self.assertEqual(
+            [(r["health"], r["health_codes"]) for r in runs],
+            [("ok", ""), ("warning", "lost_contact"), ("unchecked", "")],
+        )
+        self.assertIn("(warning)", result.stdout)
+        self.assertIn("W, soil S, s = 0.3: warning (lost_contact)", result.stdout)
+
+
+if __name__ == "__main__":
+    unittest.main()
