@@ -21,7 +21,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
 from pathlib import Path
 
-from . import toml_out, watchdog
+from . import health, toml_out, watchdog
 
 RUN_FILE = "run.h5"
 PART_FILE = "run.part.h5"
@@ -78,6 +78,7 @@ class Runner:
         self.status = {}  # point index -> done | failed | interrupted | pending
         self.exit_status = {}
         self._file_hashes = {}  # path -> sha256 of its contents (file_hash)
+        self.health = {}  # point index -> (status, codes) of its run file (check_health)
 
     # ---- output ---------------------------------------------------------------------------------
     def say(self, msg):
@@ -259,7 +260,7 @@ class Runner:
             return  # stopping: the point stays pending
         d = self.point_dir(p)
         d.mkdir(parents=True, exist_ok=True)
-        for name in (DONE_FILE, RUN_FILE, PART_FILE):
+        for name in (DONE_FILE, RUN_FILE, PART_FILE, PART_FILE + ".writing"):
             (d / name).unlink(missing_ok=True)
         _write_atomic(d / "rig.toml", self.rig_file_text(p))
         with self.lock:
@@ -375,7 +376,9 @@ class Runner:
                          "terrain": self.sweep.terrain, "status": st,
                          "run_file": f"{p.reldir}/{RUN_FILE}" if st == "done" else "",
                          "point_dir": p.reldir,
-                         "exit_status": self.exit_status.get(p.index, "")})
+                         "exit_status": self.exit_status.get(p.index, ""),
+                         "health": self.health.get(p.index, ("", ""))[0],
+                         "health_codes": self.health.get(p.index, ("", ""))[1]})
         tmp = self.out / "manifest.csv.tmp"
         with open(tmp, "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=list(rows[0]))
@@ -436,6 +439,7 @@ class Runner:
             pass
         finally:
             self.stop_watchdog()
+        self.check_health()
         self.write_manifest()
         return self._summary(n, skipped, len(todo))
 
@@ -537,12 +541,36 @@ class Runner:
             pass
         return None
 
+    def check_health(self):
+        """Reads /health of every point's run file (run.h5, or run.part.h5 of a failed point)
+        and lists the points whose run is not healthy."""
+        for p in self.sweep.points:
+            st = self.status.get(p.index)
+            f = self.point_dir(p) / (RUN_FILE if st == "done" else PART_FILE)
+            if st in ("done", "failed") and f.is_file():
+                self.health[p.index] = health.run_health(f)
+        rows = [(p.reldir, *self.health[p.index]) for p in self.sweep.points
+                if self.health.get(p.index, ("healthy",))[0] != "healthy"]
+        if rows:
+            self.say(f"wheel-sweep: {len(rows)} point(s) whose run is not healthy (their /health; "
+                     f"{', '.join(health.UNTRUSTED)} count as failed):")
+            for line in health.table(rows):
+                self.say(line)
+
+    def untrusted(self):
+        """Indices of done points whose run is not to be trusted (health.UNTRUSTED)."""
+        return [p.index for p in self.sweep.points if self.status.get(p.index) == "done"
+                and self.health.get(p.index, ("",))[0] in health.UNTRUSTED]
+
     def _summary(self, n, skipped, ran):
         counts = {}
         for p in self.sweep.points:
             st = self.status.get(p.index, "pending")
             counts[st] = counts.get(st, 0) + 1
         parts = [f"{counts.get('done', 0)} done ({skipped} skipped as finished)"]
+        bad = self.untrusted()
+        if bad:
+            parts[0] += f" of which {len(bad)} not to be trusted (unhealthy, crashed or unreadable)"
         for st in ("failed", "interrupted", "pending"):
             if counts.get(st):
                 parts.append(f"{counts[st]} {st}")
@@ -550,4 +578,4 @@ class Runner:
         self.say(f"wheel-sweep: output {self.out}; manifest {self.out / 'manifest.csv'}")
         if self.stop_signal is not None:
             return 128 + self.stop_signal
-        return 0 if counts.get("done", 0) == n else 1
+        return 0 if counts.get("done", 0) == n and not bad else 1

@@ -67,13 +67,14 @@ flush_interval = 100
 """)
 
 
-def sweep_config(path, build, duration=0.2, every=10, slips=SLIPS, extra=""):
+def sweep_config(path, build, duration=0.2, every=10, slips=SLIPS, extra="", wheels=None):
     """2 wheels (a catalogue name and a mesh path with a label) x 1 soil x len(slips) slips."""
     base_rig(path.parent / "base.toml", duration, every)
+    wheels = wheels or f'["wheel1", {{ name = "small", mesh = "{build}/meshes/test_small.stl" }}]'
     path.write_text(f"""description = "test sweep"
 terrain = "flat"
 base = "base.toml"
-wheels = ["wheel1", {{ name = "small", mesh = "{build}/meshes/test_small.stl" }}]
+wheels = {wheels}
 soils = [{SOIL}]
 slips = {json.dumps(slips)}
 {extra}""")
@@ -184,6 +185,62 @@ def case_resume_marker(a, work):
     r = run_sweep(a, cfg, "--out-dir", str(out), "--force")
     check(r.returncode == 0 and "running 6 point(s)" in r.stdout, "--force did not re-run all")
     check_complete(out, ["wheel1", "small"], SLIPS)
+
+
+def write_health(path, status, findings=()):
+    """Replaces /health of a run file: `status` and rows (code, severity); None: no /health."""
+    with h5py.File(path, "r+") as f:
+        if "health" in f:
+            del f["health"]
+        if status is None:
+            return
+        g = f.create_group("health")
+        g.attrs["status"] = status
+        n = len(findings)
+        g["step"] = np.arange(n, dtype=np.int64) * 10
+        g["time"] = np.arange(n, dtype=np.float64) * 1e-3
+        text = h5py.string_dtype()
+        g.create_dataset("code", data=[c for c, _ in findings], dtype=text)
+        g.create_dataset("severity", data=[v for _, v in findings], dtype=text)
+        g.create_dataset("message", data=[f"{c}: what was seen" for c, _ in findings],
+                         dtype=text)
+
+
+def case_health_listing(a, work):
+    """The end of a sweep lists the points whose run is not healthy, with their codes; an
+    unhealthy or crashed ("running") run makes the exit status 1; no /health is "unchecked"."""
+    cfg = work / "sweep.toml"
+    slips = [0.1, 0.2, 0.3, 0.4, 0.5]
+    sweep_config(cfg, a.build_dir, slips=slips, wheels='["wheel1"]')
+    out = work / "out"
+    check(run_sweep(a, cfg, "--out-dir", str(out)).returncode == 0, "first sweep failed")
+    pts = [out / f"wheel1/mu05/s{s:.3f}/run.h5" for s in slips]
+    write_health(pts[0], "unhealthy", [("nonfinite_state", "error"),
+                                       ("slip_not_held", "error"), ("nonfinite_state", "error")])
+    write_health(pts[1], "warnings", [("settle_timeout", "warning")])
+    write_health(pts[2], None)
+    write_health(pts[3], "running", [])
+    write_health(pts[4], "healthy", [])
+    r = run_sweep(a, cfg, "--out-dir", str(out))
+    check(r.returncode == 1, f"exit {r.returncode}: an unhealthy run must count as failed")
+    check("skipping 5 finished point(s)" in r.stdout, "the points were not skipped")
+    check("4 point(s) whose run is not healthy" in r.stdout, "no listing of 4 points")
+    for rx in (r"wheel1/mu05/s0\.100 +unhealthy +nonfinite_state;slip_not_held\n",
+               r"wheel1/mu05/s0\.200 +warnings +settle_timeout\n",
+               r"wheel1/mu05/s0\.300 +unchecked +-\n", r"wheel1/mu05/s0\.400 +running +-\n"):
+        check(re.search(rx, r.stdout), f"listing lacks /{rx}/")
+    check("s0.500" not in r.stdout.split("not healthy")[1], "a healthy point is listed")
+    check("of which 2 not to be trusted" in r.stdout, "summary does not count 2 untrusted")
+    rows = manifest(out)
+    got = [(x["health"], x["health_codes"]) for x in rows]
+    check(got == [("unhealthy", "nonfinite_state;slip_not_held"), ("warnings", "settle_timeout"),
+                  ("unchecked", ""), ("running", ""), ("healthy", "")], f"manifest health {got}")
+    # warnings and unchecked are listed but do not fail the sweep
+    write_health(pts[0], "healthy", [])
+    write_health(pts[3], "healthy", [])
+    r = run_sweep(a, cfg, "--out-dir", str(out))
+    check(r.returncode == 0 and "2 point(s) whose run is not healthy" in r.stdout,
+          f"exit {r.returncode}: warnings / unchecked must be listed, not fail")
 
 
 def procs_under(path):
