@@ -66,14 +66,95 @@ class CliErrorTest(TempDirTestCase):
             ),
             (
                 ["compare", self.path("c.csv"), "m.csv", "--quantity", "sinkage"],
-                "CURVES.csv",
+                "SIM.csv",
                 "c.csv' does not exist",
             ),
             (["study", run, "--quantity", "dp", "--out-dir", out], "--quantity: 'dp'"),
+            (["curves", run, "--lugs", "-1"], "--lugs: expected a lug count >= 0"),
+            (
+                ["compare", "a.csv", "b.csv", "--quantity", "sinkage", "--columns", "slip"],
+                "--columns: 'slip' is not NAME=COLUMN",
+            ),
         ]
         for args, *fragments in cases:
             with self.subTest(args=args):
                 self.check(args, *fragments)
+
+
+class UsageTest(TempDirTestCase):
+    """usage.py: misspelt options and commands name the nearest valid one; --version;
+    --help; the exit codes of docs/postprocess.md (0 success, 2 usage or input error)."""
+
+    def check_usage(self, args, expected):
+        result = run_cli(*args)
+        self.assertEqual(result.returncode, 2, (args, result.stderr))
+        self.assertEqual(result.stderr.strip(), expected)
+        self.assertEqual(result.stdout, "")
+
+    def test_misspelt_options_name_the_nearest(self):
+        cases = [
+            (
+                ["compare", "a.csv", "b.csv", "--quantitiy", "drawbar_pull"],
+                "wheelsim-post compare: error: unknown option '--quantitiy' "
+                "(did you mean '--quantity'?)",
+            ),
+            (
+                ["study", "run.h5", "--quantitiy", "sinkage", "--out-dir", "x"],
+                "wheelsim-post study: error: unknown option '--quantitiy' "
+                "(did you mean '--quantity'?)",
+            ),
+            (
+                ["curves", "run.h5", "--normalized"],
+                "wheelsim-post curves: error: unknown option '--normalized' "
+                "(did you mean '--normalised'?)",
+            ),
+            (
+                ["curves", "--grup-by=wheel"],  # before the missing RUN.h5 is reported
+                "wheelsim-post curves: error: unknown option '--grup-by' "
+                "(did you mean '--group-by'?)",
+            ),
+            (
+                ["--verison"],
+                "wheelsim-post: error: unknown option '--verison' (did you mean '--version'?)",
+            ),
+            (
+                ["curvs", "run.h5"],
+                "wheelsim-post: error: argument COMMAND: invalid choice: 'curvs' (choose "
+                "from 'curves', 'series', 'maps', 'compare', 'study') (did you mean 'curves'?)",
+            ),
+            (
+                ["curves", "run.h5", "--zzz"],
+                "wheelsim-post curves: error: unknown option '--zzz'",
+            ),
+        ]
+        for args, expected in cases:
+            with self.subTest(args=args):
+                self.check_usage(args, expected)
+
+    def test_version(self):
+        result = run_cli("--version")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertRegex(result.stdout, r"^wheelsim-post 0\.1\.0( \(git [0-9a-f]+\))?\n$")
+
+    def test_help_exits_0(self):
+        for args in (["--help"], ["curves", "--help"], ["compare", "-h"]):
+            with self.subTest(args=args):
+                result = run_cli(*args)
+                self.assertEqual(result.returncode, 0, result.stderr)
+                self.assertIn("usage: wheelsim-post", result.stdout)
+
+    def test_project_version_comes_from_cmakelists(self):
+        from wheelsim_post import usage
+
+        root = usage.find_project_root()
+        self.assertIsNotNone(root)
+        with open(f"{root}/CMakeLists.txt") as f:
+            self.assertIn(f"project(wheelsim VERSION {usage.project_version(root)}", f.read())
+        cmake = self.path("CMakeLists.txt")
+        with open(cmake, "w") as f:
+            f.write("cmake_minimum_required(VERSION 3.20)\nproject(wheelsim VERSION 2.3.4 LANGUAGES C)\n")
+        self.assertEqual(usage.project_version(self.dir), "2.3.4")
+        self.assertEqual(usage.find_project_root(cmake), self.dir)
 
 
 class HelpTest(unittest.TestCase):
