@@ -235,5 +235,17 @@ TEST(RigModel, ImposedVelocitiesAndReactions) {
   EXPECT_THROW(Rig(bad, RigCoordinates{}, RigVelocities{}), std::invalid_argument);
 }
 
+TEST(RigModel, TimeIsStepCountTimesDtNotASumOfSteps) {
+  // Summing dt drifts: 4000 steps of 5e-4 s summed give 1.9999999999998... and a snapshot at
+  // 2.0 s fired one step late. Time is t0 + n dt, exactly as the step count says.
+  Rig rig(reference_rig(), RigCoordinates{}, RigVelocities{}, 0.25);
+  for (int i = 0; i < 4000; ++i)
+    rig.step(ContactWrench{}, 5e-4);
+  EXPECT_EQ(rig.time_s(), 0.25 + 4000 * 5e-4);
+  for (int i = 0; i < 3; ++i) // a new time step continues from where the old one ended
+    rig.step(ContactWrench{}, 1e-3);
+  EXPECT_EQ(rig.time_s(), (0.25 + 4000 * 5e-4) + 3 * 1e-3);
+}
+
 } // namespace
 } // namespace wheelsim::rig

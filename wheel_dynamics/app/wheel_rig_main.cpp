@@ -1,7 +1,7 @@
 // wheel-rig: the multibody test rig process. Reads a rig config (TOML, docs/rig-config.md), runs
-// the rig on its terrain — in-process (flat; scm: the SCM soft soil, docs/scm.md) or remote (dem: LIGGGHTS with fix wheel/cosim
-// 'motion coupled', over ZeroMQ, docs/coupling-protocol.md) — and writes the HDF5 run file
-// (docs/hdf5-layout.md), with a progress line on the terminal.
+// the rig on its terrain — in-process (flat; scm: the SCM soft soil, docs/scm.md) or remote (dem:
+// LIGGGHTS with fix wheel/cosim 'motion coupled', over ZeroMQ, docs/coupling-protocol.md) — and
+// writes the HDF5 run file (docs/hdf5-layout.md), with a progress line on the terminal.
 //
 //   wheel-rig --config rig.toml [--out run.h5] [--endpoint ipc:///tmp/x.sock]
 //             [--surface-height Z] [--quiet]
@@ -299,7 +299,8 @@ void check_run_inputs(const rig::RigConfig &config) {
 /// Runs the rig on the terrain of `config` (or the --kinematic twist) to its end.
 void run_terrain(const rig::RigConfig &config, const std::vector<double> &kinematic, Sink &sink,
                  runfile::RunFile &file, bool quiet) {
-  if (!kinematic.empty()) {    KinematicDriver driver(Eigen::Vector3d(kinematic[0], kinematic[1], kinematic[2]),
+  if (!kinematic.empty()) {
+    KinematicDriver driver(Eigen::Vector3d(kinematic[0], kinematic[1], kinematic[2]),
                            Eigen::Vector3d(kinematic[3], kinematic[4], kinematic[5]),
                            config.run.dt_s, file);
     std::ostringstream twist;
@@ -388,8 +389,8 @@ int main(int argc, char **argv) {
     runfile::FlushPolicy flush;
     flush.write_every_rows = config.output.flush_interval;
     file = std::make_unique<runfile::RunFile>(
-        config.output.file,
-        runfile::Creator{"wheel-rig", WHEELSIM_VERSION, WHEELSIM_GIT_REVISION}, flush);
+        config.output.file, runfile::Creator{"wheel-rig", WHEELSIM_VERSION, WHEELSIM_GIT_REVISION},
+        flush);
     file->set_parameter_text("rig_config", config.text);
     file->set_parameter("rig_config_file", config.source);
     std::ostringstream command;
@@ -438,10 +439,11 @@ int main(int argc, char **argv) {
     if (checked) {
       file->set_health_status(health.status());
       if (health.has_error()) {
-        std::fprintf(stderr, "wheel-rig: error: the run is unhealthy (see the health lines above "
-                             "and /health in %s)\n",
+        std::fprintf(stderr,
+                     "wheel-rig: error: the run is unhealthy (see the health lines above "
+                     "and /health in %s)\n",
                      config.output.file.c_str());
-        status = 1;
+        status = cli::kExitFailure;
       }
     }
     if (!quiet && kinematic.empty())
@@ -449,6 +451,12 @@ int main(int argc, char **argv) {
                   config.output.file.c_str());
     else if (!quiet)
       std::printf("wheel-rig: done (kinematic); run file %s\n", config.output.file.c_str());
+  } catch (const rig::RunHealthError &) { // its health line has been printed
+    std::fprintf(stderr,
+                 "wheel-rig: error: the run was stopped by its health check (/health in "
+                 "%s)\n",
+                 config.output.file.c_str());
+    status = cli::kExitFailure;
   } catch (const rig::RigConfigError &e) { // the wheel or the terrain the config names
     std::fprintf(stderr, "wheel-rig: error: %s\n", e.what());
     status = cli::kExitUsage;

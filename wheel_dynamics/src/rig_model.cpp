@@ -21,7 +21,7 @@ void check_finite(double v, const char *name) { check(std::isfinite(v), name, "f
 } // namespace
 
 Rig::Rig(const RigParameters &p, const RigCoordinates &q0, const RigVelocities &u0, double time0_s)
-    : p_(p), q_(q0), u_(u0), time_s_(time0_s) {
+    : p_(p), q_(q0), u_(u0), time_s_(time0_s), segment_time0_s_(time0_s) {
   check(p.wheel_mass_kg > 0 && std::isfinite(p.wheel_mass_kg), "wheel_mass_kg", "> 0 kg",
         p.wheel_mass_kg);
   check(p.wheel_axle_inertia_kg_m2 > 0 && std::isfinite(p.wheel_axle_inertia_kg_m2),
@@ -122,8 +122,13 @@ void Rig::step(const ContactWrench &w, double dt) {
   q_.theta_rad += dt * u.omega_rad_s;
   u_ = u;
   reactions_ = r;
-  time_s_ += dt;
+  if (dt != segment_dt_s_) { // a new run of equal steps starts at the current time
+    segment_time0_s_ = time_s_;
+    segment_step0_ = steps_;
+    segment_dt_s_ = dt;
+  }
   ++steps_;
+  time_s_ = segment_time0_s_ + static_cast<double>(steps_ - segment_step0_) * dt;
 }
 
 WheelState Rig::wheel_state() const {

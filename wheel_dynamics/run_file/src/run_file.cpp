@@ -132,6 +132,9 @@ struct RunFile::Impl {
   std::string working_path; // what HDF5 writes: path + ".writing"
   std::string staging_path; // the copy being published: path + ".publishing"
   Handle file, parameters, observables, terrain;
+  Handle health; // /health, after begin_health()
+  Handle health_step, health_time, health_code, health_severity, health_message;
+  hsize_t health_rows = 0;
   Handle lcpl;        // link creation: intermediate groups, UTF-8 names
   Handle gcpl;        // group creation: no object time stamps (files that diff)
   Handle string_type; // variable-length UTF-8 string
@@ -233,6 +236,31 @@ struct RunFile::Impl {
       write_scalar_dataset(parameters.get(), name, H5T_STD_I64LE, H5T_NATIVE_INT64, value, unit);
       break;
     }
+  }
+
+  /// An empty 1-D extendable dataset `name` below `loc` (chunks of `chunk_rows`).
+  Handle create_extendable(hid_t loc, const char *name, hid_t file_type, hsize_t chunk_rows) const {
+    const hsize_t dims = 0, maxdims = H5S_UNLIMITED;
+    Handle space(check(H5Screate_simple(1, &dims, &maxdims), "creating a dataspace"), H5Sclose);
+    Handle dcpl = dataset_creation();
+    check_status(H5Pset_chunk(dcpl.get(), 1, &chunk_rows), "setting the chunk size");
+    return Handle(
+        check(H5Dcreate2(loc, name, file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+              std::string("creating dataset '") + name + "'"),
+        H5Dclose);
+  }
+
+  /// Writes row `row` of the 1-D dataset `ds` (extending it to row + 1 rows).
+  void write_row(const Handle &ds, hsize_t row, hid_t mem_type, const void *value,
+                 const std::string &what) const {
+    const hsize_t rows = row + 1, count = 1;
+    check_status(H5Dset_extent(ds.get(), &rows), what + ": extending");
+    Handle fspace(check(H5Dget_space(ds.get()), what + ": dataspace"), H5Sclose);
+    check_status(H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, &row, nullptr, &count, nullptr),
+                 what + ": selecting the row");
+    Handle mspace(check(H5Screate_simple(1, &count, nullptr), what + ": memory space"), H5Sclose);
+    check_status(H5Dwrite(ds.get(), mem_type, mspace.get(), fspace.get(), H5P_DEFAULT, value),
+                 what + ": writing");
   }
 
   void flush_file() const {
@@ -576,6 +604,53 @@ void RunFile::write_snapshot(const std::string &group_name, std::int64_t step, d
   commit();
 }
 
+// --- health --------------------------------------------------------------------------------------
+void RunFile::begin_health(const std::string &status) {
+  require_open("begin /health");
+  Impl &f = *impl_;
+  if (f.health.valid())
+    throw RunFileError("run file '" + path_ + "': /health exists already (begin_health once)");
+  QuietHdf5Errors quiet;
+  f.health = f.create_group(f.file.get(), "health");
+  f.write_string_attribute(f.health.get(), "status", status);
+  const hsize_t chunk = 16;
+  f.health_step = f.create_extendable(f.health.get(), "step", H5T_STD_I64LE, chunk);
+  f.health_time = f.create_extendable(f.health.get(), "time", H5T_IEEE_F64LE, chunk);
+  f.write_string_attribute(f.health_time.get(), "unit", "s");
+  f.health_code = f.create_extendable(f.health.get(), "code", f.string_type.get(), chunk);
+  f.health_severity = f.create_extendable(f.health.get(), "severity", f.string_type.get(), chunk);
+  f.health_message = f.create_extendable(f.health.get(), "message", f.string_type.get(), chunk);
+  commit();
+}
+
+void RunFile::add_health_finding(const HealthRecord &r) {
+  require_open("add a health finding");
+  Impl &f = *impl_;
+  if (!f.health.valid())
+    throw RunFileError("run file '" + path_ + "': add_health_finding before begin_health");
+  QuietHdf5Errors quiet;
+  const hsize_t row = f.health_rows;
+  const char *code = r.code.c_str(), *severity = r.severity.c_str(), *message = r.message.c_str();
+  f.write_row(f.health_step, row, H5T_NATIVE_INT64, &r.step, "/health/step");
+  f.write_row(f.health_time, row, H5T_NATIVE_DOUBLE, &r.time_s, "/health/time");
+  f.write_row(f.health_code, row, f.string_type.get(), &code, "/health/code");
+  f.write_row(f.health_severity, row, f.string_type.get(), &severity, "/health/severity");
+  f.write_row(f.health_message, row, f.string_type.get(), &message, "/health/message");
+  ++f.health_rows;
+  commit();
+}
+
+void RunFile::set_health_status(const std::string &status) {
+  require_open("set the health status");
+  Impl &f = *impl_;
+  if (!f.health.valid())
+    throw RunFileError("run file '" + path_ + "': set_health_status before begin_health");
+  QuietHdf5Errors quiet;
+  f.check_status(H5Adelete(f.health.get(), "status"), "replacing /health status");
+  f.write_string_attribute(f.health.get(), "status", status);
+  commit();
+}
+
 // --- flush / close -------------------------------------------------------------------------------
 void RunFile::write_buffered_rows() {
   for (auto &entry : series_)
@@ -611,6 +686,9 @@ void RunFile::close() {
   for (auto &entry : series_)
     entry.second->close_datasets();
   Impl &f = *impl_;
+  for (Handle *h : {&f.health_step, &f.health_time, &f.health_code, &f.health_severity,
+                    &f.health_message, &f.health})
+    h->reset();
   f.terrain.reset();
   f.observables.reset();
   f.parameters.reset();

@@ -104,9 +104,8 @@ struct TerrainConfig {
 
 struct OutputConfig {
   std::string file = "run.h5";
-  long long every = 1; ///< record every N-th step
-  long long flush_interval =
-      1000; ///< recorded steps kept in memory before they go to the working copy
+  long long every = 1;               ///< record every N-th step
+  long long flush_interval = 1000;   ///< recorded steps buffered in memory (hdf5-layout.md)
   double progress_interval_s = 10.0; ///< wall-clock seconds between progress lines; 0 = off
 };
 

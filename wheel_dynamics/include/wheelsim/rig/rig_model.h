@@ -108,7 +108,8 @@ public:
   void set_drives(const RigDrives &drives);
   const RigDrives &drives() const { return drives_; }
 
-  /// Advances state n -> n+1 by `dt` [s] (> 0, finite) with the contact wrench at state n.
+  /// Advances state n -> n+1 by `dt` [s] (> 0, finite) with the contact wrench at state n. The
+  /// time is t0 + n dt while dt stays the same (no accumulated rounding).
   void step(const ContactWrench &wrench_at_current_state, double dt);
 
   /// The wheel body's state (pose, twist) at the current step, world frame.
@@ -143,6 +144,11 @@ private:
   RigReactions reactions_;
   double time_s_ = 0.0;
   long long steps_ = 0;
+  // Time is t0 + (n - n0) dt over a run of steps of equal dt, not a sum of dt's (which drifts:
+  // 4000 steps of 5e-4 s summed fall short of 2.0 s).
+  double segment_time0_s_ = 0.0;
+  long long segment_step0_ = 0;
+  double segment_dt_s_ = 0.0;
 };
 
 } // namespace wheelsim::rig

@@ -5,6 +5,8 @@
 //   /parameters/<name>         every input, as scalar datasets (text, float, integer)
 //   /observables/<name>/{step,time,value}   time series, value with a `unit` attribute
 //   /terrain/<name>/{step,time,value,...}   2-D snapshots (SCM maps)
+//   /health                    the run's own checks: attribute status, {step,time,code,severity,
+//                              message} one row per finding (docs/run-health.md)
 //
 // Crash safety (docs/hdf5-layout.md, "Crash guarantees"): the HDF5 library writes to a working
 // copy, `<path>.writing`, never to `path` itself. A commit (flush(), the automatic commit of the
@@ -127,6 +129,15 @@ struct Grid2D {
   std::size_t cols;
 };
 
+/// One finding of a run's health checks (docs/run-health.md), a row of /health.
+struct HealthRecord {
+  std::int64_t step = 0;
+  double time_s = 0.0;
+  std::string code;     ///< e.g. "nonfinite_state"
+  std::string severity; ///< "warning" or "error"
+  std::string message;  ///< what was seen, with numbers and units, and what to do
+};
+
 class RunFile {
 public:
   /// Creates (replaces) `path` and writes /h5md and the empty /parameters, /observables,
@@ -164,6 +175,15 @@ public:
   void write_snapshot(const std::string &group_name, std::int64_t step, double time_s,
                       const Grid2D &grid, const std::string &unit,
                       const std::vector<SnapshotScalar> &scalars = {});
+
+  // --- /health ---
+  /// Creates /health with status `status` (e.g. "running") and no rows; committed. Once.
+  void begin_health(const std::string &status);
+  /// Appends one finding to /health (begin_health first); committed at once, so a run that dies
+  /// afterwards keeps it.
+  void add_health_finding(const HealthRecord &record);
+  /// Replaces /health's status attribute (e.g. "healthy", "warnings", "unhealthy"); committed.
+  void set_health_status(const std::string &status);
 
   /// Commits: writes every buffered row to the working copy, H5Fflush, and publishes it as `path`
   /// (copy, then atomic rename). After it returns, `path` holds everything appended so far.

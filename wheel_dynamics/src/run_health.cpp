@@ -1,0 +1,288 @@
+#include "wheelsim/rig/run_health.h"
+
+#include "wheelsim/config_messages.h"
+
+#include <cmath>
+#include <numeric>
+
+namespace wheelsim::rig {
+namespace {
+
+using config::fmt;
+
+double mean(const double *begin, const double *end) {
+  return begin == end ? std::nan("") : std::accumulate(begin, end, 0.0) / double(end - begin);
+}
+
+/// The first non-finite value of `values` named by `names`, or nullptr.
+const char *first_nonfinite(std::initializer_list<std::pair<const char *, double>> values,
+                            double *value) {
+  for (const auto &[name, v] : values)
+    if (!std::isfinite(v)) {
+      *value = v;
+      return name;
+    }
+  return nullptr;
+}
+
+/// The slip the config imposes in the test phase, or NaN when slip is free (torque motor with
+/// an imposed speed, load-controlled carriage).
+double imposed_slip(const RigConfig &c, double effective_radius_m) {
+  if (c.carriage.mode == CarriageMode::imposed_slip)
+    return c.carriage.slip;
+  if (c.carriage.mode == CarriageMode::imposed_speed && c.motor.mode == MotorMode::omega &&
+      c.motor.omega_rad_s * effective_radius_m > 0.0)
+    return 1.0 - c.carriage.speed_m_s / (c.motor.omega_rad_s * effective_radius_m);
+  return std::nan("");
+}
+
+} // namespace
+
+const char *to_string(Severity s) { return s == Severity::error ? "error" : "warning"; }
+
+double batch_means_sem(const std::vector<double> &x, int batches) {
+  if (batches < 2 || x.size() < 2 * static_cast<std::size_t>(batches))
+    return std::nan("");
+  const std::size_t per = x.size() / batches;
+  std::vector<double> m(batches);
+  for (int b = 0; b < batches; ++b)
+    m[b] = mean(x.data() + b * per, x.data() + (b + 1) * per);
+  const double mm = mean(m.data(), m.data() + batches);
+  double ss = 0.0;
+  for (double v : m)
+    ss += (v - mm) * (v - mm);
+  return std::sqrt(ss / (batches - 1) / batches);
+}
+
+RunHealth::RunHealth(const RigSimulation &sim, Report report, HealthLimits limits)
+    : sim_(sim), report_(std::move(report)), limits_(limits) {}
+
+void RunHealth::add(Severity severity, const std::string &code, const std::string &message,
+                    long long step, double time_s) {
+  HealthFinding f;
+  f.step = step;
+  f.time_s = time_s;
+  f.code = code;
+  f.severity = severity;
+  f.message = message;
+  findings_.push_back(f);
+  if (report_)
+    report_(findings_.back());
+}
+
+void RunHealth::stop(const std::string &code, const std::string &message, long long step,
+                     double time_s) {
+  add(Severity::error, code, message, step, time_s);
+  throw RunHealthError(code + ": " + message);
+}
+
+void RunHealth::set_grid(double spacing_m, double elastic_K_Pa_m) {
+  grid_spacing_m_ = spacing_m;
+  elastic_K_Pa_m_ = elastic_K_Pa_m;
+  const double R = sim_.wheel().rim_radius_m;
+  if (spacing_m > limits_.grid_spacing_error * R)
+    stop("grid_coarse",
+         "terrain.grid_spacing = " + fmt(spacing_m) + " m is coarser than half the wheel's rim " +
+             "radius (" + fmt(R) + " m): the contact patch cannot be resolved. grid_spacing is " +
+             "in metres (did you mean " + fmt(spacing_m / 1000.0) + "?); use at most about " +
+             fmt(R / 20.0) + " m (R/20)",
+         sim_.step(), sim_.time_s());
+}
+
+void RunHealth::set_contact_stiffness(double stiffness_N_m) { stiffness_N_m_ = stiffness_N_m; }
+
+void RunHealth::before_step(const ContactWrench &w) {
+  double bad = 0.0;
+  const char *name = first_nonfinite({{"contact force x", w.force_N.x()},
+                                      {"contact force y", w.force_N.y()},
+                                      {"contact force z", w.force_N.z()},
+                                      {"contact torque x", w.torque_Nm.x()},
+                                      {"contact torque y", w.torque_Nm.y()},
+                                      {"contact torque z", w.torque_Nm.z()}},
+                                     &bad);
+  if (name != nullptr)
+    stop("nonfinite_state",
+         std::string(name) + " is " + fmt(bad) + " at step " + std::to_string(sim_.step()) +
+             " (t = " + fmt(sim_.time_s()) + " s, " + to_string(sim_.phase()) +
+             " phase): the terrain's contact diverged; reduce run.dt or check the terrain",
+         sim_.step(), sim_.time_s());
+}
+
+void RunHealth::after_step(const RigOutputs &o, double contacts) {
+  last_step_ = o.step;
+  last_time_s_ = o.time_s;
+  const WheelState s = sim_.wheel_state(); // state n+1
+  double bad = 0.0;
+  const char *name = first_nonfinite({{"wheel position x", s.p_WBo_W.x()},
+                                      {"wheel position z", s.p_WBo_W.z()},
+                                      {"wheel velocity x", s.v_WBo_W.x()},
+                                      {"wheel velocity z", s.v_WBo_W.z()},
+                                      {"wheel angular velocity y", s.w_WB_W.y()},
+                                      {"driving torque", o.driving_torque_Nm},
+                                      {"drawbar pull", o.drawbar_pull_N}},
+                                     &bad);
+  if (name != nullptr)
+    stop("nonfinite_state",
+         std::string(name) + " is " + fmt(bad) + " after step " + std::to_string(o.step) +
+             " (t = " + fmt(o.time_s) + " s, " + to_string(o.phase) +
+             " phase): the rig diverged; reduce run.dt",
+         o.step, o.time_s);
+  const double R = sim_.wheel().rim_radius_m;
+  if (o.sinkage_m > R)
+    stop("sinkage_beyond_radius",
+         "the sinkage is " + fmt(o.sinkage_m) + " m at step " + std::to_string(o.step) +
+             " (t = " + fmt(o.time_s) + " s): more than the rim radius " + fmt(R) +
+             " m, the wheel centre is below the soil surface; the terrain does not carry the " +
+             "wheel (check terrain.grid_spacing, the soil, terrain.surface_height)",
+         o.step, o.time_s);
+
+  // Stability: ω_c dt with ω_c = sqrt(k / m) of the contact spring on the spindle's mass.
+  const double k = grid_spacing_m_ > 0.0
+                       ? elastic_K_Pa_m_ * contacts * grid_spacing_m_ * grid_spacing_m_
+                       : stiffness_N_m_;
+  if (k > 0.0) {
+    const double m = sim_.rig().spindle_dof_mass_kg(), dt = sim_.config().run.dt_s;
+    const double wdt = std::sqrt(k / m) * dt;
+    const std::string what = "the contact's stiffness " + fmt(k) + " N/m on the wheel + " +
+                             "spindle mass " + fmt(m) + " kg gives omega*dt = " + fmt(wdt) +
+                             " at run.dt = " + fmt(dt) + " s (step " + std::to_string(o.step) + ")";
+    if (wdt > limits_.stability_error && !stability_failed_) {
+      stability_failed_ = true;
+      add(Severity::error, "dt_unstable",
+          what + ": above the explicit integrator's limit " + fmt(limits_.stability_error) +
+              "; reduce run.dt below " + fmt(dt * limits_.stability_warning / wdt) + " s",
+          o.step, o.time_s);
+    } else if (wdt > limits_.stability_warning && !stability_warned_ && !stability_failed_) {
+      stability_warned_ = true;
+      add(Severity::warning, "dt_unstable",
+          what + ": less than a factor " +
+              fmt(limits_.stability_error / limits_.stability_warning) + " inside the limit " +
+              fmt(limits_.stability_error) + "; reduce run.dt below " +
+              fmt(dt * limits_.stability_warning / wdt) + " s for a margin",
+          o.step, o.time_s);
+    }
+  }
+
+  if (o.phase != Phase::test)
+    return;
+  ++test_steps_;
+  load_N_ = o.vertical_load_N;
+  if (o.contact.force_N.z() < limits_.contact_load_fraction * o.vertical_load_N)
+    ++out_of_contact_steps_;
+  const double target = imposed_slip(sim_.config(), sim_.wheel().effective_radius_m);
+  if (std::isfinite(target))
+    sum_slip_error_ += std::isfinite(o.slip) ? std::abs(o.slip - target) : 1.0;
+  sum_slip_ += std::isfinite(o.slip) ? o.slip : 0.0;
+  sum_output_power_W_ += o.drawbar_pull_N * o.forward_velocity_m_s;
+  sum_input_power_W_ += o.driving_torque_Nm * o.omega_rad_s;
+  sum_traction_N_ += o.traction_force_N;
+  sum_drawbar_pull_N_ += o.drawbar_pull_N;
+  sum_contacts_ += contacts;
+  drawbar_pull_N_.push_back(o.drawbar_pull_N);
+  sinkage_m_.push_back(o.sinkage_m);
+  slip_.push_back(std::isfinite(o.slip) ? o.slip : 0.0);
+}
+
+void RunHealth::check_steady(const std::vector<double> &x, const char *quantity, const char *unit,
+                             double threshold) {
+  // Second half of the test phase, cut in two: the difference of the quarter means against its
+  // standard error (batch means), and against a practical threshold.
+  const std::size_t n = x.size() / 2;
+  if (n < 40)
+    return;
+  const std::vector<double> a(x.end() - n, x.end() - n / 2), b(x.end() - n / 2, x.end());
+  const double diff = mean(b.data(), b.data() + b.size()) - mean(a.data(), a.data() + a.size());
+  const double sa = batch_means_sem(a), sb = batch_means_sem(b);
+  const double sigma = std::sqrt(sa * sa + sb * sb);
+  if (std::abs(diff) > limits_.trend_sigmas * sigma && std::abs(diff) > threshold)
+    add(Severity::warning, "steady_state_trend",
+        std::string(quantity) + " changed by " + fmt(diff) + " " + unit +
+            " between the last two quarters of the test phase (" + fmt(std::abs(diff) / sigma) +
+            " standard errors, threshold " + fmt(threshold) + " " + unit +
+            "): not steady; lengthen run.duration",
+        last_step_, last_time_s_);
+}
+
+void RunHealth::finish() {
+  for (const std::string &w : sim_.warnings())
+    add(Severity::warning, "settle_timeout", w, last_step_, last_time_s_);
+  if (test_steps_ == 0)
+    return;
+  const double n = static_cast<double>(test_steps_);
+  const RigConfig &c = sim_.config();
+
+  const double lost = out_of_contact_steps_ / n;
+  if (lost > limits_.lost_contact_warning) {
+    const bool error = lost > limits_.lost_contact_error;
+    add(error ? Severity::error : Severity::warning, "lost_contact",
+        "the wheel was out of contact (vertical contact force below " +
+            fmt(100.0 * limits_.contact_load_fraction) + " % of the load " + fmt(load_N_) +
+            " N) in " + fmt(100.0 * lost) + " % of the test phase's steps (threshold " +
+            fmt(100.0 * (error ? limits_.lost_contact_error : limits_.lost_contact_warning)) +
+            " %): the wheel bounces or the terrain does not hold it",
+        last_step_, last_time_s_);
+  }
+
+  const double target = imposed_slip(c, sim_.wheel().effective_radius_m);
+  if (std::isfinite(target) && sum_slip_error_ / n > limits_.slip_tolerance)
+    add(Severity::error, "slip_not_held",
+        "the mean |slip - " + fmt(target) + "| over the test phase is " + fmt(sum_slip_error_ / n) +
+            " (tolerance " + fmt(limits_.slip_tolerance) +
+            "): the rig did not hold the imposed slip",
+        last_step_, last_time_s_);
+
+  const double slip = sum_slip_ / n;
+  if (sum_input_power_W_ > 0.0 && slip >= 0.0 && slip < 1.0) {
+    const double eta = sum_output_power_W_ / sum_input_power_W_;
+    if (eta > 1.0 - slip + limits_.efficiency_tolerance)
+      add(Severity::warning, "efficiency_bound",
+          "the test phase's tractive efficiency (mean DP*v / mean T*omega) is " + fmt(eta) +
+              ", above the bound 1 - s = " + fmt(1.0 - slip) + ": the traction force T/R_eff (" +
+              fmt(sum_traction_N_ / n) + " N) is below the drawbar pull (" +
+              fmt(sum_drawbar_pull_N_ / n) + " N), a negative rolling resistance; R_eff = " +
+              fmt(sim_.wheel().effective_radius_m) +
+              " m may be larger than the radius the soil acts at, or the run is not steady",
+          last_step_, last_time_s_);
+  }
+
+  if (grid_spacing_m_ > 0.0) {
+    const double nodes = sum_contacts_ / n;
+    if (nodes < limits_.contact_nodes_warning) {
+      const bool error = nodes < limits_.contact_nodes_error;
+      add(error ? Severity::error : Severity::warning, "grid_coarse",
+          "the contact patch held " + fmt(nodes) + " grid nodes on average in the test phase " +
+              "(threshold " +
+              fmt(error ? limits_.contact_nodes_error : limits_.contact_nodes_warning) +
+              ") at terrain.grid_spacing = " + fmt(grid_spacing_m_) +
+              " m: too coarse for the wheel; halve grid_spacing",
+          last_step_, last_time_s_);
+    }
+  }
+
+  const bool load_controlled = c.carriage.mode == CarriageMode::constant_load ||
+                               c.carriage.mode == CarriageMode::ramped_load;
+  if (!load_controlled)
+    check_steady(drawbar_pull_N_, "the drawbar pull", "N", limits_.trend_load_fraction * load_N_);
+  else if (c.carriage.mode == CarriageMode::constant_load)
+    check_steady(slip_, "the slip", "", limits_.trend_slip);
+  if (c.carriage.mode != CarriageMode::ramped_load)
+    check_steady(sinkage_m_, "the sinkage", "m",
+                 limits_.trend_radius_fraction * sim_.wheel().rim_radius_m);
+}
+
+void RunHealth::run_failed(const std::string &what) {
+  add(Severity::error, "run_failed", what, sim_.step(), sim_.time_s());
+}
+
+bool RunHealth::has_error() const {
+  for (const auto &f : findings_)
+    if (f.severity == Severity::error)
+      return true;
+  return false;
+}
+
+std::string RunHealth::status() const {
+  return has_error() ? "unhealthy" : findings_.empty() ? "healthy" : "warnings";
+}
+
+} // namespace wheelsim::rig
