@@ -221,9 +221,8 @@ def _test_angle(run, test_steps):
 def _whole_passes_start(time, angle, start, end, pass_angle):
     """Start time of the most whole passes in [start, end] that end at ``end`` (None if not
     even one fits or the wheel does not turn one way)."""
-    if len(time) < 2 or not np.all(np.diff(angle) >= 0.0) and not np.all(
-        np.diff(angle) <= 0.0
-    ):
+    steps = np.diff(angle)
+    if len(time) < 2 or not (np.all(steps >= 0.0) or np.all(steps <= 0.0)):
         return None
     sign = 1.0 if angle[-1] >= angle[0] else -1.0
     theta = sign * angle

@@ -152,7 +152,10 @@ class UsageTest(TempDirTestCase):
             self.assertIn(f"project(wheelsim VERSION {usage.project_version(root)}", f.read())
         cmake = self.path("CMakeLists.txt")
         with open(cmake, "w") as f:
-            f.write("cmake_minimum_required(VERSION 3.20)\nproject(wheelsim VERSION 2.3.4 LANGUAGES C)\n")
+            f.write(
+                "cmake_minimum_required(VERSION 3.20)\n"
+                "project(wheelsim VERSION 2.3.4 LANGUAGES C)\n"
+            )
         self.assertEqual(usage.project_version(self.dir), "2.3.4")
         self.assertEqual(usage.find_project_root(cmake), self.dir)
 

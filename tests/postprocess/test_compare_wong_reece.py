@@ -136,7 +136,9 @@ class CompareWongReeceTest(TempDirTestCase):
             "compare", self.reference, measured, "--quantity", "drawbar_pull"
         )
         self.assertEqual(bad.returncode, 2)
-        self.assertIn("it has: Slip, DP_N, Torque; map columns with --columns slip=COLUMN", bad.stderr)
+        self.assertIn(
+            "it has: Slip, DP_N, Torque; map columns with --columns slip=COLUMN", bad.stderr
+        )
 
 
 def main():
