@@ -505,7 +505,8 @@ def case_dry_run_check(a, work):
             base = work / "base.toml"
             base.write_text(base.read_text().replace(*change))
         if name == "one_wheel":
-            cfg.write_text(cfg.read_text().replace('name = "small",', 'name = "small", mass = -3.0,'))
+            text = cfg.read_text().replace('name = "small",', 'name = "small", mass = -3.0,')
+            cfg.write_text(text)
         r = run_sweep(a, cfg, "--out-dir", str(out), "--dry-run")
         check(r.returncode == 2, f"{name}: exit {r.returncode}, expected 2")
         for point, regex in expect:

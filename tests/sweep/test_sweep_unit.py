@@ -3,7 +3,7 @@
 
   test_sweep_unit.py CASE --sweep scripts/wheel-sweep --work DIR
 
-CASE: toml_roundtrip, cli, soil_names, health_table (see each function and tests/sweep/CMakeLists.txt).
+CASE: toml_roundtrip, cli, soil_names (see each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (a prerequisite missing).
 """
 
