@@ -14,18 +14,26 @@ namespace {
   throw WheelSpecError(os.str());
 }
 
+/// "; the generator takes metres: did you mean --diameter 0.2?" when `value` looks like
+/// millimetres (>= 1, and value / 1000 plausible), else "; the generator takes metres".
+std::string metres_hint(const std::string &option, double value, PlausibleRange range) {
+  std::ostringstream os;
+  os << "; the generator takes metres";
+  const double in_metres = value / 1000.0;
+  if (value >= 1.0 && in_metres >= range.min_m && in_metres <= range.max_m)
+    os << ": did you mean " << option << " " << in_metres << "?";
+  return os.str();
+}
+
 /// "--diameter 200 m is implausible for a wheel diameter (expected 0.05–5 m); the generator
-/// takes metres: did you mean --diameter 0.2?" (the suggestion when value / 1000 is plausible).
+/// takes metres: did you mean --diameter 0.2?"
 void check_plausible(const std::string &option, double value, PlausibleRange range,
                      const char *what) {
   if (value >= range.min_m && value <= range.max_m)
     return;
   std::ostringstream os;
   os << option << " " << value << " m is implausible for " << what << " (expected "
-     << range.min_m << "–" << range.max_m << " m); the generator takes metres";
-  const double in_metres = value / 1000.0;
-  if (in_metres >= range.min_m && in_metres <= range.max_m)
-    os << ": did you mean " << option << " " << in_metres << "?";
+     << range.min_m << "–" << range.max_m << " m)" << metres_hint(option, value, range);
   throw WheelSpecError(os.str());
 }
 
@@ -117,13 +125,14 @@ void validate(const WheelSpec &s) {
   if (!(s.lug_height_m > 0.0)) {
     fail("--lug-height", s.lug_height_m, "m", "must be > 0 m (use --smooth for no lugs)");
   }
-  check_plausible("--lug-height", s.lug_height_m, kPlausibleLugHeight_m, "a lug height");
   if (!(s.lug_height_m < 0.5 * s.diameter_m)) {
     std::ostringstream os;
     os << "must be less than the outer radius D0/2 = " << 0.5 * s.diameter_m
-       << " m (the rim radius D0/2 - lh must stay > 0)";
+       << " m (the rim radius D0/2 - lh must stay > 0)"
+       << metres_hint("--lug-height", s.lug_height_m, kPlausibleLugHeight_m);
     fail("--lug-height", s.lug_height_m, "m", os.str());
   }
+  check_plausible("--lug-height", s.lug_height_m, kPlausibleLugHeight_m, "a lug height");
   if (!(s.lug_width_m > 0.0))
     fail("--lug-width", s.lug_width_m, "m", "must be > 0 m");
   check_plausible("--lug-width", s.lug_width_m, kPlausibleLugWidth_m, "a lug width");

@@ -1,6 +1,10 @@
 // The wong-reece executable: its CSV has the documented columns and the library's numbers; bad
-// options exit with status 2 and name the option and its range.
+// options exit with status 2 and name the option and its range; --help, --version, a misspelt
+// and a missing option follow the wheelsim command-line conventions (wheelsim/cli.h).
+#include "wheelsim/cli.h"
 #include "wheelsim/scm/wong_reece.h"
+
+#include "cli_test_util.h"
 
 #include "test_support.h"
 
@@ -21,23 +25,10 @@ namespace {
 using namespace wheelsim::scm;
 using namespace wr_test;
 
-struct CliRun {
-  int status;
-  std::string output; // stdout and stderr
-};
+using CliRun = wheelsim::cli_test::CommandResult;
 
 CliRun run(const std::string &args) {
-  const std::string cmd = std::string(WONG_REECE_EXE) + " " + args + " 2>&1";
-  CliRun r{-1, ""};
-  FILE *p = popen(cmd.c_str(), "r");
-  if (!p)
-    return r;
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, p))
-    r.output += buf;
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+  return wheelsim::cli_test::run_command(std::string(WONG_REECE_EXE) + " " + args);
 }
 
 std::vector<std::string> split(const std::string &line) {
@@ -118,6 +109,24 @@ TEST(WongReeceCli, BadOptionsNameTheOptionAndRange) {
           "/dry_sand.toml --radius 0.617 --width 0.479 --load 1e8 --slips 0.2");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("cannot carry"), std::string::npos) << r.output;
+}
+
+TEST(WongReeceCli, HelpVersionAndUsageErrorsFollowTheConventions) {
+  CliRun r = run("--help");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("--radius"), std::string::npos) << r.output;
+  r = run("--version");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output, wheelsim::cli::version_line("wong-reece") + "\n");
+  // The misspelt option is named, not the required one it was meant to give.
+  r = run("--soil " + lete() + " --raduis 0.3 --width 0.479 --load 13200");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("wong-reece: unknown option '--raduis' (did you mean '--radius'?)"),
+            std::string::npos)
+      << r.output;
+  r = run("--soil " + lete() + " --width 0.479 --load 13200");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("wong-reece: --radius is required"), std::string::npos) << r.output;
 }
 
 } // namespace

@@ -1,0 +1,146 @@
+// The wheel-rig executable's command line: --help, --version, usage errors (wheelsim/cli.h), and
+// --check, which validates a config as a run would (the keys, the wheel mesh, the SCM soil file,
+// the DEM endpoint) without running or writing the run file. The sweep driver's --dry-run uses it.
+#include "wheelsim/cli.h"
+
+#include "cli_test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using wheelsim::cli_test::CommandResult;
+
+CommandResult rig(const std::string &args) {
+  return wheelsim::cli_test::run_command(std::string(WHEEL_RIG_EXE) + " " + args);
+}
+
+std::string read(const std::string &path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// `text` with the first `from` replaced by `to` (the test fails if `from` is missing).
+std::string replaced(std::string text, const std::string &from, const std::string &to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "'" << from << "' not in the example config";
+  if (at != std::string::npos)
+    text.replace(at, from.size(), to);
+  return text;
+}
+
+class WheelRigCli : public testing::Test {
+protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("wheel_rig_cli_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  /// Writes `text` as <tmp>/<name> and returns its path.
+  std::string write(const std::string &name, const std::string &text) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+  /// The SCM example with absolute paths to the built wheel mesh and the shipped soil.
+  std::string scm_config() {
+    std::string text = read(RIG_EXAMPLES_DIR "/rig_scm.toml");
+    text = replaced(text, "../../build/meshes/wheel2.obj", WHEELSIM_MESH_DIR "/wheel2.obj");
+    return replaced(text, "../../inputs/scm_soils/", WHEELSIM_SOURCE_DIR "/inputs/scm_soils/");
+  }
+  std::string run_file() const { return (dir_ / "run.h5").string(); }
+  fs::path dir_;
+};
+
+TEST_F(WheelRigCli, HelpVersionAndUsageErrorsFollowTheConventions) {
+  CommandResult r = rig("--help");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("--check"), std::string::npos) << r.output;
+  r = rig("--version");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output, wheelsim::cli::version_line("wheel-rig") + "\n");
+  r = rig("--confg " RIG_EXAMPLES_DIR "/rig_flat.toml");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("wheel-rig: unknown option '--confg' (did you mean '--config'?)"),
+            std::string::npos)
+      << r.output;
+  r = rig("--out run.h5");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("wheel-rig: --config is required"), std::string::npos) << r.output;
+  r = rig("--config " RIG_EXAMPLES_DIR "/rig_flat.toml --check --parameter novalue");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--parameter expects KEY=VALUE, got 'novalue'"), std::string::npos)
+      << r.output;
+  r = rig("--config " RIG_EXAMPLES_DIR "/rig_flat.toml --check --kinematic 1 0 0 0 1 0");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--kinematic needs terrain.type = \"dem\""), std::string::npos)
+      << r.output;
+}
+
+TEST_F(WheelRigCli, CheckAcceptsTheExamplesAndWritesNothing) {
+  const std::string flat = RIG_EXAMPLES_DIR "/rig_flat.toml";
+  const std::string scm = write("scm.toml", scm_config());
+  for (const std::string &config : {flat, scm}) {
+    CommandResult r = rig("--config " + config + " --check --out " + run_file());
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output, config + ": ok\n");
+    EXPECT_FALSE(fs::exists(run_file())) << "--check must not create the run file";
+    r = rig("--config " + config + " --check --quiet");
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output, "");
+  }
+}
+
+TEST_F(WheelRigCli, CheckRejectsWhatARunWouldRejectNamingTheKey) {
+  const std::string flat = read(RIG_EXAMPLES_DIR "/rig_flat.toml");
+  // The flat example's [terrain] as a DEM terrain (without its flat-ground keys).
+  const auto terrain = flat.find("[terrain]"), output = flat.find("[output]");
+  ASSERT_NE(terrain, std::string::npos);
+  ASSERT_NE(output, std::string::npos);
+  const std::string dem_text = flat.substr(0, terrain) +
+                               "[terrain]\ntype = \"dem\"\nsurface_height = 0.0\n\n" +
+                               flat.substr(output);
+  struct Case {
+    std::string name, text, extra_args, message;
+  };
+  const std::vector<Case> cases{
+      {"negative_dt.toml", replaced(flat, "dt = 1.0e-4", "dt = -1"), "",
+       "negative_dt.toml:25: run.dt must be > 0 s, got -1"},
+      {"misspelt_key.toml", replaced(flat, "duration = 3.0", "duraton = 3.0"), "",
+       "unknown key 'run.duraton'; did you mean 'run.duration'?"},
+      {"dem.toml", dem_text, "", "missing key 'terrain.endpoint'"},
+      // What the rig and the terrain load before a run: the wheel mesh, the SCM soil file.
+      {"no_mesh.toml",
+       replaced(scm_config(), WHEELSIM_MESH_DIR "/wheel2.obj", WHEELSIM_MESH_DIR "/absent.obj"),
+       "", "wheel.mesh"},
+      {"no_soil.toml", replaced(scm_config(), "lete_sand.toml", "absent_sand.toml"), "",
+       "terrain.soil"},
+  };
+  for (const Case &c : cases) {
+    const std::string path = write(c.name, c.text);
+    const CommandResult r = rig("--config " + path + " --check --out " + run_file());
+    EXPECT_EQ(r.status, 2) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_EQ(r.output.find(": ok"), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_FALSE(fs::exists(run_file())) << c.name;
+  }
+  // A DEM config with its endpoint is valid (--check connects to nothing).
+  const std::string dem = write(
+      "dem_endpoint.toml", replaced(dem_text, "type = \"dem\"",
+                                    "type = \"dem\"\nendpoint = \"ipc:///tmp/unused.sock\""));
+  const CommandResult r = rig("--config " + dem + " --check --out " + run_file());
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(fs::exists(run_file()));
+}
+
+} // namespace
