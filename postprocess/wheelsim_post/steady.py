@@ -15,7 +15,8 @@ of the finite samples, and the standard error of the mean (SEM) by **batch means
 samples are cut into N_BATCHES consecutive batches of equal length m = N // N_BATCHES (the
 earliest N mod N_BATCHES samples are left out of the SEM only), and SEM = std(batch means,
 ddof = 1) / sqrt(N_BATCHES). This accounts for the correlation of successive samples as long
-as a batch is much longer than the correlation time; functions of several means (slip and
+as a batch is much longer than the correlation time (a note says when the drawbar pull's batch
+means are themselves correlated, lag-1 > MAX_BATCH_CORRELATION); functions of several means (slip and
 efficiency of the means, DP/W) get their SEM from the function of each batch's means.
 """
 
@@ -37,6 +38,9 @@ TEST_PHASE = 3
 WINDOW_TOLERANCE = 1e-9
 #: Number of batches of the batch-means SEM.
 N_BATCHES = 20
+#: Lag-1 correlation of the drawbar pull's batch means above which a note says the SEM is
+#: probably too small (its scatter for independent batches is about 1/sqrt(N_BATCHES) = 0.22).
+MAX_BATCH_CORRELATION = 0.5
 #: A window with fewer lug passes (or revolutions) than this gets a note.
 MIN_PASSES = 3
 #: Fraction of the test phase the default window may use (its second half).
@@ -278,6 +282,20 @@ def batch_sem(values, n_batches=N_BATCHES):
     return sem_of_batches(batch_means(values[np.isfinite(values)], n_batches))
 
 
+def batch_correlation(values, n_batches=N_BATCHES):
+    """Lag-1 autocorrelation of the batch means of the finite ``values`` (NaN if undefined).
+    Near 0 when batches are much longer than the correlation time."""
+    values = np.asarray(values, dtype=float)
+    means = batch_means(values[np.isfinite(values)], n_batches)
+    if means is None or len(means) < 3:
+        return math.nan
+    centred = means - means.mean()
+    denominator = float(np.sum(centred**2))
+    if denominator == 0.0:
+        return math.nan
+    return float(np.sum(centred[1:] * centred[:-1]) / denominator)
+
+
 def _stats(values):
     """Stat of the finite samples (all NaN if there are none)."""
     finite = values[np.isfinite(values)]
@@ -424,6 +442,14 @@ def steady_state(run, window, lug_count=None, lug_source="unknown"):
     dp_series = run.observable("drawbar_pull")
     dp_time = dp_series.time[np.isin(dp_series.step, span.steps)]
     result["dp_trend"] = linear_trend(dp_time, dp[1])
+    correlation = batch_correlation(dp[1])
+    if correlation > MAX_BATCH_CORRELATION:
+        span.notes.append(
+            f"successive batch means of the drawbar pull are correlated ({correlation:.2f} "
+            f"> {MAX_BATCH_CORRELATION:g}): the batches are not much longer than the "
+            "correlation time, so the SEMs are probably too small (use a longer window)"
+        )
+    result["dp_batch_correlation"] = correlation
     result["n_samples"] = int(len(span.steps))
     result["span"] = span
     result["r_eff"] = r_eff

@@ -94,6 +94,21 @@ class RunFileSemTest(TempDirTestCase):
         )
         self.assertEqual(s["vertical_load_source"], "observable vertical_load")
 
+    def test_note_when_batches_are_shorter_than_the_correlation_time(self):
+        # a = 0.999: correlation time ~2000 samples, batches of 100 -> correlated batch means
+        notes = {}
+        for a in (0.999, 0.0):
+            noise = 5.0 * syn.ar1(a, 4000, np.random.default_rng(11))
+            time, phase, series = syn.steady_run_series(4000, 1e-3, 2.0, 0.2, 100 + noise, 60)
+            path = self.path(f"corr{a}.h5")
+            syn.write_run(path, time, phase, series)
+            with RunFile(path) as run:
+                s = steady_state(run, make_window(None, None, (0.5, 1.0)))
+            notes[a] = [n for n in s["span"].notes if "batch means" in n]
+        self.assertEqual(len(notes[0.999]), 1, notes)
+        self.assertIn("SEMs are probably too small", notes[0.999][0])
+        self.assertEqual(notes[0.0], [])
+
     def test_load_from_the_rig_config_without_the_observable(self):
         time, phase, series = syn.steady_run_series(2000, 1e-3, 2.0, 0.2, 100.0, 60.0)
         path = self.path("config_load.h5")
