@@ -16,8 +16,8 @@ samples are cut into N_BATCHES consecutive batches of equal length m = N // N_BA
 earliest N mod N_BATCHES samples are left out of the SEM only), and SEM = std(batch means,
 ddof = 1) / sqrt(N_BATCHES). This accounts for the correlation of successive samples as long
 as a batch is much longer than the correlation time (a note says when the drawbar pull's batch
-means are themselves correlated, lag-1 > MAX_BATCH_CORRELATION); functions of several means (slip and
-efficiency of the means, DP/W) get their SEM from the function of each batch's means.
+means are themselves correlated, lag-1 > MAX_BATCH_CORRELATION); functions of several means
+(slip and efficiency of the means, DP/W) get their SEM from the function of each batch's means.
 """
 
 import dataclasses
