@@ -49,7 +49,8 @@ std::string nearest_option(const std::string &given, const std::vector<std::stri
   return "";
 }
 
-std::string unknown_option_message(const std::string &given, const std::vector<std::string> &valid) {
+std::string unknown_option_message(const std::string &given,
+                                   const std::vector<std::string> &valid) {
   const std::string shown = given.substr(0, given.find('='));
   std::string message = "unknown option '" + shown + "'";
   const std::string near = nearest_option(given, valid);

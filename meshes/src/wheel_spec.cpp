@@ -32,8 +32,8 @@ void check_plausible(const std::string &option, double value, PlausibleRange ran
   if (value >= range.min_m && value <= range.max_m)
     return;
   std::ostringstream os;
-  os << option << " " << value << " m is implausible for " << what << " (expected "
-     << range.min_m << "–" << range.max_m << " m)" << metres_hint(option, value, range);
+  os << option << " " << value << " m is implausible for " << what << " (expected " << range.min_m
+     << "–" << range.max_m << " m)" << metres_hint(option, value, range);
   throw WheelSpecError(os.str());
 }
 

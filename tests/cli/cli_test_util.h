@@ -10,9 +10,9 @@
 namespace wheelsim::cli_test {
 
 struct CommandResult {
-  int status = -1;     ///< exit status; -1 if the process did not exit normally
-  std::string output;  ///< stdout and stderr, interleaved
-  double seconds = 0;  ///< wall time from start to exit [s]
+  int status = -1;    ///< exit status; -1 if the process did not exit normally
+  std::string output; ///< stdout and stderr, interleaved
+  double seconds = 0; ///< wall time from start to exit [s]
 };
 
 /// Runs `command_line` through the shell with stderr joined to stdout.

@@ -58,8 +58,7 @@ TEST_F(LiggghtsWheelCli, MisspeltSwitchIsNamedWithTheNearestOne) {
       << r.output;
   r = liggghts_wheel("-in in.deck -screne none", dir_);
   EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("unknown option '-screne' (did you mean '-screen'?)"),
-            std::string::npos)
+  EXPECT_NE(r.output.find("unknown option '-screne' (did you mean '-screen'?)"), std::string::npos)
       << r.output;
   r = liggghts_wheel("in.deck", dir_);
   EXPECT_EQ(r.status, 2) << r.output;

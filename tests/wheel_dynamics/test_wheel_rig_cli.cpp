@@ -121,8 +121,8 @@ TEST_F(WheelRigCli, CheckRejectsWhatARunWouldRejectNamingTheKey) {
       {"dem.toml", dem_text, "", "missing key 'terrain.endpoint'"},
       // What the rig and the terrain load before a run: the wheel mesh, the SCM soil file.
       {"no_mesh.toml",
-       replaced(scm_config(), WHEELSIM_MESH_DIR "/wheel2.obj", WHEELSIM_MESH_DIR "/absent.obj"),
-       "", "wheel.mesh"},
+       replaced(scm_config(), WHEELSIM_MESH_DIR "/wheel2.obj", WHEELSIM_MESH_DIR "/absent.obj"), "",
+       "wheel.mesh"},
       {"no_soil.toml", replaced(scm_config(), "lete_sand.toml", "absent_sand.toml"), "",
        "terrain.soil"},
   };
@@ -135,9 +135,9 @@ TEST_F(WheelRigCli, CheckRejectsWhatARunWouldRejectNamingTheKey) {
     EXPECT_FALSE(fs::exists(run_file())) << c.name;
   }
   // A DEM config with its endpoint is valid (--check connects to nothing).
-  const std::string dem = write(
-      "dem_endpoint.toml", replaced(dem_text, "type = \"dem\"",
-                                    "type = \"dem\"\nendpoint = \"ipc:///tmp/unused.sock\""));
+  const std::string dem =
+      write("dem_endpoint.toml", replaced(dem_text, "type = \"dem\"",
+                                          "type = \"dem\"\nendpoint = \"ipc:///tmp/unused.sock\""));
   const CommandResult r = rig("--config " + dem + " --check --out " + run_file());
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_FALSE(fs::exists(run_file()));

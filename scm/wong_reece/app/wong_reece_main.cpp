@@ -1,9 +1,9 @@
 // wong-reece: drawbar pull, torque, sinkage and efficiency of a driven rigid wheel on a soil file
 // by the Wong–Reece model, over a list of slips; optionally the stress distribution at one slip.
 // Usage and output columns: docs/wong-reece.md.
+#include "wheelsim/cli.h"
 #include "wheelsim/scm/soil_file.h"
 #include "wheelsim/scm/wong_reece.h"
-#include "wheelsim/cli.h"
 
 #include "wheelsim_version.h"
 
