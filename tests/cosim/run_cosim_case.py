@@ -14,6 +14,8 @@ MODE
                  back (h5py) with the rows of its last flush.
   launcher_fail  scripts/wheel-cosim with a rig config that the rig rejects exits non-zero and
                  shows the rig's message.
+  dt_from_bed    a rig config without run.dt: wheel-cosim takes the bed's time step (bed_dt of
+                 its .vars) for both sides; the run file records it and its source.
 """
 import argparse
 import os
@@ -214,9 +216,37 @@ def launcher_fail(a):
     return 0 if ok else 1
 
 
+def dt_from_bed(a):
+    rig = rig_config(a, "rig.toml", duration="100.0")
+    text, n = re.subn(r"(?m)^dt\s*=.*\n", "", open(rig).read())
+    if n != 1:
+        raise SystemExit("run_cosim_case: no run.dt line in the rig config")
+    open(rig, "w").write(text)
+    bed_dt = re.search(r"(?m)^variable bed_dt index (\S+)", open(a.bed + ".vars").read()).group(1)
+    run = subprocess.run(
+        [os.path.join(a.root, "scripts", "wheel-cosim"), "--rig", rig, "--bed", a.bed,
+         "--deck", os.path.join(a.root, "tests", "cosim", "in.motion_compare"), "--np",
+         str(a.np), "--work", os.path.join(a.work, "run"), "--kinematic", "0.1125 0 -0.2 0 1.5 0",
+         "--", "-var", "motion", "coupled", "-var", "steps", str(a.steps)],
+        capture_output=True, text=True, timeout=600)
+    print(run.stdout[-2000:], run.stderr[-2000:])
+    import h5py
+
+    with h5py.File(os.path.join(a.work, "run", "run.h5"), "r") as f:
+        dt = float(f["parameters/run/dt"][()])
+        source = f["parameters/run/dt_source"].asstr()[()]
+        steps = len(f["observables/wheel/position/step"])
+    ok = (run.returncode == 0 and f"dt {bed_dt} s from the bed's time step" in run.stdout
+          and dt == float(bed_dt) and "--dt" in source and steps >= a.steps)
+    print(f"run_cosim_case: bed_dt {bed_dt} s, run file dt {dt!r} s from '{source}', {steps} rows "
+          f"{'PASS' if ok else 'FAIL'}")
+    return 0 if ok else 1
+
+
 def main():
     p = argparse.ArgumentParser()
-    p.add_argument("mode", choices=["compare", "kill_rig", "kill_liggghts", "launcher_fail"])
+    p.add_argument("mode", choices=["compare", "kill_rig", "kill_liggghts", "launcher_fail",
+                                    "dt_from_bed"])
     p.add_argument("--root", required=True)
     p.add_argument("--build", required=True)
     p.add_argument("--bed", required=True)
@@ -228,7 +258,7 @@ def main():
     a = p.parse_args()
     os.makedirs(a.work, exist_ok=True)
     return {"compare": compare, "kill_rig": kill_rig, "kill_liggghts": kill_liggghts,
-            "launcher_fail": launcher_fail}[a.mode](a)
+            "launcher_fail": launcher_fail, "dt_from_bed": dt_from_bed}[a.mode](a)
 
 
 if __name__ == "__main__":

@@ -31,6 +31,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -329,12 +330,16 @@ int main(int argc, char **argv) {
   std::vector<double> kinematic;
   std::vector<std::string> parameters;
   bool check = false;
+  std::optional<double> dt;
   app.add_option("--config", config_path, "rig configuration (TOML)")->required();
   app.add_option("--out", out_path, "HDF5 run file (default: [output] file of the config)");
   app.add_option("--endpoint", endpoint,
                  "coupling endpoint for terrain type dem (overrides [terrain] endpoint)");
   app.add_option("--surface-height", surface_height,
                  "undisturbed soil surface height [m] (overrides [terrain] surface_height)");
+  app.add_option("--dt", dt,
+                 "time step [s] (overrides [run] dt; scripts/wheel-cosim passes the bed's LIGGGHTS "
+                 "time step when the rig config leaves run.dt out)");
   app.add_flag("--quiet", quiet, "no progress lines");
   app.add_option("--kinematic", kinematic,
                  "DEM test mode: the wheel follows the fixed twist vx vy vz [m/s] wx wy wz "
@@ -361,6 +366,14 @@ int main(int argc, char **argv) {
       config.terrain.endpoint = endpoint;
     if (surface_height)
       config.terrain.surface_height_m = *surface_height;
+    if (dt && !(*dt > 0.0 && std::isfinite(*dt)))
+      throw cli::UsageError("--dt must be a time step > 0 s, got " + std::to_string(*dt));
+    if (dt)
+      config.run.dt_s = *dt;
+    else if (config.run.dt_s == 0.0 && !check)
+      throw rig::RigConfigError(config_path + ": run.dt is not set: a DEM run takes the bed's "
+                                              "time step from --dt (scripts/wheel-cosim passes it "
+                                              "from the bed's .vars), or set [run] dt");
     if (config.terrain.type == rig::TerrainType::dem && config.terrain.endpoint.empty())
       throw rig::RigConfigError(config_path +
                                 ": terrain.type = \"dem\" needs terrain.endpoint (or --endpoint)");
@@ -403,6 +416,9 @@ int main(int argc, char **argv) {
     file->set_parameter("wheel/rim_radius", sim.wheel().rim_radius_m, "m");
     file->set_parameter("wheel/source", sim.wheel().source);
     file->set_parameter("terrain/surface_height", config.terrain.surface_height_m, "m");
+    file->set_parameter("run/dt", config.run.dt_s, "s");
+    file->set_parameter("run/dt_source", dt ? "--dt (scripts/wheel-cosim: the bed's time step)"
+                                            : "the rig config's run.dt");
     for (const std::string &p : parameters) {
       const auto eq = p.find('='); // KEY=VALUE, checked before the run
       file->set_parameter(p.substr(0, eq), p.substr(eq + 1));

@@ -32,11 +32,31 @@ const std::vector<std::pair<std::string, std::vector<std::string>>> &schema() {
        {"dt", "duration", "release_gap", "release_speed", "release_timeout", "settle_velocity",
         "settle_window", "settle_min_time", "settle_max_time"}},
       {"terrain",
-       {"type", "surface_height", "endpoint", "timeout", "soil", "grid_spacing", "grid_length",
-        "grid_width", "normal_direction", "elastic_stiffness", "bulldozing",
-        "erosion_angle", "flow_factor", "erosion_iterations", "erosion_rings", "snapshot_times",
-        "snapshot_interval", "snapshot_fields", "stiffness", "damping", "friction", "friction_model", "tangential_stiffness",
-        "tangential_damping", "slip_velocity_scale"}},
+       {"type",
+        "surface_height",
+        "endpoint",
+        "timeout",
+        "soil",
+        "grid_spacing",
+        "grid_length",
+        "grid_width",
+        "normal_direction",
+        "elastic_stiffness",
+        "bulldozing",
+        "erosion_angle",
+        "flow_factor",
+        "erosion_iterations",
+        "erosion_rings",
+        "snapshot_times",
+        "snapshot_interval",
+        "snapshot_fields",
+        "stiffness",
+        "damping",
+        "friction",
+        "friction_model",
+        "tangential_stiffness",
+        "tangential_damping",
+        "slip_velocity_scale"}},
       {"output", {"file", "every", "flush_interval", "progress_interval"}},
   };
   return s;
@@ -128,8 +148,10 @@ public:
       else if (auto f = e.as_floating_point(); f && std::isfinite(f->get()))
         out.push_back(f->get());
       else
-        fail(key, full(key) + " must be an array of finite numbers in " + unit + ", got an "
-                  "element that is " + type_name(e));
+        fail(key, full(key) + " must be an array of finite numbers in " + unit +
+                      ", got an "
+                      "element that is " +
+                      type_name(e));
     }
     return out;
   }
@@ -146,8 +168,8 @@ public:
       if (auto str = e.as_string())
         out.push_back(str->get());
       else
-        fail(key, full(key) + " must be an array of strings, got an element that is " +
-                      type_name(e));
+        fail(key,
+             full(key) + " must be an array of strings, got an element that is " + type_name(e));
     }
     return out;
   }
@@ -430,9 +452,11 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
   // [run]
   {
     const Table t = table("run", true);
-    c.run.dt_s = t.required(t.positive("dt", "s"), "dt", "time step in s");
+    // dt may be left out for DEM: the run then takes the bed's LIGGGHTS time step (wheel-rig
+    // --dt, which scripts/wheel-cosim passes from the bed's .vars); required otherwise (below).
+    c.run.dt_s = t.positive("dt", "s").value_or(0.0);
     c.run.duration_s = t.required(t.positive("duration", "s"), "duration", "test phase length, s");
-    if (c.run.duration_s < c.run.dt_s)
+    if (c.run.dt_s > 0.0 && c.run.duration_s < c.run.dt_s)
       t.fail("duration", "run.duration must be >= run.dt (" + fmt(c.run.dt_s) + " s), got " +
                              fmt(c.run.duration_s));
     c.run.release_gap_m = t.non_negative("release_gap", "m").value_or(0.002);
@@ -454,18 +478,24 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
     const std::string type = t.choice("type", {"flat", "dem", "scm"}, std::nullopt);
     c.terrain.surface_height_m = t.number("surface_height", "m").value_or(0.0);
     const std::vector<std::string> dem_keys = {"endpoint", "timeout"};
-    const std::vector<std::string> scm_keys = {
-        "soil",          "grid_spacing",       "grid_length",   "grid_width",
-        "normal_direction", "elastic_stiffness", "bulldozing",
-        "erosion_angle", "flow_factor",        "erosion_iterations", "erosion_rings",
-        "snapshot_times", "snapshot_interval", "snapshot_fields"};
+    const std::vector<std::string> scm_keys = {"soil",
+                                               "grid_spacing",
+                                               "grid_length",
+                                               "grid_width",
+                                               "normal_direction",
+                                               "elastic_stiffness",
+                                               "bulldozing",
+                                               "erosion_angle",
+                                               "flow_factor",
+                                               "erosion_iterations",
+                                               "erosion_rings",
+                                               "snapshot_times",
+                                               "snapshot_interval",
+                                               "snapshot_fields"};
     // terrain.damping belongs to flat [N s/m] and scm [Pa s/m]
-    const std::vector<std::string> flat_keys = {"stiffness",
-                                                "friction",
-                                                "friction_model",
-                                                "tangential_stiffness",
-                                                "tangential_damping",
-                                                "slip_velocity_scale"};
+    const std::vector<std::string> flat_keys = {"stiffness",          "friction",
+                                                "friction_model",     "tangential_stiffness",
+                                                "tangential_damping", "slip_velocity_scale"};
     if (type == "dem") {
       c.terrain.type = TerrainType::dem;
       t.only_with(scm_keys, "type", type);
@@ -498,23 +528,23 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
         if (const auto v = t.number(extent, "m"); v && *v < m.grid_spacing_m)
           t.fail(extent, t.full(extent) + " must be >= terrain.grid_spacing (" +
                              fmt(m.grid_spacing_m) + " m), got " + fmt(*v) + " m");
-      m.vertical_normal =
-          t.choice("normal_direction", {"surface", "vertical"}, std::string("surface")) ==
-          "vertical";
+      m.vertical_normal = t.choice("normal_direction", {"surface", "vertical"},
+                                   std::string("surface")) == "vertical";
       m.elastic_stiffness_Pa_m = t.positive("elastic_stiffness", "Pa/m");
       m.damping_Pa_s_m = t.non_negative("damping", "Pa s/m"); // flat: N s/m
       m.bulldozing = t.boolean("bulldozing").value_or(true);
       if (!m.bulldozing)
-        for (const char *k : {"erosion_angle", "flow_factor", "erosion_iterations", "erosion_rings"})
+        for (const char *k :
+             {"erosion_angle", "flow_factor", "erosion_iterations", "erosion_rings"})
           if (t.has(k))
             t.fail(k, t.full(k) + " is not used with terrain.bulldozing = false; remove it");
-      m.erosion_angle_deg =
-          t.checked("erosion_angle", "deg", "in (0, 90)", [](double v) { return v > 0 && v < 90; })
-              .value_or(m.erosion_angle_deg);
+      m.erosion_angle_deg = t.checked("erosion_angle", "deg", "in (0, 90)", [](double v) {
+                               return v > 0 && v < 90;
+                             }).value_or(m.erosion_angle_deg);
       m.flow_factor = t.non_negative("flow_factor", "(fraction of the displaced volume)")
                           .value_or(m.flow_factor);
-      m.erosion_iterations = t.integer("erosion_iterations", "sweeps per step")
-                                 .value_or(m.erosion_iterations);
+      m.erosion_iterations =
+          t.integer("erosion_iterations", "sweeps per step").value_or(m.erosion_iterations);
       if (m.erosion_iterations < 0)
         t.fail("erosion_iterations", "terrain.erosion_iterations must be >= 0, got " +
                                          std::to_string(m.erosion_iterations));
@@ -531,9 +561,8 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
       }
       m.snapshot_interval_s = t.non_negative("snapshot_interval", "s").value_or(0.0);
       if (auto fields = t.strings("snapshot_fields")) {
-        const std::vector<std::string> allowed = {"height",          "sinkage",
-                                                  "plastic_sinkage", "pressure",
-                                                  "shear_stress",    "shear_displacement"};
+        const std::vector<std::string> allowed = {"height",   "sinkage",      "plastic_sinkage",
+                                                  "pressure", "shear_stress", "shear_displacement"};
         for (const std::string &f : *fields)
           if (std::find(allowed.begin(), allowed.end(), f) == allowed.end()) {
             std::string msg = "terrain.snapshot_fields: unknown field \"" + f +
@@ -569,6 +598,11 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
       f.slip_velocity_scale_m_s =
           t.positive("slip_velocity_scale", "m/s").value_or(f.slip_velocity_scale_m_s);
     }
+  }
+
+  if (c.run.dt_s == 0.0 && c.terrain.type != TerrainType::dem) {
+    const Table t = table("run", true);
+    t.required(t.positive("dt", "s"), "dt", "time step in s (only a DEM run may leave it out)");
   }
 
   // [output]

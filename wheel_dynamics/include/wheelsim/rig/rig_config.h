@@ -58,8 +58,8 @@ struct CarriageConfig {
 };
 
 struct RunConfig {
-  double dt_s = 0.0;
-  double duration_s = 0.0;         ///< length of the test phase (after the ω ramp)
+  double dt_s = 0.0;       ///< time step [s]; 0: not set (DEM only: the bed's, via wheel-rig --dt)
+  double duration_s = 0.0; ///< length of the test phase (after the ω ramp)
   double release_gap_m = 0.002;    ///< initial clearance of the lowest rim point
   double release_speed_m_s = 0.01; ///< lowering speed of the held spindle
   double release_timeout_s = 10.0; ///< the contact must carry the load within this time
