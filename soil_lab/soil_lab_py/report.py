@@ -1,0 +1,158 @@
+"""The virtual soil lab's plots (PNG), from arrays and fit results (not from files).
+
+Each function saves one figure to path and returns the matplotlib Figure (for tests and for
+callers who want more). Axes in the units a lab engineer reads: sinkage and displacement in mm,
+stresses in kPa; every title names the soil and the test, every axis its unit. The figures are
+made without pyplot, so no display or backend setting is needed.
+"""
+
+import numpy as np
+from matplotlib.figure import Figure
+
+__all__ = ["plot_pressure_sinkage", "plot_shear_curves", "plot_mohr_coulomb", "plot_repose"]
+
+_DPI = 120
+
+
+def _save(fig, path):
+    fig.tight_layout()
+    fig.savefig(path, dpi=_DPI)
+    return fig
+
+
+def plot_pressure_sinkage(path, soil_name, plates, fit=None):
+    """Pressure–sinkage curves of the plates (markers) with the Bekker fit (lines).
+
+    plates: sequence of (b_m, z_m, p_Pa) as given to fits.fit_bekker (whole curves may be given,
+    unloading included); fit: its BekkerFit or None. x: sinkage z [mm]; y: pressure p [kPa]."""
+    fig = Figure(figsize=(7, 5))
+    ax = fig.add_subplot()
+    for k, (b, z, p) in enumerate(plates):
+        z = np.asarray(z, float)
+        p = np.asarray(p, float)
+        color = f"C{k}"
+        ax.plot(z * 1e3, p / 1e3, ".", ms=3, color=color, label=f"plate b = {b * 1e3:g} mm (DEM)")
+        if fit is not None:
+            zz = np.linspace(0.0, max(float(z.max()), 0.0), 200)
+            ax.plot(
+                zz * 1e3,
+                (fit.kc / b + fit.kphi) * zz**fit.n / 1e3,
+                "-",
+                color=color,
+                label=f"Bekker fit, b = {b * 1e3:g} mm",
+            )
+    if fit is not None:
+        ax.plot([], [], " ", label=_bekker_text(fit))
+    ax.set_xlabel("sinkage z [mm]")
+    ax.set_ylabel("pressure p [kPa]")
+    ax.set_title(f"{soil_name}: plate sinkage, p [kPa] vs z [mm]", fontsize=11)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def _bekker_text(fit):
+    return (
+        f"n = {fit.n:.3f}, kc = {fit.kc / 1e3:.4g} kN/m^(n+1), kφ = {fit.kphi / 1e3:.4g} "
+        f"kN/m^(n+2)\nRMS {fit.rms_Pa / 1e3:.3g} kPa, R² {fit.r2:.4f}"
+    )
+
+
+def plot_shear_curves(path, soil_name, curves, fits=None):
+    """Shear stress–displacement curves, one per normal stress, with their Janosi fits.
+
+    curves: sequence of (sigma_n_Pa, j_m, tau_Pa); fits: a JanosiFit (or None) per curve, or
+    None. x: shear displacement j [mm]; y: shear stress tau [kPa]."""
+    fig = Figure(figsize=(7, 5))
+    ax = fig.add_subplot()
+    fits = list(fits) if fits is not None else [None] * len(curves)
+    if len(fits) != len(curves):
+        raise ValueError(f"plot_shear_curves: {len(curves)} curves but {len(fits)} fits")
+    for k, ((sigma, j, tau), fit) in enumerate(zip(curves, fits)):
+        j = np.asarray(j, float)
+        tau = np.asarray(tau, float)
+        color = f"C{k}"
+        ax.plot(j * 1e3, tau / 1e3, ".", ms=3, color=color, label=f"σn = {sigma / 1e3:.3g} kPa")
+        if fit is not None:
+            jj = np.linspace(0.0, float(j.max()), 200)
+            ax.plot(
+                jj * 1e3,
+                fit.tau_max_Pa * -np.expm1(-jj / fit.K_m) / 1e3,
+                "-",
+                color=color,
+                label=f"Janosi: K = {fit.K_m * 1e3:.3g} mm, τmax = {fit.tau_max_Pa / 1e3:.3g} kPa",
+            )
+    ax.set_xlabel("shear displacement j [mm]")
+    ax.set_ylabel("shear stress τ [kPa]")
+    ax.set_title(f"{soil_name}: direct shear, τ [kPa] vs j [mm]", fontsize=11)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def plot_mohr_coulomb(
+    path, soil_name, sigma_peak_Pa, tau_peak_Pa, fit_peak, sigma_res_Pa=None, tau_res_Pa=None,
+    fit_res=None,
+):
+    """Mohr–Coulomb strength envelope: peak (and residual) shear strengths vs normal stress with
+    the fitted lines; c and φ of each in the legend. fit_*: MohrCoulombFit.
+    x: normal stress σn [kPa]; y: shear strength τ [kPa]."""
+    fig = Figure(figsize=(7, 5))
+    ax = fig.add_subplot()
+    series = [("peak", sigma_peak_Pa, tau_peak_Pa, fit_peak, "o", "C0")]
+    if sigma_res_Pa is not None:
+        series.append(("residual", sigma_res_Pa, tau_res_Pa, fit_res, "s", "C1"))
+    s_max = max(float(np.max(s)) for _, s, *_ in series)
+    ss = np.linspace(0.0, 1.05 * s_max, 50)
+    for label, s, t, fit, marker, color in series:
+        ax.plot(np.asarray(s, float) / 1e3, np.asarray(t, float) / 1e3, marker, color=color,
+                label=f"{label} (DEM)")
+        if fit is not None:
+            ax.plot(
+                ss / 1e3,
+                (fit.cohesion_Pa + ss * np.tan(np.radians(fit.friction_deg))) / 1e3,
+                "-",
+                color=color,
+                label=f"{label}: c = {fit.cohesion_Pa / 1e3:.3g} kPa, φ = {fit.friction_deg:.1f}° "
+                f"(RMS {fit.rms_Pa / 1e3:.2g} kPa)",
+            )
+    ax.set_xlim(left=0.0)
+    ax.set_xlabel("normal stress σn [kPa]")
+    ax.set_ylabel("shear strength τ [kPa]")
+    ax.set_title(f"{soil_name}: Mohr–Coulomb envelope, τ [kPa] vs σn [kPa]", fontsize=11)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def plot_repose(path, soil_name, x_m, h_m, fit):
+    """Heap profile with the fitted flank lines, the fitted height band and the angle of repose.
+
+    x_m, h_m: the profile given to repose.repose_angle; fit: its ReposeFit.
+    x: horizontal position x [mm]; y: surface height h [mm]."""
+    fig = Figure(figsize=(8, 4.5))
+    ax = fig.add_subplot()
+    x = np.asarray(x_m, float)
+    h = np.asarray(h_m, float)
+    ax.plot(x * 1e3, h * 1e3, ".", ms=3, color="0.4", label="free surface (DEM)")
+    for band in fit.band_m:
+        ax.axhline(band * 1e3, color="0.7", lw=0.8, ls=":")
+    for side, flank, color in (("left", fit.left, "C0"), ("right", fit.right, "C1")):
+        # The flank line between the base and the top of the heap.
+        xs = (np.array([fit.base_m, fit.top_m]) - flank.intercept_m) / flank.slope
+        ax.plot(
+            xs * 1e3,
+            (flank.intercept_m + flank.slope * xs) * 1e3,
+            "-",
+            color=color,
+            label=f"{side} flank: {flank.angle_deg:.1f}° (RMS {flank.rms_m * 1e3:.2g} mm, "
+            f"{flank.n_points} points)",
+        )
+    ax.plot([], [], " ", label=f"band fitted: {fit.band_m[0] * 1e3:.3g}–{fit.band_m[1] * 1e3:.3g} mm")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("horizontal position x [mm]")
+    ax.set_ylabel("surface height h [mm]")
+    ax.set_title(f"{soil_name}: angle of repose {fit.angle_deg:.1f}°, h [mm] vs x [mm]", fontsize=11)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return _save(fig, path)
