@@ -14,27 +14,11 @@ namespace {
   throw WheelSpecError(os.str());
 }
 
-/// "; the generator takes metres: did you mean --diameter 0.2?" when `value` looks like
-/// millimetres (>= 1, and value / 1000 plausible), else "; the generator takes metres".
-std::string metres_hint(const std::string &option, double value, PlausibleRange range) {
-  std::ostringstream os;
-  os << "; the generator takes metres";
-  const double in_metres = value / 1000.0;
-  if (value >= 1.0 && in_metres >= range.min_m && in_metres <= range.max_m)
-    os << ": did you mean " << option << " " << in_metres << "?";
-  return os.str();
-}
-
-/// "--diameter 200 m is implausible for a wheel diameter (expected 0.05–5 m); the generator
-/// takes metres: did you mean --diameter 0.2?"
+/// Throws the implausible_size message (plausible.h) when `value` is outside `range`.
 void check_plausible(const std::string &option, double value, PlausibleRange range,
                      const char *what) {
-  if (value >= range.min_m && value <= range.max_m)
-    return;
-  std::ostringstream os;
-  os << option << " " << value << " m is implausible for " << what << " (expected " << range.min_m
-     << "–" << range.max_m << " m)" << metres_hint(option, value, range);
-  throw WheelSpecError(os.str());
+  if (auto message = implausible_size(option, value, range, what))
+    throw WheelSpecError(*message);
 }
 
 } // namespace

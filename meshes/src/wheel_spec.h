@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "plausible.h"
+
 namespace wheelsim::meshes {
 
 /// Thrown for invalid wheel parameters; the message names the option (as on the wheel-mesh
@@ -67,18 +69,10 @@ inline constexpr double kMinLugClearance_m = 0.001;
 /// a typo), and the generator would spend minutes on a wheel hundreds of metres across at a
 /// millimetre resolution. From planetary-rover wheels (D0 ~ 0.1-0.3 m, lugs of a few mm) to large
 /// tyres (D0 up to ~4 m). docs/wheel-mesh.md lists them.
-struct PlausibleRange {
-  double min_m;
-  double max_m;
-};
 inline constexpr PlausibleRange kPlausibleDiameter_m{0.05, 5.0};
 inline constexpr PlausibleRange kPlausibleWidth_m{0.01, 3.0};
 inline constexpr PlausibleRange kPlausibleLugHeight_m{0.0005, 0.5};
 inline constexpr PlausibleRange kPlausibleLugWidth_m{0.0005, 0.5};
-
-/// Most triangles a wheel may have by estimated_triangle_count (about 5 s of generation and
-/// 1 GB of ASCII STL; the study wheels have 30 000-70 000).
-inline constexpr double kMaxEstimatedTriangles = 1.0e7;
 
 /// Upper estimate of the triangle count from the size and the resolution (tread: circumferential
 /// segments x width bands x 2, times 2 for the lugs' walls; side discs: rings x segments x 2
