@@ -60,7 +60,7 @@ def dem_source(dem_soil, test, fit=None, detail=None):
 
 def _number(key, value, unit, range_text, ok):
     in_unit = f" in {unit}" if unit else ""
-    if isinstance(value, bool):
+    if isinstance(value, (bool, str, bytes)):
         raise SoilValueError(f"{key} must be a number{in_unit}, got {value!r}")
     try:
         v = float(value)
