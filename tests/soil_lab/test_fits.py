@@ -99,7 +99,7 @@ class UnloadTest(unittest.TestCase):
         soft = p_un < 0.5 * p_max
         z_un[soft] -= (0.5 * p_max - p_un[soft]) ** 2 / (ke * p_max)  # bends below half load
         z = np.concatenate([z_load, z_un[1:]])
-        p = np.concatenate([p_load, p_un[1:]]) + rng.normal(0.0, 0.005 * p_max, z.size - 0)
+        p = np.concatenate([p_load, p_un[1:]]) + rng.normal(0.0, 0.005 * p_max, z.size)
         f = fits.fit_unload_stiffness(z, p)
         report("unload", Ke_err=f"{rel(f.Ke_Pa_m, ke):.2%}", points=f.n_points)
         self.assertLess(rel(f.Ke_Pa_m, ke), 0.02)
