@@ -231,7 +231,7 @@ def fit_bekker(plates: Sequence[Tuple[float, Sequence[float], Sequence[float]]],
         used = z > 0
         if np.count_nonzero(used) < 2:
             raise FitInputError(
-                f"plates[{k}] (b = {b} m) has {np.count_nonzero(used)} point(s) with sinkage z > 0;"
+                f"plates[{k}] (b = {b} m) has {np.count_nonzero(used)} point(s) with z > 0;"
                 " at least 2 are needed"
             )
         widths.append(b)
@@ -300,7 +300,8 @@ def fit_unload_stiffness(z_m, p_Pa, upper_fraction=0.5):
     if np.count_nonzero(use) < 3:
         raise FitInputError(
             f"the unloading branch has {np.count_nonzero(use)} point(s) with p >= {p_from:g} Pa "
-            f"((1 - upper_fraction) p_max after the maximum at index {i_max}); at least 3 are needed"
+            f"((1 - upper_fraction) p_max after the maximum at index {i_max}); at least 3 are "
+            "needed"
         )
     zz, pp = zz[use], pp[use]
     if np.ptp(zz) <= 0:

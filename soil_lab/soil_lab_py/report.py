@@ -148,11 +148,14 @@ def plot_repose(path, soil_name, x_m, h_m, fit):
             label=f"{side} flank: {flank.angle_deg:.1f}° (RMS {flank.rms_m * 1e3:.2g} mm, "
             f"{flank.n_points} points)",
         )
-    ax.plot([], [], " ", label=f"band fitted: {fit.band_m[0] * 1e3:.3g}–{fit.band_m[1] * 1e3:.3g} mm")
+    lo, hi = fit.band_m
+    ax.plot([], [], " ", label=f"band fitted: {lo * 1e3:.3g}–{hi * 1e3:.3g} mm")
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("horizontal position x [mm]")
     ax.set_ylabel("surface height h [mm]")
-    ax.set_title(f"{soil_name}: angle of repose {fit.angle_deg:.1f}°, h [mm] vs x [mm]", fontsize=11)
+    ax.set_title(
+        f"{soil_name}: angle of repose {fit.angle_deg:.1f}°, h [mm] vs x [mm]", fontsize=11
+    )
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     return _save(fig, path)
