@@ -9,6 +9,7 @@
 #include "tool_builder.h"
 #include "wheel_output.h"
 #include "wheelsim/geometry/mesh_check.h"
+#include "wheelsim/geometry/sphere_contact_index.h"
 
 using namespace wheelsim::meshes;
 using wheelsim::geometry::TriangleMesh;
@@ -239,4 +240,26 @@ TEST(ToolMesh, BadSizesAreRejectedNamingValueUnitAndRange) {
           << "expected '" << c.message << "' in: " << e.what();
     }
   }
+}
+
+TEST(ToolMesh, FixContactIndexSeesTheOutwardFaces) {
+  // What fix wheel/cosim does with the mesh: a grain under the bevameter plate touches its bottom
+  // face once, pushed down (-z); a grain in the bore of the shear ring touches the inner wall,
+  // pushed towards the axis.
+  using wheelsim::geometry::SphereContactIndex;
+  using wheelsim::geometry::SurfaceContact;
+  std::vector<SurfaceContact> contacts;
+  const SphereContactIndex plate(generate_tool(plate_rect(0.3, 0.2, 0.01), 1.0).mesh);
+  ASSERT_EQ(plate.find_contacts(Eigen::Vector3d(0.01, 0.02, -0.014), 0.01, contacts), 1);
+  EXPECT_NEAR(contacts[0].normal.z(), -1.0, 1e-12);
+  EXPECT_NEAR(contacts[0].overlap_m, 0.001, 1e-12);
+  contacts.clear();
+  // Mid-facet of the 72-gon bore (at the vertex lines a grain touches both neighbouring facets
+  // of the concave wall: docs/tool-mesh.md, "Contact with the fix").
+  const SphereContactIndex bore(generate_tool(ring(0.05, 0.055, 0.1), 1.0).mesh);
+  const double half_step = kPi / 72.0, apothem = 0.05 * std::cos(half_step);
+  const Eigen::Vector3d direction(std::cos(half_step), std::sin(half_step), 0.0);
+  ASSERT_EQ(bore.find_contacts(0.042 * direction, 0.01, contacts), 1);
+  EXPECT_NEAR(contacts[0].normal.dot(direction), -1.0, 1e-9);
+  EXPECT_NEAR(contacts[0].overlap_m, 0.01 - (apothem - 0.042), 1e-9);
 }
