@@ -60,7 +60,9 @@ class Soil:
     terrain_keys: dict = field(default_factory=dict)  # scm/flat: [terrain] keys of this soil
     soil_file: Path | None = None  # scm: the soil file
     restart: Path | None = None  # dem: the bed restart (prepared if recipe is set)
-    recipe: dict | None = None  # dem: in.soilbin variables incl. soil; None = an existing bed
+    recipe: dict | None = None  # dem: in.soilbin variables incl. soil or soil_file; None = a bed
+    dem_soil_file: Path | None = None  # dem: the soil include file of the bed (None: not known)
+    dem_soil_name: str = ""  # dem recipe: the file's soil_name (names the bed's restart)
 
 
 @dataclass
@@ -237,6 +239,73 @@ def soil_name(soil_file=None, bed_vars=None, default=""):
     return default
 
 
+DEM_SOIL_SUFFIXES = (".in",)
+_SOIL_NAME_RE = re.compile(r"^\s*variable\s+soil_name\s+(?:string|index)\s+(\S+)", re.M)
+
+
+def dem_soil_name(soil_in):
+    """The `soil_name` a DEM soil include file defines (`variable soil_name string NAME`), the
+    name in.soilbin gives its bed and log files; None when the file does not say."""
+    try:
+        m = _SOIL_NAME_RE.search(Path(soil_in).read_text(errors="replace"))
+    except OSError:
+        return None
+    return m.group(1).strip('"\'') if m else None
+
+
+def bed_vars(bed_vars_file, key):
+    """The value of `variable KEY <style> VALUE` in a bed's .vars file, or None."""
+    try:
+        for line in Path(bed_vars_file).read_text().splitlines():
+            f = line.split()
+            if len(f) >= 4 and f[0] == "variable" and f[1] == key:
+                return f[3]
+    except OSError:
+        pass
+    return None
+
+
+def _bed_soil_file(ctx, vars_file, key):
+    """The soil file a prepared bed was made with (soil_file in its .vars; None for a bed made
+    before in.soilbin recorded it); an error if it has gone."""
+    f = bed_vars(vars_file, "soil_file")
+    if f is not None and not Path(f).is_file():
+        raise ctx.err(f"{key}: the bed's soil file '{f}' (soil_file in '{vars_file}') not found; "
+                      "resuming the bed needs it")
+    return Path(f) if f is not None else None
+
+
+def _dem_recipe_soil(ctx, e, key, repo):
+    """A bin recipe's soil: `soil = "NAME"` (inputs/soils/NAME.in), or a soil include file by
+    path: `soil = "path/my_sand.in"` (a value with '/' or ending in .in) or `soil_file = "..."`,
+    relative to the config file. Returns (file, its soil_name, the key used, recipe entries)."""
+    if "soil" in e and "soil_file" in e:
+        raise ctx.err(f"{key}: give 'soil' (a name or a soil file) or 'soil_file', not both")
+    k = "soil_file" if "soil_file" in e else "soil"
+    spec = e[k]
+    if not isinstance(spec, str) or not spec:
+        raise ctx.err(f"{key}.{k} must be a non-empty string, got {spec!r}")
+    if k == "soil_file" or _looks_like_path(spec, DEM_SOIL_SUFFIXES):
+        f = ctx.path_of(spec, f"{key}.{k}")
+        if not f.is_file():
+            raise ctx.err(f"{key}.{k}: DEM soil file '{f}' not found")
+        f = f.resolve()
+        name = dem_soil_name(f)
+        if name is None:
+            raise ctx.err(f"{key}.{k}: soil file '{f}' does not define variable soil_name "
+                          "(`variable soil_name string NAME`: names the bed; docs/soils.md, "
+                          "\"Writing your own soil file\")")
+        return f, name, k, {"soil_file": str(f)}
+    f = repo / "inputs" / "soils" / f"{spec}.in"
+    if not f.is_file():
+        d = f.parent
+        known = sorted(p.stem for p in d.glob("*.in")) if d.is_dir() else []
+        raise ctx.err(f"{key}.soil: no DEM soil '{spec}' ({f} not found"
+                      + (f"; known: {', '.join(known)}" if known else "")
+                      + "; your own soil file: soil = \"path/to/my_sand.in\")")
+    return f, spec, k, {"soil": spec}
+
+
 def _soils(ctx, entries, terrain, repo):
     if entries is None:
         if terrain == "flat":
@@ -298,25 +367,27 @@ def _soils(ctx, entries, terrain, repo):
                     raise ctx.err(f"{key}: '{p}.vars' not found (written by inputs/in.soilbin)")
                 label = ctx.label(p.stem, key)
                 out.append(Soil(label, name=soil_name(bed_vars=f"{p}.vars", default=label),
-                                restart=p.resolve()))
+                                restart=p.resolve(),
+                                dem_soil_file=_bed_soil_file(ctx, f"{p}.vars", key)))
             elif isinstance(e, dict):
-                ctx.check_keys(e, ("name", "soil", "restart") + SOILBIN_VARS, key)
-                recipe = {k: v for k, v in e.items() if k not in ("name", "restart")}
+                ctx.check_keys(e, ("name", "soil", "soil_file", "restart") + SOILBIN_VARS, key)
+                recipe = {k: v for k, v in e.items()
+                          if k not in ("name", "restart", "soil", "soil_file")}
                 for k, v in recipe.items():
                     if isinstance(v, bool) or not isinstance(v, (int, float, str)):
                         raise ctx.err(f"{key}.{k} must be a number or a string, got {v!r}")
                 restart = ctx.path_of(e["restart"], f"{key}.restart") if "restart" in e else None
-                if "soil" in e:
-                    soil_in = repo / "inputs" / "soils" / f"{e['soil']}.in"
-                    if not soil_in.is_file():
-                        raise ctx.err(f"{key}.soil: no DEM soil '{e['soil']}' "
-                                      f"({soil_in} not found)")
-                    label = ctx.label(e.get("name", e["soil"]),
-                                      f"{key}.name" if "name" in e else f"{key}.soil")
-                    out.append(Soil(label, name=label, restart=restart, recipe=recipe))
+                if "soil" in e or "soil_file" in e:
+                    soil_in, dem_name, k, soil_entry = _dem_recipe_soil(ctx, e, key, repo)
+                    recipe = {**soil_entry, **recipe}
+                    label = ctx.label(e.get("name", dem_name),
+                                      f"{key}.name" if "name" in e else f"{key}.{k}")
+                    out.append(Soil(label, name=label, restart=restart, recipe=recipe,
+                                    dem_soil_file=soil_in, dem_soil_name=dem_name))
                 else:
                     if restart is None:
-                        raise ctx.err(f"{key} needs 'soil' (a bin recipe) or 'restart' (a bed)")
+                        raise ctx.err(f"{key} needs 'soil' (a bin recipe: a soil name or a soil "
+                                      "file) or 'restart' (a bed)")
                     if len(recipe):
                         raise ctx.err(f"{key}: bin variables ({', '.join(recipe)}) need 'soil'")
                     ctx.existing(restart, f"{key}.restart", "bed restart")
@@ -325,7 +396,9 @@ def _soils(ctx, entries, terrain, repo):
                     label = ctx.label(e.get("name", restart.stem),
                                       f"{key}.name" if "name" in e else f"{key}.restart")
                     name = e.get("name") or soil_name(bed_vars=f"{restart}.vars", default=label)
-                    out.append(Soil(label, name=name, restart=restart.resolve()))
+                    out.append(Soil(label, name=name, restart=restart.resolve(),
+                                    dem_soil_file=_bed_soil_file(ctx, f"{restart}.vars",
+                                                                 f"{key}.restart")))
             else:
                 raise ctx.err(f"{key} must be a bed restart path or a bin recipe table, got {e!r}")
     return out

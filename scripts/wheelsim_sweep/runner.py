@@ -165,8 +165,7 @@ class Runner:
     def bed_restart(self, soil):
         if soil.restart is not None:
             return soil.restart
-        name = soil.recipe["soil"]
-        return self.out / "beds" / soil.label / f"soilbin_{name}.restart"
+        return self.out / "beds" / soil.label / f"soilbin_{soil.dem_soil_name}.restart"
 
     def rig_text(self, p):
         return toml_out.dumps(p.rig)
@@ -213,8 +212,10 @@ class Runner:
     def inputs_hash(self, p):
         """What decides a point's result (not the out dir): its rig config, its run settings, and
         the contents of the files they name: the mesh, the SCM soil file; for DEM the deck, the
-        bed (a restart and its .vars, or the bin recipe with in.soilbin and the DEM soil's
-        include file), the np and LIGGGHTS arguments. docs/sweeps.md, "Resume semantics"."""
+        bed (a restart and its .vars, or the bin recipe with in.soilbin), the DEM soil's include
+        file wherever it is (a recipe's soil name or path; a bed's soil_file from its .vars, which
+        resume.in includes again), the np and LIGGGHTS arguments. docs/sweeps.md, "Resume
+        semantics"."""
         ident = {"rig": self.rig_text(p), "terrain": self.sweep.terrain, "wheel": p.wheel.label,
                  "soil": p.soil.label, "slip": p.slip, "mesh": str(p.wheel.mesh),
                  "mesh_sha256": self.file_hash(p.wheel.mesh)}
@@ -228,11 +229,12 @@ class Runner:
             if p.soil.recipe is not None:  # the bed is made from these (it may not exist yet)
                 ident.update(bed_recipe=p.soil.recipe,
                              soilbin_sha256=self.file_hash(self.repo / "inputs" / "in.soilbin"),
-                             bed_soil_sha256=self.file_hash(
-                                 self.repo / "inputs" / "soils" / f"{p.soil.recipe['soil']}.in"))
+                             bed_soil_sha256=self.file_hash(p.soil.dem_soil_file))
             else:
                 ident.update(bed_sha256=self.file_hash(bed),
                              bed_vars_sha256=self.file_hash(f"{bed}.vars"))
+                if p.soil.dem_soil_file is not None:  # (beds from before soil_file: by name)
+                    ident.update(bed_soil_sha256=self.file_hash(p.soil.dem_soil_file))
         return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
 
     def finished(self, p):
