@@ -189,10 +189,9 @@ TEST(WheelMesh, CatalogueHasTheStudyWheels) {
   for (const auto &e : entries)
     by_name[e.name] = e;
   ASSERT_EQ(entries.size(), 14u);
-  for (const char *n :
-       {"wheel1", "wheel2", "wheel3", "wheel4", "wheel5", "wheel6", "wheel7", "wheel8",
-        "scm_size_1220", "scm_size_1420", "scm_size_1620", "smooth_1234", "test_small",
-        "test_smooth_wide"}) {
+  for (const char *n : {"wheel1", "wheel2", "wheel3", "wheel4", "wheel5", "wheel6", "wheel7",
+                        "wheel8", "scm_size_1220", "scm_size_1420", "scm_size_1620", "smooth_1234",
+                        "test_small", "test_smooth_wide"}) {
     EXPECT_EQ(by_name.count(n), 1u) << n;
   }
   const WheelSpec &w3 = by_name["wheel3"].spec;
