@@ -4,7 +4,7 @@
   test_sweep.py CASE --sweep scripts/wheel-sweep --build-dir BUILD --work DIR
 
 CASE: matrix, resume_marker, resume_sigterm, bad_config, examples_dry_run, scm_smoke, kill_flat,
-kill_dem, ... (see each function and tests/sweep/CMakeLists.txt).
+kill_dem, dem_soil_file, ... (see each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (wheel-rig or the wheel meshes not built).
 """
 
@@ -428,6 +428,63 @@ deck = "in.deck"
         return (sum(c.startswith("sleep 300") for c in cmds) == 4
                 and sum("bin/wheel-rig" in c and "--endpoint" in c for c in cmds) == 2)
     kill_driver_and_check(a, cmd, "[started 2/", started)
+
+
+def case_dem_soil_file(a, work):
+    """A DEM bin recipe with a soil include file outside the repository, by a path relative to
+    the config (soil = "elsewhere/my_sand.in": inputs/soils/ci.in with soil_name my_sand): the bed
+    is prepared with it and named after soil_name, its .vars records the absolute path, the
+    coupled point (tests/cosim/in.motion_compare, 150 steps, 1 rank) includes the same file and
+    its run file records bed/soil and bed/soil_file; a changed soil file (same path) makes the
+    finished point re-run (--dry-run)."""
+    if shutil.which("mpirun") is None:
+        raise Skip("mpirun not found (Debian openmpi-bin)")
+    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").exists():
+        raise Skip("liggghts-wheel not built")
+    repo = Path(a.sweep).resolve().parents[1]
+    soil = work / "elsewhere" / "my_sand.in"
+    soil.parent.mkdir()
+    text = (repo / "inputs" / "soils" / "ci.in").read_text()
+    check("variable soil_name string ci\n" in text, "inputs/soils/ci.in has no soil_name line")
+    soil.write_text(text.replace("variable soil_name string ci\n",
+                                 'variable soil_name string my_sand\nprint "my_sand.in: included"\n'))
+    cfg = work / "sweep.toml"
+    cfg.write_text(f"""terrain = "dem"
+base = "{repo}/inputs/rigs/ci_small_wheel.toml"
+wheels = ["test_small"]
+soils = [{{ soil = "elsewhere/my_sand.in", bin_length = 0.12, bin_width = 0.08, fill_height = 0.03, \
+check_time = 0.002, max_settle_time = 0.006 }}]
+slips = [0.2]
+[dem]
+np = 1
+bed_np = 1
+deck = "{repo}/tests/cosim/in.motion_compare"
+liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
+""")
+    out = work / "out"
+    cmd = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--out-dir", str(out), "--jobs", "1"]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    print(r.stdout[-3000:], r.stderr[-2000:])
+    bed = out / "beds" / "my_sand" / "soilbin_my_sand.restart"
+    check(bed.is_file() and Path(f"{bed}.vars").is_file(),
+          f"no bed {bed} named after the file's soil_name")
+    bvars = Path(f"{bed}.vars").read_text()
+    check(f"variable soil_file index {soil}\n" in bvars and "variable soil index my_sand\n" in bvars,
+          f"the bed's .vars does not record the soil file:\n{bvars}")
+    pdir = out / "test_small" / "my_sand" / "s0.200"
+    done = json.loads((pdir / "done.json").read_text())
+    check(done["exit_status"] == 0, f"the point failed: {done} (log {pdir / 'run.log'})")
+    check("my_sand.in: included" in (pdir / "cosim" / "liggghts.log").read_text(),
+          "the coupled run's LIGGGHTS did not include the soil file")
+    with h5py.File(pdir / "run.h5", "r") as f:
+        par = {k: f[f"parameters/bed/{k}"].asstr()[()] for k in ("soil", "soil_file")}
+    check(par == {"soil": "my_sand", "soil_file": str(soil)}, f"run file /parameters/bed: {par}")
+    r = subprocess.run(cmd + ["--dry-run"], capture_output=True, text=True, timeout=120)
+    check("finished  test_small my_sand s=0.2" in r.stdout, f"not finished on a re-run:\n{r.stdout}")
+    soil.write_text(soil.read_text() + "# changed\n")
+    r = subprocess.run(cmd + ["--dry-run"], capture_output=True, text=True, timeout=120)
+    check("would run test_small my_sand s=0.2 (inputs changed since it finished)" in r.stdout,
+          f"a changed soil file (same path) does not re-run the point:\n{r.stdout}")
 
 
 BAD = [

@@ -138,6 +138,27 @@ def case_soil_names(a, work):
         raise Fail("two soils named 'ci' were accepted")
     except config.ConfigError as e:
         check("soils[0] and soils[1] have the same soil name 'ci'" in str(e), str(e))
+    # a DEM soil include file by path: named by its soil_name; a missing file or one without
+    # soil_name is a config error naming the key and the file
+    (work / "my").mkdir()
+    (work / "my" / "sand.in").write_text("variable soil_name string my_sand\n")
+    (work / "my" / "noname.in").write_text("variable soil_ntypes equal 3\n")
+    sw = load('terrain = "dem"\nsoils = [{ soil = "my/sand.in" }, '
+              '{ name = "b", soil_file = "my/sand.in" }]\n')
+    got = [(x.label, x.dem_soil_name, x.recipe) for x in sw.soils]
+    f = str((work / "my" / "sand.in").resolve())
+    check(got == [("my_sand", "my_sand", {"soil_file": f}), ("b", "my_sand", {"soil_file": f})],
+          f"DEM soil files by path {got}")
+    for text, msg in (('{ soil = "my/none.in" }', "soils[0].soil: DEM soil file '"),
+                      ('{ soil_file = "my/noname.in" }',
+                       "soils[0].soil_file: soil file '" + str(work / "my" / "noname.in")
+                       + "' does not define variable soil_name"),
+                      ('{ soil = "ci", soil_file = "my/sand.in" }', "not both")):
+        try:
+            load(f'terrain = "dem"\nsoils = [{text}]\n')
+            raise Fail(f"accepted: {text}")
+        except config.ConfigError as e:
+            check(msg in str(e), f"{text}: {e}")
     shutil.copyfile(repo / "inputs" / "scm_soils" / "dry_sand.toml", work / "dry_copy.toml")
     try:
         load('terrain = "scm"\nsoils = ["dry_sand", "dry_copy.toml"]\n')
