@@ -1,0 +1,262 @@
+"""`soil-lab report` and `soil-lab scm`: read a lab directory's outputs, fit, summarise, plot.
+
+What is read (runner.py writes it): soil.toml; beds/plate/done.json (bulk density, porosity);
+plate_b*/plate.csv; shear_s*/shear.csv; repose/repose.dump; each run's done.json (cost).
+What is written by write_report: results.toml, results.csv, plate.png, shear_curves.png,
+mohr_coulomb.png, repose.png (for the tests that ran). docs/soil-lab.md, "Outputs".
+"""
+
+import csv
+import json
+import tomllib
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Dict, List, Optional
+
+import numpy as np
+
+from . import fits, repose, report, scm_file
+from ._inputs import FitInputError
+
+
+class LabResultError(ValueError):
+    """A lab directory lacks an output its analysis needs; the message names it."""
+
+
+@dataclass
+class Results:
+    soil: dict
+    directory: Path
+    bulk: Optional[dict] = None
+    plates: List[dict] = field(default_factory=list)  # b_m, z, p, phase, done
+    bekker: Optional[fits.BekkerFit] = None
+    unload: Dict[float, fits.UnloadFit] = field(default_factory=dict)  # by b_m
+    shears: List[dict] = field(default_factory=list)  # sigma_Pa, j, tau, peak, janosi, done
+    mc_peak: Optional[fits.MohrCoulombFit] = None
+    mc_residual: Optional[fits.MohrCoulombFit] = None
+    repose_fits: List[repose.ReposeFit] = field(default_factory=list)
+    repose_profiles: List[tuple] = field(default_factory=list)
+    repose_error: Optional[str] = None  # why no angle could be fitted (too small a heap, ...)
+    costs: List[dict] = field(default_factory=list)
+
+    @property
+    def janosi_K_m(self):
+        Ks = [s["janosi"].K_m for s in self.shears if s["janosi"] is not None]
+        return float(np.mean(Ks)) if Ks else None
+
+    @property
+    def repose_angle_deg(self):
+        return float(np.mean([f.angle_deg for f in self.repose_fits])) if self.repose_fits else None
+
+
+def _table(path, names):
+    data = np.loadtxt(path, comments="#", ndmin=2)
+    if data.shape[0] == 0 or data.shape[1] != len(names):
+        raise LabResultError(f"{path}: expected rows of {len(names)} columns ({' '.join(names)})")
+    return {n: data[:, i] for i, n in enumerate(names)}
+
+
+def _done(directory):
+    f = Path(directory) / "done.json"
+    return json.loads(f.read_text()) if f.is_file() else None
+
+
+def analyse(directory):
+    """Fits every test found in the lab directory `directory`."""
+    d = Path(directory)
+    soil_file = d / "soil.toml"
+    if not soil_file.is_file():
+        raise LabResultError(f"{d} is not a soil-lab directory (no soil.toml): run `soil-lab run`")
+    r = Results(soil=tomllib.loads(soil_file.read_text()), directory=d)
+
+    bed = _done(d / "beds" / "plate")
+    if bed is not None:
+        res = bed["result"]
+        r.bulk = {k: float(res[k]) for k in ("bulk_density", "porosity", "core_bulk_density",
+                                             "core_porosity", "bed_depth") if k in res}
+        r.bulk["particles"] = int(res.get("spheres", 0))
+        r.bulk["compaction"] = res.get("compaction", "none")
+
+    for run in sorted(d.glob("plate_b*")):
+        done = _done(run)
+        if done is None:
+            continue
+        t = _table(run / "plate.csv", ("time_s", "sinkage_m", "force_N", "pressure_Pa",
+                                       "contacts", "phase"))
+        r.plates.append({"b_m": done["meta"]["b_m"], "z": t["sinkage_m"], "p": t["pressure_Pa"],
+                         "phase": t["phase"], "done": done})
+        r.costs.append({"run": run.name, **{k: done[k] for k in ("wall_s", "steps", "particles",
+                                                                 "np", "dt_s")}})
+    if len(r.plates) >= 2:
+        loading = [(p["b_m"], p["z"][p["phase"] == 1], p["p"][p["phase"] == 1]) for p in r.plates]
+        r.bekker = fits.fit_bekker(loading)
+        for p in r.plates:
+            cycle = p["phase"] <= 2
+            r.unload[p["b_m"]] = fits.fit_unload_stiffness(p["z"][cycle], p["p"][cycle])
+
+    for run in sorted(d.glob("shear_s*")):
+        done = _done(run)
+        if done is None:
+            continue
+        t = _table(run / "shear.csv", ("time_s", "displacement_m", "shear_force_N", "tau_Pa",
+                                       "sigma_Pa", "lid_z_m", "phase"))
+        s = t["phase"] == 2
+        j, tau, sigma = t["displacement_m"][s], t["tau_Pa"][s], t["sigma_Pa"][s]
+        peak = fits.peak_and_residual(j, tau)
+        janosi = fits.fit_janosi(j, tau)
+        r.shears.append({"sigma_Pa": float(np.mean(sigma)), "sigma_target_Pa":
+                         done["meta"]["normal_stress_Pa"], "j": j, "tau": tau, "peak": peak,
+                         "janosi": janosi, "done": done})
+        r.costs.append({"run": run.name, **{k: done[k] for k in ("wall_s", "steps", "particles",
+                                                                 "np", "dt_s")}})
+    r.shears.sort(key=lambda s: s["sigma_Pa"])
+    if len(r.shears) >= 3:
+        sig = [s["sigma_Pa"] for s in r.shears]
+        r.mc_peak = fits.fit_mohr_coulomb(sig, [s["peak"].tau_peak_Pa for s in r.shears])
+        r.mc_residual = fits.fit_mohr_coulomb(sig, [s["peak"].tau_residual_Pa for s in r.shears])
+
+    run = d / "repose"
+    done = _done(run)
+    if done is not None:
+        rows = np.loadtxt(run / "repose.dump", skiprows=9, ndmin=2)  # id x y z radius
+        x, y, z, rad = rows[:, 1], rows[:, 2], rows[:, 3], rows[:, 4]
+        B = done["meta"]["base_m"]
+        dmax = float(r.soil["dmax_m"])
+        # Two profiles through the heap's axis: along x (|y| < B/4) and along y (|x - B/2| < B/4),
+        # bins of d_max / 2 over the base.
+        for u, v in ((x - 0.5 * B, y), (y, x - 0.5 * B)):
+            band = np.abs(v) < 0.25 * B
+            edges = np.arange(-0.5 * B, 0.5 * B + 1e-12, 0.5 * dmax)
+            px, ph = repose.surface_profile(u[band], z[band], rad[band], edges)
+            try:  # the heap's axis: the profile's highest point
+                fit = repose.repose_angle(px, ph, axis_m=float(px[np.argmax(ph)]))
+            except FitInputError as e:
+                r.repose_error = (f"no angle of repose: {e} ({len(rows)} particles left on a "
+                                  f"{B:.3g} m base)")
+                r.repose_fits, r.repose_profiles = [], []
+                break
+            r.repose_profiles.append((px, ph))
+            r.repose_fits.append(fit)
+        r.costs.append({"run": run.name, **{k: done[k] for k in ("wall_s", "steps", "particles",
+                                                                 "np", "dt_s")}})
+    return r
+
+
+def summary(r: Results):
+    """results.toml's content: every measured value with its unit in the key."""
+    out = {"soil": {k: r.soil[k] for k in ("name", "file", "preset") if k in r.soil}}
+    if r.bulk:
+        out["bulk"] = {"bulk_density_kg_m3": r.bulk["bulk_density"],
+                       "porosity": r.bulk["porosity"],
+                       "core_bulk_density_kg_m3": r.bulk.get("core_bulk_density", -1),
+                       "core_porosity": r.bulk.get("core_porosity", -1),
+                       "bed_depth_m": r.bulk["bed_depth"], "particles": r.bulk["particles"],
+                       "compaction": r.bulk["compaction"]}
+    if r.bekker:
+        b = r.bekker
+        out["plate"] = {"n": b.n, "kc_N_m_n1": b.kc, "kphi_N_m_n2": b.kphi, "rms_Pa": b.rms_Pa,
+                        "r2": b.r2, "points": b.n_points, "plate_widths_m": list(b.widths_m),
+                        "at_bound": list(b.at_bound),
+                        "elastic_K_Pa_m": {f"b{w:.4g}": u.Ke_Pa_m for w, u in r.unload.items()}}
+    if r.shears:
+        out["shear"] = {"stresses": [
+            {"sigma_n_Pa": s["sigma_Pa"], "sigma_target_Pa": s["sigma_target_Pa"],
+             "tau_peak_Pa": s["peak"].tau_peak_Pa, "j_peak_m": s["peak"].j_peak_m,
+             "tau_residual_Pa": s["peak"].tau_residual_Pa,
+             "janosi_K_m": s["janosi"].K_m, "janosi_tau_max_Pa": s["janosi"].tau_max_Pa,
+             "janosi_rms_Pa": s["janosi"].rms_Pa} for s in r.shears]}
+        if r.mc_peak:
+            out["shear"].update({
+                "cohesion_Pa": r.mc_peak.cohesion_Pa, "friction_deg": r.mc_peak.friction_deg,
+                "mc_rms_Pa": r.mc_peak.rms_Pa, "mc_r2": r.mc_peak.r2,
+                "residual_cohesion_Pa": r.mc_residual.cohesion_Pa,
+                "residual_friction_deg": r.mc_residual.friction_deg,
+                "janosi_K_m": r.janosi_K_m})
+    if r.repose_error:
+        out["repose"] = {"error": r.repose_error}
+    if r.repose_fits:
+        out["repose"] = {"angle_deg": r.repose_angle_deg,
+                         "flank_angles_deg": [f.angle_deg for rf in r.repose_fits
+                                              for f in (rf.left, rf.right)],
+                         "method": "lifted frame on a fixed rough base; profiles along x and y "
+                                   "through the axis, flanks fitted between 20 % and 80 % of the "
+                                   "heap height"}
+    if r.costs:
+        out["cost"] = {c["run"]: {k: c[k] for k in ("wall_s", "steps", "particles", "np", "dt_s")}
+                       for c in r.costs}
+    return out
+
+
+def write_report(r: Results, quiet=False):
+    """results.toml, results.csv and the PNG plots into the lab directory; returns their paths."""
+    import tomli_w
+
+    d = r.directory
+    s = summary(r)
+    written = []
+    (d / "results.toml").write_text(tomli_w.dumps(s))
+    written.append(d / "results.toml")
+    with open(d / "results.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["test", "quantity", "value"])
+        for test, table in s.items():
+            if test in ("soil", "cost"):
+                continue
+            for k, v in table.items():
+                if isinstance(v, (int, float)) and not isinstance(v, bool):
+                    w.writerow([test, k, f"{v:.6g}"])
+    written.append(d / "results.csv")
+    name = r.soil.get("name", "?")
+    if r.plates:
+        report.plot_pressure_sinkage(d / "plate.png", name,
+                                     [(p["b_m"], p["z"], p["p"]) for p in r.plates], r.bekker)
+        written.append(d / "plate.png")
+    if r.shears:
+        report.plot_shear_curves(d / "shear_curves.png", name,
+                                 [(s["sigma_Pa"], s["j"], s["tau"]) for s in r.shears],
+                                 [s["janosi"] for s in r.shears])
+        written.append(d / "shear_curves.png")
+    if r.mc_peak:
+        sig = [s["sigma_Pa"] for s in r.shears]
+        report.plot_mohr_coulomb(d / "mohr_coulomb.png", name, sig,
+                                 [s["peak"].tau_peak_Pa for s in r.shears], r.mc_peak, sig,
+                                 [s["peak"].tau_residual_Pa for s in r.shears], r.mc_residual)
+        written.append(d / "mohr_coulomb.png")
+    if r.repose_fits:
+        px, ph = r.repose_profiles[0]
+        report.plot_repose(d / "repose.png", name, px, ph, r.repose_fits[0])
+        written.append(d / "repose.png")
+    return written
+
+
+def write_scm(r: Results, path, name=None):
+    """An SCM soil file fitted to the DEM soil (needs the plate and shear tests)."""
+    if r.bekker is None:
+        raise LabResultError(f"{r.directory}: no plate sinkage results (2 plates): run the "
+                             f"'plate' test first")
+    if r.mc_peak is None:
+        raise LabResultError(f"{r.directory}: no shear box results (3 normal stresses): run the "
+                             f"'shear' test first")
+    dem = r.soil["name"]
+    widths = ", ".join(f"{p['b_m']:.3g}" for p in r.plates)
+    b_large = max(r.unload)
+    ke = r.unload[b_large]
+    sigmas = ", ".join(f"{s['sigma_Pa'] / 1e3:.3g}" for s in r.shears)
+    k_values = ", ".join(f"{s['janosi'].K_m:.3g}" for s in r.shears)
+    sources = {
+        "bekker": scm_file.dem_source(dem, "plate sinkage", r.bekker,
+                                      f"square plates b = {widths} m, loading branches"),
+        "mohr_coulomb": scm_file.dem_source(dem, "direct shear box, peak strength", r.mc_peak,
+                                            f"normal stresses {sigmas} kPa"),
+        "janosi.shear_modulus": scm_file.dem_source(
+            dem, "direct shear box", None, f"mean of the Janosi fits at {sigmas} kPa "
+            f"(K = {k_values} m)"),
+        "scm.elastic_stiffness": scm_file.dem_source(
+            dem, "plate sinkage, unloading slope", ke, f"plate b = {b_large:.3g} m"),
+    }
+    return scm_file.write_scm_soil(
+        path, name or f"{dem} (fitted from DEM)",
+        f"SCM parameters fitted to the DEM soil '{dem}' ({r.soil.get('file', '?')}) by the "
+        f"virtual soil lab ({r.soil.get('preset', '?')} preset)",
+        r.bekker.n, r.bekker.kc, r.bekker.kphi, max(r.mc_peak.cohesion_Pa, 0.0),
+        r.mc_peak.friction_deg, r.janosi_K_m, ke.Ke_Pa_m, sources)

@@ -1,0 +1,150 @@
+"""soil-lab's command line (docs/soil-lab.md):
+
+  soil-lab run SOIL [--tests bulk,plate,shear,repose] [--out DIR] [--np N] [--preset P]
+                    [--normal-stresses S1,S2,S3] [--bed-var NAME=VALUE ...] [--build-dir D]
+  soil-lab report DIR
+  soil-lab scm DIR --out FILE.toml [--name NAME]
+
+Exit status: 0 done; 1 a LIGGGHTS or wheel-mesh run failed, or a fit failed; 2 bad command
+line, unknown soil or test, or a test size the lab rejects.
+"""
+
+import os
+import sys
+from pathlib import Path
+
+from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
+
+from . import analysis, plan, runner
+from ._inputs import FitInputError
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def _list(text, what):
+    items = [t.strip() for t in text.split(",") if t.strip()]
+    if not items:
+        raise plan.LabInputError(f"{what}: expected a comma-separated list, got '{text}'")
+    return items
+
+
+def _run(a):
+    import tomli_w
+
+    build = Path(a.build_dir or os.environ.get("WHEELSIM_BUILD_DIR") or REPO / "build").resolve()
+    tests = _list(a.tests, "--tests")
+    stresses = None
+    if a.normal_stresses:
+        try:
+            stresses = [float(s) for s in _list(a.normal_stresses, "--normal-stresses")]
+        except ValueError:
+            raise plan.LabInputError(f"--normal-stresses: expected numbers in Pa, got "
+                                     f"'{a.normal_stresses}'") from None
+    widths = None
+    if a.plate_widths:
+        try:
+            widths = [float(b) for b in _list(a.plate_widths, "--plate-widths")]
+        except ValueError:
+            raise plan.LabInputError(f"--plate-widths: expected two widths in m, got "
+                                     f"'{a.plate_widths}'") from None
+    bed_vars = {}
+    for item in a.bed_var or []:
+        if "=" not in item or item.startswith("="):
+            raise plan.LabInputError(f"--bed-var: expected NAME=VALUE (an in.soilbin variable), "
+                                     f"got '{item}'")
+        k, v = item.split("=", 1)
+        bed_vars[k] = v
+    for t in tests:  # before anything runs
+        if t not in plan.TEST_NAMES:
+            from wheelsim_post.usage import nearest
+
+            near = nearest(t, plan.TEST_NAMES)
+            raise plan.LabInputError(f"--tests: unknown test '{t}'"
+                                     + (f" (did you mean '{near}'?)" if near else "")
+                                     + f"; tests: {', '.join(plan.TEST_NAMES)}")
+    soil_file = runner.resolve_soil_file(a.soil, REPO / "inputs")
+    out = Path(a.out or REPO / "runs" / "soil_lab" / Path(soil_file).stem).resolve()
+    out.mkdir(parents=True, exist_ok=True)
+    lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet)
+    soil = lab.soil_info(soil_file)
+    p = plan.make_plan(soil, tests, a.preset, stresses, bed_vars, widths, a.plate_bin)
+    (out / "soil.toml").write_text(tomli_w.dumps({
+        "name": soil.name, "file": soil.file, "preset": a.preset, "tests": list(p.tests),
+        "dmin_m": soil.dmin_m, "dmax_m": soil.dmax_m, "dref_m": soil.dref_m,
+        "density_kg_m3": soil.density_kg_m3, "multisphere": soil.multisphere, "dt_s": soil.dt_s,
+        "youngs_Pa": soil.youngs_Pa}))
+    lab.say(f"soil '{soil.name}' ({soil.file}): d {soil.dmin_m:g}..{soil.dmax_m:g} m, dt "
+            f"{soil.dt_s:.4g} s; tests {', '.join(p.tests)} ({a.preset}); {len(p.beds)} beds, "
+            f"{len(p.runs)} runs on {a.np} rank(s) into {out}")
+    lab.run_plan(p)
+    return _report(out, a.quiet)
+
+
+def _report(directory, quiet=False):
+    r = analysis.analyse(directory)
+    for path in analysis.write_report(r):
+        if not quiet:
+            print(f"soil-lab: wrote {path}")
+    if not quiet:
+        s = analysis.summary(r)
+        for test in ("bulk", "plate", "shear", "repose"):
+            if test in s:
+                vals = {k: v for k, v in s[test].items() if isinstance(v, float)}
+                if vals:
+                        print(f"soil-lab: {test}: "
+                          + ", ".join(f"{k} {v:.4g}" for k, v in vals.items()))
+        if r.repose_error:
+            print(f"soil-lab: warning: repose: {r.repose_error}")
+    return 0
+
+
+def main(argv=None):
+    ap = UsageParser(prog="soil-lab", description="The virtual soil lab: standard bulk tests on "
+                     "a DEM soil, their fits, and an SCM soil file fitted to it "
+                     "(docs/soil-lab.md).",
+                     epilog="Exit status: 0 done; 1 a run or a fit failed; 2 bad command line, "
+                            "unknown soil or test, or a test size the lab rejects.")
+    add_version(ap, "soil-lab", start=__file__)
+    sub = ap.add_subparsers(dest="command", required=True, parser_class=UsageParser)
+    r = sub.add_parser("run", help="run the tests on a soil, then report")
+    r.add_argument("soil", help="a shipped soil name (inputs/soils/NAME.in) or a soil file path")
+    r.add_argument("--tests", default=",".join(plan.TEST_NAMES),
+                   help=f"comma-separated, from {', '.join(plan.TEST_NAMES)} (default: all)")
+    r.add_argument("--out", metavar="DIR", help="output directory (default: runs/soil_lab/SOIL)")
+    r.add_argument("--np", type=int, default=1, help="MPI ranks per LIGGGHTS run (default 1)")
+    r.add_argument("--preset", choices=plan.PRESETS, default="standard",
+                   help="test sizes: standard (docs/soil-lab.md) or quick (CI smoke)")
+    r.add_argument("--normal-stresses", metavar="S1,S2,S3",
+                   help="shear box normal stresses [Pa] (default 5e3,1e4,2e4; quick 3e3,6e3,9e3)")
+    r.add_argument("--plate-widths", metavar="B1,B2",
+                   help="the two square plates' sides [m] (default 5 and 8 d_max; quick 2.5, 4)")
+    r.add_argument("--plate-bin", type=float, metavar="SIDE",
+                   help="the plate test's square bin side [m] (default 3 x the larger plate)")
+    r.add_argument("--bed-var", action="append", metavar="NAME=VALUE",
+                   help="an inputs/in.soilbin variable for every bed (e.g. compaction=plate)")
+    r.add_argument("--build-dir", metavar="D", help="build directory (default: <repo>/build)")
+    r.add_argument("--quiet", action="store_true", help="no progress lines")
+    rep = sub.add_parser("report", help="fit and plot a lab directory's results")
+    rep.add_argument("dir")
+    rep.add_argument("--quiet", action="store_true")
+    s = sub.add_parser("scm", help="write an SCM soil file fitted to the DEM soil")
+    s.add_argument("dir")
+    s.add_argument("--out", required=True, metavar="FILE.toml")
+    s.add_argument("--name", help="the SCM soil's name (default: '<DEM soil> (fitted from DEM)')")
+    a = ap.parse_args(argv)
+    if getattr(a, "np", 1) < 1:
+        ap.error(f"--np must be >= 1, got {a.np}")
+    try:
+        if a.command == "run":
+            return _run(a)
+        if a.command == "report":
+            return _report(a.dir, a.quiet)
+        path = analysis.write_scm(analysis.analyse(a.dir), a.out, a.name)
+        print(f"soil-lab: wrote {path}")
+        return 0
+    except (plan.LabInputError, analysis.LabResultError) as e:
+        print(f"soil-lab: error: {e}", file=sys.stderr)
+        return EXIT_USAGE
+    except (runner.LabRunError, FitInputError) as e:
+        print(f"soil-lab: error: {e}", file=sys.stderr)
+        return 1

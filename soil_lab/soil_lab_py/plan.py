@@ -1,0 +1,179 @@
+"""What `soil-lab run` runs: the soil's grain sizes, and the tests sized from them.
+
+Sizes follow the standards' rules relative to the largest grain d = d_max (docs/soil-lab.md,
+"Procedures"); the `quick` preset shrinks every test for CI (minutes on 2 cores, numbers not
+meant to be representative). Every size is in metres, every stress in Pa, every speed in m/s.
+"""
+
+from dataclasses import dataclass, field
+from typing import Dict, List, Tuple
+
+TEST_NAMES = ("bulk", "plate", "shear", "repose")
+PRESETS = ("standard", "quick")
+
+
+class LabInputError(ValueError):
+    """A bad soil, test name or test size; the message names it and what was expected."""
+
+
+@dataclass(frozen=True)
+class SoilInfo:
+    """The soil file's variables the lab sizes its tests by (soil_lab/decks/in.lab_soilinfo)."""
+
+    name: str
+    file: str  #: absolute path of the soil include file
+    dmin_m: float
+    dmax_m: float
+    dref_m: float
+    density_kg_m3: float  #: mass-weighted particle density
+    multisphere: bool
+    dt_s: float
+    youngs_Pa: float  #: particle Young's modulus, -1 if the file does not name it
+
+
+@dataclass
+class Bed:
+    """A bed prepared by inputs/in.soilbin: bin inner size and intended depth [m]."""
+
+    name: str
+    length_m: float
+    width_m: float
+    fill_height_m: float
+    extra_vars: Dict[str, str] = field(default_factory=dict)
+
+
+@dataclass
+class Run:
+    """One LIGGGHTS run of a lab deck on a bed, with its meshes (wheel-mesh tool arguments)."""
+
+    name: str  #: directory name, e.g. plate_b0.032
+    test: str  #: plate, shear or repose
+    deck: str  #: in.lab_plate, ...
+    bed: str  #: Bed.name
+    meshes: Dict[str, List[str]]  #: deck variable -> wheel-mesh tool KIND PARAMETERS
+    variables: Dict[str, str]  #: deck variables (sizes, speeds, targets)
+    meta: Dict[str, float]  #: what the analysis needs (plate width, normal stress, ...)
+
+
+@dataclass
+class Plan:
+    soil: SoilInfo
+    preset: str
+    tests: Tuple[str, ...]
+    beds: Dict[str, Bed]
+    runs: List[Run]
+
+
+def _f(x):
+    return f"{x:.6g}"
+
+
+def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None, bed_vars=None,
+              plate_widths_m=None, plate_bin_m=None):
+    """The beds and runs for `tests` on `soil`. Raises LabInputError for an unknown test or preset,
+    plates that are not two different widths or do not fit their bin with a plate width of soil
+    on every side, a normal stress outside what the box can hold, or a repose test on a
+    multisphere soil."""
+    tests = tuple(tests)
+    for t in tests:
+        if t not in TEST_NAMES:
+            raise LabInputError(f"unknown test '{t}' (expected one of {', '.join(TEST_NAMES)})")
+    if preset not in PRESETS:
+        raise LabInputError(f"unknown preset '{preset}' (expected one of {', '.join(PRESETS)})")
+    quick = preset == "quick"
+    d = soil.dmax_m
+    bed_vars = dict(bed_vars or {})
+    beds: Dict[str, Bed] = {}
+    runs: List[Run] = []
+
+    if "plate" in tests or "bulk" in tests:
+        # Two square plates of side b1 < b2; the bin leaves >= b2 of soil on each side of the
+        # larger plate and a bed >= 1.5 b2 deep (quick: less).
+        b1, b2 = (2.5 * d, 4.0 * d) if quick else (5.0 * d, 8.0 * d)
+        if plate_widths_m is not None:
+            if len(plate_widths_m) != 2 or plate_widths_m[0] == plate_widths_m[1] or \
+                    min(plate_widths_m) <= 0:
+                raise LabInputError(f"--plate-widths: expected two different widths > 0 m (the "
+                                    f"Bekker fit separates kc from kphi by b), got "
+                                    f"{plate_widths_m}")
+            b1, b2 = sorted(plate_widths_m)
+            if b1 < 2 * d:
+                raise LabInputError(f"plate width {b1:g} m is less than 2 grains (d_max "
+                                    f"{d:g} m): a plate must span several grains")
+        side = plate_bin_m if plate_bin_m is not None else (2.5 if quick else 3.0) * b2
+        if side < 2.5 * b2:
+            raise LabInputError(f"plate {b2:g} m is too wide for the plate bin (side {side:g} m): "
+                                f"the bin needs at least {2.5 * b2:g} m (the plate and 3/4 of its "
+                                f"width of soil on each side), or use narrower plates")
+        depth = (1.25 if quick else 1.5) * b2
+        beds["plate"] = Bed("plate", side, side, depth, bed_vars)
+        if "plate" in tests:
+            depth1, unload, depth2 = (1.0 * d, 0.25 * d, 1.5 * d) if quick else (2.0 * d, 0.5 * d, 3.0 * d)
+            speed = 0.04 if quick else 0.02
+            thickness = max(0.5 * d, 0.005)
+            for b in (b1, b2):
+                runs.append(Run(
+                    name=f"plate_b{_f(b)}", test="plate", deck="in.lab_plate", bed="plate",
+                    meshes={"plate_mesh": ["plate-rect", _f(b), _f(b), _f(thickness)]},
+                    variables={"plate_area": _f(b * b), "plate_thickness": _f(thickness),
+                               "plate_speed": _f(speed), "gap": _f(0.25 * d),
+                               "depth1": _f(depth1), "unload": _f(unload), "depth2": _f(depth2)},
+                    meta={"b_m": b, "area_m2": b * b, "speed_m_s": speed}))
+
+    if "shear" in tests:
+        # Square box of inner side L >= 10 d_max (ASTM D3080), soil height >= 6 d_max, the shear
+        # plane at mid-height; shear over 12 % of L.
+        L = (8.0 if quick else 12.0) * d
+        H = (5.0 if quick else 8.0) * d
+        beds["shear"] = Bed("shear", L, L, H, bed_vars)
+        stresses = list(normal_stresses_Pa or ((3e3, 6e3, 9e3) if quick else (5e3, 1e4, 2e4)))
+        if len(stresses) < 3:
+            raise LabInputError(f"the shear test needs >= 3 normal stresses for the Mohr-Coulomb "
+                                f"fit, got {len(stresses)}")
+        # Largest stress: the contact overlap stays small, sigma < 1 % of the particles' E
+        # (Hertz: overlap/R ~ (sigma/E)^(2/3), 4.6 % at 1 %).
+        s_max = 0.01 * soil.youngs_Pa if soil.youngs_Pa > 0 else float("inf")
+        for s in stresses:
+            if not 0 < s <= s_max:
+                raise LabInputError(
+                    f"normal stress {s:g} Pa is outside what the shear box can hold for this soil: "
+                    f"expected 0 < sigma <= {s_max:g} Pa (1 % of the particles' Young's modulus "
+                    f"{soil.youngs_Pa:g} Pa; above it the contact overlaps exceed ~5 % of R)")
+        wall = max(0.5 * d, 0.005)
+        low_h = 0.5 * H
+        up_h = 0.5 * H + 3.0 * d  # room for the lid above the soil
+        lid_t = max(0.5 * d, 0.005)
+        clear = 0.25 * soil.dmin_m
+        speed = 0.01 if quick else 0.005
+        distance = 0.12 * L
+        for s in stresses:
+            runs.append(Run(
+                name=f"shear_s{_f(s)}", test="shear", deck="in.lab_shear", bed="shear",
+                meshes={"frame_low_mesh": ["frame", _f(L), _f(L), _f(wall), _f(low_h)],
+                        "frame_up_mesh": ["frame", _f(L), _f(L), _f(wall), _f(up_h)],
+                        "lid_mesh": ["plate-rect", _f(L - 2 * clear), _f(L - 2 * clear), _f(lid_t)]},
+                variables={"frame_low_h": _f(low_h), "frame_up_h": _f(up_h),
+                           "frame_gap": _f(0.1 * soil.dmin_m), "lid_thickness": _f(lid_t),
+                           "normal_stress": _f(s), "shear_speed": _f(speed),
+                           "shear_distance": _f(distance),
+                           "consolidate": "0.3" if quick else "0.5"},
+                meta={"normal_stress_Pa": s, "box_m": L, "speed_m_s": speed}))
+
+    if "repose" in tests:
+        if soil.multisphere:
+            raise LabInputError(
+                f"the repose test does not support multisphere soils yet ('{soil.name}': its frozen "
+                f"rough base needs single spheres); run the other tests with --tests")
+        # Lifted frame on a fixed rough base of side B (>= 10 d_max), column 1.2 B high.
+        B = (8.0 if quick else 10.0) * d
+        Hc = (1.0 if quick else 1.2) * B
+        beds["repose"] = Bed("repose", B, B, Hc, bed_vars)
+        wall = max(0.5 * d, 0.005)
+        frame_h = Hc * 1.4 + 2 * d
+        runs.append(Run(
+            name="repose", test="repose", deck="in.lab_repose", bed="repose",
+            meshes={"frame_mesh": ["frame", _f(B), _f(B), _f(wall), _f(frame_h)]},
+            variables={"frame_h": _f(frame_h), "lift_speed": "0.05" if quick else "0.02",
+                       "settle": "0.5" if quick else "1.0", "clearance": _f(d)},
+            meta={"base_m": B}))
+    return Plan(soil=soil, preset=preset, tests=tests, beds=beds, runs=runs)

@@ -1,0 +1,210 @@
+"""`soil-lab run`: prepares the tool meshes and beds, runs the lab decks with LIGGGHTS, resumably.
+
+Layout of the output directory (docs/soil-lab.md, "Outputs"):
+  soil.toml                  the soil's variables the tests were sized by, the preset
+  meshes/<name>.obj          tool meshes (wheel-mesh tool)
+  beds/<bed>/                in.soilbin's restart, .vars and log (bulk density, porosity)
+  <run>/                     one directory per deck run: its CSV or dump, log, done.json
+Every step writes done.json (inputs hash, wall time, particles) last; a step whose done.json
+matches its inputs is skipped on a re-run, so an interrupted lab resumes where it stopped.
+"""
+
+import hashlib
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+from .plan import LabInputError, SoilInfo
+
+DECKS = Path(__file__).resolve().parent.parent / "decks"
+
+
+class LabRunError(RuntimeError):
+    """A LIGGGHTS or wheel-mesh run failed; the message names it and its log."""
+
+
+def _sha256(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def resolve_soil_file(soil, inputs_dir):
+    """SOIL is a shipped name (inputs/soils/NAME.in) or a path to any soil include file."""
+    p = Path(soil)
+    if p.suffix == ".in" or os.sep in soil:
+        if not p.is_file():
+            raise LabInputError(f"soil file '{soil}' not found")
+        return str(p.resolve())
+    shipped = Path(inputs_dir) / "soils" / f"{soil}.in"
+    if not shipped.is_file():
+        names = sorted(q.stem for q in (Path(inputs_dir) / "soils").glob("*.in"))
+        raise LabInputError(f"unknown soil '{soil}': no {shipped} (shipped soils: "
+                            f"{', '.join(names)}; or give the path of your own soil file)")
+    return str(shipped.resolve())
+
+
+class Lab:
+    def __init__(self, repo, build_dir, out_dir, np=1, quiet=False):
+        self.repo = Path(repo)
+        self.build = Path(build_dir)
+        self.out = Path(out_dir)
+        self.np = np
+        self.quiet = quiet
+        self.inputs = self.repo / "inputs"
+        self.liggghts = self.build / "bin" / "liggghts-wheel"
+        self.wheel_mesh = self.build / "bin" / "wheel-mesh"
+        for exe in (self.liggghts, self.wheel_mesh):
+            if not exe.is_file():
+                raise LabInputError(f"{exe} not found: build wheelsim first (scripts/build.sh) or "
+                                    f"pass --build-dir")
+
+    def say(self, msg):
+        if not self.quiet:
+            print(f"soil-lab: {msg}", flush=True)
+
+    def _mpirun(self):
+        cmd = ["mpirun", "-np", str(self.np), "--oversubscribe"]
+        if os.geteuid() == 0:
+            cmd.append("--allow-run-as-root")
+        return cmd
+
+    def _liggghts(self, deck, variables, log, cwd):
+        cmd = self._mpirun() + [str(self.liggghts), "-in", str(deck), "-log", "none",
+                                "-var", "inputs_dir", str(self.inputs)]
+        for k, v in variables.items():
+            cmd += ["-var", k, str(v)]
+        with open(log, "w") as f:
+            r = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd)
+        text = Path(log).read_text(errors="replace")
+        if r.returncode != 0:
+            errors = [ln for ln in text.splitlines() if "ERROR" in ln]
+            raise LabRunError(f"{Path(deck).name} failed (exit {r.returncode}): "
+                              f"{errors[-1] if errors else 'see the log'} (log: {log})")
+        return text
+
+    # --- soil ------------------------------------------------------------------------------------
+    def soil_info(self, soil_file):
+        log = self.out / "soil_info.log"
+        text = self._liggghts(DECKS / "in.lab_soilinfo", {"soil_file": soil_file}, log, self.out)
+        m = re.search(r"^soil-lab: soil (.*)$", text, re.M)
+        if not m:
+            raise LabRunError(f"in.lab_soilinfo printed no soil line (log: {log})")
+        kv = dict(item.split("=", 1) for item in m.group(1).split())
+        return SoilInfo(name=kv["name"], file=soil_file, dmin_m=float(kv["dmin"]),
+                        dmax_m=float(kv["dmax"]), dref_m=float(kv["dref"]),
+                        density_kg_m3=float(kv["density"]),
+                        multisphere=float(kv["multisphere"]) != 0, dt_s=float(kv["dt"]),
+                        youngs_Pa=float(kv["E"]))
+
+    # --- steps with resume -----------------------------------------------------------------------
+    def _done(self, directory, key):
+        f = Path(directory) / "done.json"
+        if not f.is_file():
+            return None
+        try:
+            done = json.loads(f.read_text())
+        except ValueError:
+            return None
+        return done if done.get("inputs") == key else None
+
+    def _finish(self, directory, key, **info):
+        tmp = Path(directory) / "done.json.tmp"
+        tmp.write_text(json.dumps({"inputs": key, **info}, indent=1) + "\n")
+        os.replace(tmp, Path(directory) / "done.json")
+
+    def _key(self, *parts, files=()):
+        h = hashlib.sha256()
+        for p in parts:
+            h.update(json.dumps(p, sort_keys=True).encode())
+        for f in files:
+            h.update(_sha256(f).encode())
+        return h.hexdigest()[:16]
+
+    def mesh(self, name, args):
+        """The tool mesh wheel-mesh tool ARGS, as meshes/<name>.obj (made once)."""
+        d = self.out / "meshes"
+        d.mkdir(parents=True, exist_ok=True)
+        path = d / f"{name}.obj"
+        key = self._key(args)
+        stamp = d / f"{name}.args"
+        if path.is_file() and stamp.is_file() and stamp.read_text() == key:
+            return path
+        cmd = [str(self.wheel_mesh), "tool", *args, "--out", str(d / name), "--formats", "obj"]
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        if r.returncode != 0:
+            raise LabRunError(f"wheel-mesh tool {' '.join(args)} failed: {r.stderr.strip()}")
+        stamp.write_text(key)
+        return path
+
+    def bed(self, soil, bed):
+        """Prepares `bed` with inputs/in.soilbin (skipped if done); returns (restart, result dict)."""
+        d = self.out / "beds" / bed.name
+        d.mkdir(parents=True, exist_ok=True)
+        variables = {"soil_file": soil.file, "bin_length": f"{bed.length_m:.6g}",
+                     "bin_width": f"{bed.width_m:.6g}", "fill_height": f"{bed.fill_height_m:.6g}",
+                     "out_dir": str(d), **bed.extra_vars}
+        deck = self.inputs / "in.soilbin"
+        key = self._key(variables, files=(soil.file, deck))
+        done = self._done(d, key)
+        if done is None:
+            self.say(f"bed '{bed.name}': preparing {bed.length_m:.3g} x {bed.width_m:.3g} m, "
+                     f"{bed.fill_height_m:.3g} m deep")
+            t0 = time.monotonic()
+            text = self._liggghts(deck, variables, d / "soilbin.log", d)
+            result = dict(re.findall(r"^soilbin: (\w+) = (\S+)$", text, re.M))
+            done = {"result": result, "wall_s": round(time.monotonic() - t0, 1), "np": self.np}
+            self._finish(d, key, **done)
+            self.say(f"bed '{bed.name}': {result.get('spheres')} particles, bed depth "
+                     f"{float(result.get('bed_depth', 'nan')):.4g} m, bulk density "
+                     f"{float(result.get('bulk_density', 'nan')):.5g} kg/m^3 ({done['wall_s']} s)")
+        else:
+            self.say(f"bed '{bed.name}': done before, skipped")
+        return done["result"]["restart"], done["result"]
+
+    def run(self, soil, run, restart, progress=""):
+        d = self.out / run.name
+        d.mkdir(parents=True, exist_ok=True)
+        meshes = {var: str(self.mesh(f"{run.name}_{var}", args)) for var, args in run.meshes.items()}
+        outputs = {"plate": {"out_csv": "plate.csv"}, "shear": {"out_csv": "shear.csv"},
+                   "repose": {"out_dump": "repose.dump"}}[run.test]
+        variables = {"restart_file": restart, **meshes, **run.variables,
+                     **{k: str(d / v) for k, v in outputs.items()}}
+        deck = DECKS / run.deck
+        key = self._key(variables, run.meta, files=(deck, soil.file, restart, *meshes.values()))
+        if self._done(d, key) is not None:
+            self.say(f"{progress}{run.name}: done before, skipped")
+            return
+        self.say(f"{progress}{run.name}: running")
+        t0 = time.monotonic()
+        text = self._liggghts(deck, variables, d / "liggghts.log", d)
+        wall = time.monotonic() - t0
+        steps = re.findall(r"^Loop time of \S+ on \d+ procs for (\d+) steps with (\d+) atoms", text,
+                           re.M)
+        n_steps = sum(int(s) for s, _ in steps)
+        particles = max((int(a) for _, a in steps), default=0)
+        self._finish(d, key, wall_s=round(wall, 1), np=self.np, steps=n_steps,
+                     particles=particles, dt_s=soil.dt_s, meta=run.meta)
+        rate = n_steps * particles / wall if wall > 0 else 0
+        self.say(f"{progress}{run.name}: {n_steps} steps, {particles} particles, {wall:.0f} s "
+                 f"({rate / 1e6:.2f} M particle-steps/s)")
+
+    def run_plan(self, plan):
+        self.out.mkdir(parents=True, exist_ok=True)
+        restarts = {}
+        for name, bed in plan.beds.items():
+            restarts[name], _ = self.bed(plan.soil, bed)
+        t0 = time.monotonic()
+        for i, run in enumerate(plan.runs):
+            eta = ""
+            if i > 0:
+                per = (time.monotonic() - t0) / i
+                eta = f", ~{per * (len(plan.runs) - i) / 60:.1f} min left"
+            self.run(plan.soil, run, restarts[run.bed], progress=f"[{i + 1}/{len(plan.runs)}{eta}] ")

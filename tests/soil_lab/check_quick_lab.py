@@ -1,0 +1,100 @@
+#!/usr/bin/python3
+"""The whole soil lab on the ci soil with the quick preset (CI smoke; docs/soil-lab.md):
+
+  soil-lab run ci --preset quick  -> every test's output, results.toml/csv and the PNGs; the
+                                     fitted values finite and in physically plausible ranges
+  soil-lab run ... again          -> every bed and run skipped (resume), in seconds
+  soil-lab scm DIR --out F.toml   -> an SCM soil file that wheel-rig --check loads unchanged
+  bad input                       -> exit 2 naming the unknown soil / test / option
+
+Exit 0 pass, 1 fail, 77 skip (liggghts-wheel not built).
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+LAB = ROOT / "soil_lab" / "soil-lab"
+failures = []
+
+
+def check(ok, what):
+    print(("ok:   " if ok else "FAIL: ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+
+
+def lab(*args, **kw):
+    return subprocess.run([str(LAB), *args], capture_output=True, text=True, **kw)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build-dir", required=True)
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--np", default="1")
+    a = ap.parse_args()
+    build = Path(a.build_dir)
+    if not (build / "bin" / "liggghts-wheel").is_file():
+        print("SKIP: liggghts-wheel not built")
+        return 77
+    out = Path(a.work) / "ci_quick"
+    env = {**os.environ, "WHEELSIM_BUILD_DIR": str(build)}
+    t0 = time.monotonic()
+    r = lab("run", "ci", "--preset", "quick", "--out", str(out), "--np", a.np, env=env)
+    print(r.stdout[-4000:], r.stderr[-2000:])
+    check(r.returncode == 0, f"soil-lab run exit 0 (got {r.returncode}, {time.monotonic() - t0:.0f} s)")
+    for f in ("soil.toml", "results.toml", "results.csv", "plate.png", "shear_curves.png",
+              "mohr_coulomb.png", "beds/plate/done.json", "plate_b0.02/plate.csv",
+              "plate_b0.032/plate.csv", "shear_s3000/shear.csv", "shear_s6000/shear.csv",
+              "shear_s9000/shear.csv", "repose/repose.dump"):
+        check((out / f).is_file(), f"{f} written")
+    res = tomllib.loads((out / "results.toml").read_text()) if (out / "results.toml").is_file() else {}
+    bulk, plate, shear = res.get("bulk", {}), res.get("plate", {}), res.get("shear", {})
+    check(1000 < bulk.get("bulk_density_kg_m3", 0) < 2500 and 0.2 < bulk.get("porosity", 0) < 0.6,
+          f"bulk density {bulk.get('bulk_density_kg_m3')} kg/m^3, porosity {bulk.get('porosity')}")
+    check(0 < plate.get("n", 0) <= 2 and plate.get("kphi_N_m_n2", 0) > 0,
+          f"Bekker n {plate.get('n')}, kphi {plate.get('kphi_N_m_n2')}")
+    # ci: sliding friction 0.5 and rolling friction 0.1 between glass-like spheres: a loose
+    # granular packing's internal friction angle lies well inside 15..45 deg.
+    check(15 < shear.get("friction_deg", 0) < 45, f"friction angle {shear.get('friction_deg')} deg")
+    check(len(res.get("cost", {})) == 6, f"cost of 6 runs recorded ({len(res.get('cost', {}))})")
+
+    t0 = time.monotonic()
+    r = lab("run", "ci", "--preset", "quick", "--out", str(out), "--np", a.np, env=env)
+    skipped = len(re.findall(r"done before, skipped", r.stdout))
+    check(r.returncode == 0 and skipped == 9,
+          f"re-run skips 3 beds and 6 runs ({skipped} skipped, {time.monotonic() - t0:.1f} s)")
+
+    scm = out / "ci_fitted.toml"
+    r = lab("scm", str(out), "--out", str(scm))
+    check(r.returncode == 0 and scm.is_file(), f"soil-lab scm wrote {scm} ({r.stderr.strip()})")
+    if scm.is_file():
+        text = (ROOT / "wheel_dynamics" / "examples" / "rig_scm.toml").read_text()
+        text = re.sub(r'(?m)^mesh = "[^"]*"', f'mesh = "{build / "meshes" / "test_small.obj"}"', text)
+        text = re.sub(r'(?m)^soil = "[^"]*"', f'soil = "{scm}"', text)
+        cfg = out / "rig_check.toml"
+        cfg.write_text(text)
+        r = subprocess.run([str(build / "bin" / "wheel-rig"), "--config", str(cfg), "--check"],
+                           capture_output=True, text=True)
+        check(r.returncode == 0, f"wheel-rig --check loads the fitted soil ({r.stderr.strip()})")
+        check("fitted from the DEM soil 'ci'" in scm.read_text(), "[source] names the DEM soil")
+
+    for args, message in ((("run", "nosuch"), "unknown soil 'nosuch'"),
+                          (("run", "ci", "--tests", "plate,sheer"), "did you mean 'shear'?"),
+                          (("run", "ci", "--tets", "plate"), "did you mean '--tests'?"),
+                          (("scm", str(out / "nothing"), "--out", "x.toml"), "not a soil-lab directory")):
+        r = lab(*args, env=env)
+        check(r.returncode == 2 and message in r.stderr,
+              f"soil-lab {' '.join(args)}: exit 2 with \"{message}\" (exit {r.returncode}: {r.stderr.strip()})")
+    print(f"{len(failures)} failed" if failures else "all checks passed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,56 @@
+"""soil-lab's test plan (soil_lab_py.plan): sizes from the grain size, and bad input named."""
+
+import unittest
+
+from soil_lab_py.plan import LabInputError, SoilInfo, make_plan
+
+SAND = SoilInfo(name="sand", file="/x/sand.in", dmin_m=0.004, dmax_m=0.008, dref_m=0.006,
+                density_kg_m3=2650.0, multisphere=False, dt_s=1e-5, youngs_Pa=5e7)
+
+
+class Plan(unittest.TestCase):
+    def test_standard_sizes_follow_the_grain_size(self):
+        p = make_plan(SAND, ("bulk", "plate", "shear", "repose"))
+        d = SAND.dmax_m
+        plates = [r for r in p.runs if r.test == "plate"]
+        self.assertEqual([r.meta["b_m"] for r in plates], [5 * d, 8 * d])
+        self.assertAlmostEqual(p.beds["plate"].length_m, 24 * d)  # 3 x the larger plate
+        self.assertAlmostEqual(p.beds["shear"].length_m, 12 * d)  # ASTM D3080: >= 10 d_max
+        self.assertGreaterEqual(p.beds["shear"].fill_height_m, 6 * d)
+        shear = [r for r in p.runs if r.test == "shear"]
+        self.assertEqual([r.meta["normal_stress_Pa"] for r in shear], [5e3, 1e4, 2e4])
+        # the lid fits inside the frame's hole
+        lid = float(shear[0].meshes["lid_mesh"][1])
+        hole = float(shear[0].meshes["frame_up_mesh"][1])
+        self.assertLess(lid, hole)
+        self.assertEqual(p.beds["repose"].length_m, 10 * d)
+
+    def test_bad_input_is_named(self):
+        cases = {
+            "unknown test 'sheer'": dict(tests=("sheer",)),
+            "unknown preset 'fast'": dict(tests=("plate",), preset="fast"),
+            "needs >= 3 normal stresses": dict(tests=("shear",), normal_stresses_Pa=(1e3, 2e3)),
+            "normal stress 1e+06 Pa is outside": dict(tests=("shear",),
+                                                      normal_stresses_Pa=(1e3, 2e3, 1e6)),
+            "normal stress -5 Pa is outside": dict(tests=("shear",),
+                                                   normal_stresses_Pa=(-5, 1e3, 2e3)),
+            "too wide for the plate bin": dict(tests=("plate",), plate_widths_m=(0.04, 0.1),
+                                               plate_bin_m=0.2),
+            "two different widths": dict(tests=("plate",), plate_widths_m=(0.05, 0.05)),
+            "less than 2 grains": dict(tests=("plate",), plate_widths_m=(0.01, 0.05)),
+        }
+        for message, kwargs in cases.items():
+            with self.subTest(message):
+                with self.assertRaises(LabInputError) as cm:
+                    make_plan(SAND, **kwargs)
+                self.assertIn(message, str(cm.exception))
+
+    def test_repose_rejects_multisphere_soils(self):
+        clumps = SoilInfo(**{**SAND.__dict__, "multisphere": True})
+        with self.assertRaisesRegex(LabInputError, "multisphere"):
+            make_plan(clumps, ("repose",))
+        make_plan(clumps, ("plate", "shear"))  # the other tests are fine
+
+
+if __name__ == "__main__":
+    unittest.main()
