@@ -37,6 +37,7 @@ class Results:
     repose_fits: List[repose.ReposeFit] = field(default_factory=list)
     repose_profiles: List[tuple] = field(default_factory=list)
     repose_error: Optional[str] = None  # why no angle could be fitted (too small a heap, ...)
+    quasi_static: List[dict] = field(default_factory=list)  # half-speed comparisons
     costs: List[dict] = field(default_factory=list)
 
     @property
@@ -61,6 +62,63 @@ def _done(directory):
     return json.loads(f.read_text()) if f.is_file() else None
 
 
+COST_KEYS = ("wall_s", "steps", "particles", "np", "dt_s")
+#: Quasi-static check: the result at half speed must differ by less than this (docs/soil-lab.md).
+QUASI_STATIC_TOLERANCE = {"plate": 0.05, "shear": 0.05, "repose": 1.5}  # relative, relative, deg
+
+
+def _runs(d, pattern):
+    """The finished runs matching `pattern`, without the half-speed ones."""
+    return [(run, _done(run)) for run in sorted(d.glob(pattern))
+            if not run.name.endswith("_half") and _done(run) is not None]
+
+
+def read_plate(run, done):
+    t = _table(run / "plate.csv", ("time_s", "sinkage_m", "force_N", "pressure_Pa", "contacts",
+                                   "phase"))
+    return {"b_m": done["meta"]["b_m"], "z": t["sinkage_m"], "p": t["pressure_Pa"],
+            "phase": t["phase"], "done": done}
+
+
+def plate_end_pressure(plate):
+    """Mean pressure over the last 20 % of the loading branch's sinkage range [Pa]."""
+    z, p = plate["z"][plate["phase"] == 1], plate["p"][plate["phase"] == 1]
+    return float(np.mean(p[z >= 0.8 * z.max()]))
+
+
+def read_shear(run, done):
+    t = _table(run / "shear.csv", ("time_s", "displacement_m", "shear_force_N", "tau_Pa",
+                                   "sigma_Pa", "lid_z_m", "phase"))
+    s = t["phase"] == 2
+    j, tau, sigma = t["displacement_m"][s], t["tau_Pa"][s], t["sigma_Pa"][s]
+    # The peak of a running mean over 5 % of the curve (the raw maximum is biased upwards by the
+    # DEM signal's noise); the residual and Janosi fits use the raw curve.
+    w = max(1, len(tau) // 20)
+    smooth = np.convolve(tau, np.ones(w) / w, mode="same") if len(tau) > w else tau
+    return {"sigma_Pa": float(np.mean(sigma)), "sigma_target_Pa": done["meta"]["normal_stress_Pa"],
+            "j": j, "tau": tau, "peak": fits.peak_and_residual(j, smooth),
+            "janosi": fits.fit_janosi(j, tau), "done": done}
+
+
+def read_repose(run, done, dmax):
+    """(fits, profiles, error) of a repose run: profiles along x and y through the heap's top."""
+    rows = np.loadtxt(run / "repose.dump", skiprows=9, ndmin=2)  # id x y z radius
+    x, y, z, rad = rows[:, 1], rows[:, 2], rows[:, 3], rows[:, 4]
+    B = done["meta"]["base_m"]
+    found, profiles = [], []
+    # bands |y| < B/4 and |x - B/2| < B/4, bins of d_max / 2 over the base
+    for u, v in ((x - 0.5 * B, y), (y, x - 0.5 * B)):
+        band = np.abs(v) < 0.25 * B
+        edges = np.arange(-0.5 * B, 0.5 * B + 1e-12, 0.5 * dmax)
+        px, ph = repose.surface_profile(u[band], z[band], rad[band], edges)
+        try:  # the heap's axis: the profile's highest point
+            found.append(repose.repose_angle(px, ph, axis_m=float(px[np.argmax(ph)])))
+        except FitInputError as e:
+            return [], [], f"no angle of repose: {e} ({len(rows)} particles left on a {B:.3g} m base)"
+        profiles.append((px, ph))
+    return found, profiles, None
+
+
 def analyse(directory):
     """Fits every test found in the lab directory `directory`."""
     d = Path(directory)
@@ -68,6 +126,7 @@ def analyse(directory):
     if not soil_file.is_file():
         raise LabResultError(f"{d} is not a soil-lab directory (no soil.toml): run `soil-lab run`")
     r = Results(soil=tomllib.loads(soil_file.read_text()), directory=d)
+    dmax = float(r.soil["dmax_m"])
 
     bed = _done(d / "beds" / "plate")
     if bed is not None:
@@ -77,16 +136,8 @@ def analyse(directory):
         r.bulk["particles"] = int(res.get("spheres", 0))
         r.bulk["compaction"] = res.get("compaction", "none")
 
-    for run in sorted(d.glob("plate_b*")):
-        done = _done(run)
-        if done is None:
-            continue
-        t = _table(run / "plate.csv", ("time_s", "sinkage_m", "force_N", "pressure_Pa",
-                                       "contacts", "phase"))
-        r.plates.append({"b_m": done["meta"]["b_m"], "z": t["sinkage_m"], "p": t["pressure_Pa"],
-                         "phase": t["phase"], "done": done})
-        r.costs.append({"run": run.name, **{k: done[k] for k in ("wall_s", "steps", "particles",
-                                                                 "np", "dt_s")}})
+    for run, done in _runs(d, "plate_b*"):
+        r.plates.append(read_plate(run, done))
     if len(r.plates) >= 2:
         loading = [(p["b_m"], p["z"][p["phase"] == 1], p["p"][p["phase"] == 1]) for p in r.plates]
         r.bekker = fits.fit_bekker(loading)
@@ -94,55 +145,48 @@ def analyse(directory):
             cycle = p["phase"] <= 2
             r.unload[p["b_m"]] = fits.fit_unload_stiffness(p["z"][cycle], p["p"][cycle])
 
-    for run in sorted(d.glob("shear_s*")):
-        done = _done(run)
-        if done is None:
-            continue
-        t = _table(run / "shear.csv", ("time_s", "displacement_m", "shear_force_N", "tau_Pa",
-                                       "sigma_Pa", "lid_z_m", "phase"))
-        s = t["phase"] == 2
-        j, tau, sigma = t["displacement_m"][s], t["tau_Pa"][s], t["sigma_Pa"][s]
-        # The peak of a running mean over 5 % of the curve (the raw maximum is biased upwards
-        # by the DEM signal's noise); the residual and Janosi fits use the raw curve.
-        w = max(1, len(tau) // 20)
-        smooth = np.convolve(tau, np.ones(w) / w, mode="same") if len(tau) > w else tau
-        peak = fits.peak_and_residual(j, smooth)
-        janosi = fits.fit_janosi(j, tau)
-        r.shears.append({"sigma_Pa": float(np.mean(sigma)), "sigma_target_Pa":
-                         done["meta"]["normal_stress_Pa"], "j": j, "tau": tau, "peak": peak,
-                         "janosi": janosi, "done": done})
-        r.costs.append({"run": run.name, **{k: done[k] for k in ("wall_s", "steps", "particles",
-                                                                 "np", "dt_s")}})
+    for run, done in _runs(d, "shear_s*"):
+        r.shears.append(read_shear(run, done))
     r.shears.sort(key=lambda s: s["sigma_Pa"])
     if len(r.shears) >= 3:
         sig = [s["sigma_Pa"] for s in r.shears]
         r.mc_peak = fits.fit_mohr_coulomb(sig, [s["peak"].tau_peak_Pa for s in r.shears])
         r.mc_residual = fits.fit_mohr_coulomb(sig, [s["peak"].tau_residual_Pa for s in r.shears])
 
-    run = d / "repose"
-    done = _done(run)
-    if done is not None:
-        rows = np.loadtxt(run / "repose.dump", skiprows=9, ndmin=2)  # id x y z radius
-        x, y, z, rad = rows[:, 1], rows[:, 2], rows[:, 3], rows[:, 4]
-        B = done["meta"]["base_m"]
-        dmax = float(r.soil["dmax_m"])
-        # Two profiles through the heap's axis: along x (|y| < B/4) and along y (|x - B/2| < B/4),
-        # bins of d_max / 2 over the base.
-        for u, v in ((x - 0.5 * B, y), (y, x - 0.5 * B)):
-            band = np.abs(v) < 0.25 * B
-            edges = np.arange(-0.5 * B, 0.5 * B + 1e-12, 0.5 * dmax)
-            px, ph = repose.surface_profile(u[band], z[band], rad[band], edges)
-            try:  # the heap's axis: the profile's highest point
-                fit = repose.repose_angle(px, ph, axis_m=float(px[np.argmax(ph)]))
-            except FitInputError as e:
-                r.repose_error = (f"no angle of repose: {e} ({len(rows)} particles left on a "
-                                  f"{B:.3g} m base)")
-                r.repose_fits, r.repose_profiles = [], []
-                break
-            r.repose_profiles.append((px, ph))
-            r.repose_fits.append(fit)
-        r.costs.append({"run": run.name, **{k: done[k] for k in ("wall_s", "steps", "particles",
-                                                                 "np", "dt_s")}})
+    for run, done in _runs(d, "repose"):
+        r.repose_fits, r.repose_profiles, r.repose_error = read_repose(run, done, dmax)
+
+    # The quasi-static check: each half-speed run against the run it halves.
+    for run in sorted(d.glob("*_half")):
+        half, full = _done(run), _done(d / run.name[: -len("_half")])
+        if half is None or full is None:
+            continue
+        test = run.name.split("_")[0]
+        full_dir = d / run.name[: -len("_half")]
+        if test == "plate":
+            a, b = plate_end_pressure(read_plate(full_dir, full)), plate_end_pressure(
+                read_plate(run, half))
+            what, unit, diff = "pressure at the end of loading", "Pa", (b - a) / a
+        elif test == "shear":
+            a = read_shear(full_dir, full)["peak"].tau_peak_Pa
+            b = read_shear(run, half)["peak"].tau_peak_Pa
+            what, unit, diff = "peak shear stress", "Pa", (b - a) / a
+        else:
+            fa, _, ea = read_repose(full_dir, full, dmax)
+            fb, _, eb = read_repose(run, half, dmax)
+            if ea or eb:
+                continue
+            a, b = np.mean([f.angle_deg for f in fa]), np.mean([f.angle_deg for f in fb])
+            what, unit, diff = "angle of repose", "deg", b - a
+        tol = QUASI_STATIC_TOLERANCE[test]
+        r.quasi_static.append({"run": full_dir.name, "quantity": what, "unit": unit,
+                               "full_speed": float(a), "half_speed": float(b),
+                               "difference": float(diff), "tolerance": tol,
+                               "relative": test != "repose", "passed": bool(abs(diff) <= tol)})
+
+    for run, done in [(q, _done(q)) for q in sorted(d.iterdir()) if q.is_dir()]:
+        if done is not None and "steps" in done:
+            r.costs.append({"run": run.name, **{k: done[k] for k in COST_KEYS}})
     return r
 
 
@@ -185,9 +229,13 @@ def summary(r: Results):
                          "method": "lifted frame on a fixed rough base; profiles along x and y "
                                    "through the axis, flanks fitted between 20 % and 80 % of the "
                                    "heap height"}
+    if r.quasi_static:
+        out["quasi_static"] = {q["run"]: {k: q[k] for k in ("quantity", "unit", "full_speed",
+                                                              "half_speed", "difference",
+                                                              "tolerance", "relative", "passed")}
+                               for q in r.quasi_static}
     if r.costs:
-        out["cost"] = {c["run"]: {k: c[k] for k in ("wall_s", "steps", "particles", "np", "dt_s")}
-                       for c in r.costs}
+        out["cost"] = {c["run"]: {k: c[k] for k in COST_KEYS} for c in r.costs}
     return out
 
 

@@ -67,7 +67,8 @@ def _run(a):
     out.mkdir(parents=True, exist_ok=True)
     lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet)
     soil = lab.soil_info(soil_file)
-    p = plan.make_plan(soil, tests, a.preset, stresses, bed_vars, widths, a.plate_bin)
+    p = plan.make_plan(soil, tests, a.preset, stresses, bed_vars, widths, a.plate_bin,
+                       a.speed_check)
     (out / "soil.toml").write_text(tomli_w.dumps({
         "name": soil.name, "file": soil.file, "preset": a.preset, "tests": list(p.tests),
         "dmin_m": soil.dmin_m, "dmax_m": soil.dmax_m, "dref_m": soil.dref_m,
@@ -95,6 +96,12 @@ def _report(directory, quiet=False):
                           + ", ".join(f"{k} {v:.4g}" for k, v in vals.items()))
         if r.repose_error:
             print(f"soil-lab: warning: repose: {r.repose_error}")
+        for q in r.quasi_static:
+            diff = f"{100 * q['difference']:+.1f} %" if q["relative"] else \
+                f"{q['difference']:+.2f} {q['unit']}"
+            tol = f"{100 * q['tolerance']:g} %" if q["relative"] else f"{q['tolerance']:g} {q['unit']}"
+            print(f"soil-lab: quasi-static: {q['run']}: {q['quantity']} at half speed {diff} "
+                  f"(tolerance {tol}): {'ok' if q['passed'] else 'NOT quasi-static'}")
     return 0
 
 
@@ -120,6 +127,9 @@ def main(argv=None):
                    help="the two square plates' sides [m] (default 5 and 8 d_max; quick 2.5, 4)")
     r.add_argument("--plate-bin", type=float, metavar="SIDE",
                    help="the plate test's square bin side [m] (default 3 x the larger plate)")
+    r.add_argument("--speed-check", action="store_true",
+                   help="quasi-static check: also run the larger plate, the middle normal stress "
+                        "and the repose test at half speed and report the differences")
     r.add_argument("--bed-var", action="append", metavar="NAME=VALUE",
                    help="an inputs/in.soilbin variable for every bed (e.g. compaction=plate)")
     r.add_argument("--build-dir", metavar="D", help="build directory (default: <repo>/build)")

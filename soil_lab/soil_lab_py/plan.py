@@ -69,11 +69,12 @@ def _f(x):
 
 
 def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None, bed_vars=None,
-              plate_widths_m=None, plate_bin_m=None):
+              plate_widths_m=None, plate_bin_m=None, speed_check=False):
     """The beds and runs for `tests` on `soil`. Raises LabInputError for an unknown test or preset,
     plates that are not two different widths or do not fit their bin with a plate width of soil
     on every side, a normal stress outside what the box can hold, or a repose test on a
-    multisphere soil."""
+    multisphere soil. speed_check: also the larger plate, the middle normal stress and the repose
+    test at half speed (runs named <run>_half), for the quasi-static check."""
     tests = tuple(tests)
     for t in tests:
         if t not in TEST_NAMES:
@@ -176,4 +177,30 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
             variables={"frame_h": _f(frame_h), "lift_speed": "0.05" if quick else "0.02",
                        "settle": "0.5" if quick else "1.0", "clearance": _f(d)},
             meta={"base_m": B}))
+    if speed_check:
+        runs += _half_speed_runs(runs)
     return Plan(soil=soil, preset=preset, tests=tests, beds=beds, runs=runs)
+
+
+SPEED_VARIABLES = {"plate": "plate_speed", "shear": "shear_speed", "repose": "lift_speed"}
+
+
+def _half_speed_runs(runs):
+    """The quasi-static check's runs: the larger plate, the middle normal stress, the repose test,
+    each at half its speed (same bed and tools)."""
+    picked = []
+    plates = [r for r in runs if r.test == "plate"]
+    shears = [r for r in runs if r.test == "shear"]
+    if plates:
+        picked.append(max(plates, key=lambda r: r.meta["b_m"]))
+    if shears:
+        picked.append(sorted(shears, key=lambda r: r.meta["normal_stress_Pa"])[len(shears) // 2])
+    picked += [r for r in runs if r.test == "repose"]
+    out = []
+    for r in picked:
+        var = SPEED_VARIABLES[r.test]
+        half = float(r.variables[var]) / 2
+        out.append(Run(name=f"{r.name}_half", test=r.test, deck=r.deck, bed=r.bed,
+                       meshes=r.meshes, variables={**r.variables, var: _f(half)},
+                       meta={**r.meta, "speed_m_s": half, "half_of": r.name}))
+    return out

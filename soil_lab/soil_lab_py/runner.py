@@ -172,7 +172,8 @@ class Lab:
     def run(self, soil, run, restart, progress=""):
         d = self.out / run.name
         d.mkdir(parents=True, exist_ok=True)
-        meshes = {var: str(self.mesh(f"{run.name}_{var}", args)) for var, args in run.meshes.items()}
+        base = run.meta.get("half_of", run.name)  # a half-speed run uses its model's meshes
+        meshes = {var: str(self.mesh(f"{base}_{var}", args)) for var, args in run.meshes.items()}
         outputs = {"plate": {"out_csv": "plate.csv"}, "shear": {"out_csv": "shear.csv"},
                    "repose": {"out_dump": "repose.dump"}}[run.test]
         variables = {"restart_file": restart, **meshes, **run.variables,

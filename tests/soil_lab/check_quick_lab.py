@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """The whole soil lab on the ci soil with the quick preset (CI smoke; docs/soil-lab.md):
 
-  soil-lab run ci --preset quick  -> every test's output, results.toml/csv and the PNGs; the
-                                     fitted values finite and in physically plausible ranges
+  soil-lab run ci --preset quick --speed-check
+                                  -> every test's output, results.toml/csv and the PNGs; the
+                                     fitted values finite and in physically plausible ranges; the
+                                     half-speed comparisons (quasi-static check) reported
   soil-lab run ... again          -> every bed and run skipped (resume), in seconds
   soil-lab scm DIR --out F.toml   -> an SCM soil file that wheel-rig --check loads unchanged
   bad input                       -> exit 2 naming the unknown soil / test / option
@@ -46,7 +48,8 @@ def main():
     out = Path(a.work) / "ci_quick"
     env = {**os.environ, "WHEELSIM_BUILD_DIR": str(build)}
     t0 = time.monotonic()
-    r = lab("run", "ci", "--preset", "quick", "--out", str(out), "--np", a.np, env=env)
+    r = lab("run", "ci", "--preset", "quick", "--speed-check", "--out", str(out), "--np", a.np,
+            env=env)
     print(r.stdout[-4000:], r.stderr[-2000:])
     check(r.returncode == 0, f"soil-lab run exit 0 (got {r.returncode}, {time.monotonic() - t0:.0f} s)")
     for f in ("soil.toml", "results.toml", "results.csv", "plate.png", "shear_curves.png",
@@ -63,13 +66,18 @@ def main():
     # ci: sliding friction 0.5 and rolling friction 0.1 between glass-like spheres: a loose
     # granular packing's internal friction angle lies well inside 15..45 deg.
     check(15 < shear.get("friction_deg", 0) < 45, f"friction angle {shear.get('friction_deg')} deg")
-    check(len(res.get("cost", {})) == 6, f"cost of 6 runs recorded ({len(res.get('cost', {}))})")
+    check(len(res.get("cost", {})) == 9, f"cost of 9 runs recorded ({len(res.get('cost', {}))})")
+    qs = res.get("quasi_static", {})
+    check(set(qs) >= {"plate_b0.032", "shear_s6000"} and
+          all(abs(q["difference"]) < 1 and q["half_speed"] > 0 for q in qs.values()),
+          f"quasi-static comparisons of the plate and the shear box ({sorted(qs)})")
 
     t0 = time.monotonic()
-    r = lab("run", "ci", "--preset", "quick", "--out", str(out), "--np", a.np, env=env)
+    r = lab("run", "ci", "--preset", "quick", "--speed-check", "--out", str(out), "--np", a.np,
+            env=env)
     skipped = len(re.findall(r"done before, skipped", r.stdout))
-    check(r.returncode == 0 and skipped == 9,
-          f"re-run skips 3 beds and 6 runs ({skipped} skipped, {time.monotonic() - t0:.1f} s)")
+    check(r.returncode == 0 and skipped == 12,
+          f"re-run skips 3 beds and 9 runs ({skipped} skipped, {time.monotonic() - t0:.1f} s)")
 
     scm = out / "ci_fitted.toml"
     r = lab("scm", str(out), "--out", str(scm))

@@ -52,5 +52,17 @@ class Plan(unittest.TestCase):
         make_plan(clumps, ("plate", "shear"))  # the other tests are fine
 
 
+    def test_speed_check_halves_one_run_per_test(self):
+        p = make_plan(SAND, ("plate", "shear", "repose"), speed_check=True)
+        half = {r.name: r for r in p.runs if r.name.endswith("_half")}
+        self.assertEqual(sorted(half), ["plate_b0.064_half", "repose_half", "shear_s10000_half"])
+        full = {r.name: r for r in p.runs}
+        for name, r in half.items():
+            var = {"plate": "plate_speed", "shear": "shear_speed", "repose": "lift_speed"}[r.test]
+            self.assertAlmostEqual(float(r.variables[var]),
+                                   float(full[name[:-5]].variables[var]) / 2)
+            self.assertEqual(r.meshes, full[name[:-5]].meshes)
+
+
 if __name__ == "__main__":
     unittest.main()
