@@ -31,6 +31,7 @@ class Results:
     plates: List[dict] = field(default_factory=list)  # b_m, z, p, phase, done
     bekker: Optional[fits.BekkerFit] = None
     unload: Dict[float, fits.UnloadFit] = field(default_factory=dict)  # by b_m
+    unload_errors: Dict[float, str] = field(default_factory=dict)  # by b_m: why no Ke was fitted
     shears: List[dict] = field(default_factory=list)  # sigma_Pa, j, tau, peak, janosi, done
     mc_peak: Optional[fits.MohrCoulombFit] = None
     mc_residual: Optional[fits.MohrCoulombFit] = None
@@ -142,8 +143,16 @@ def analyse(directory):
         loading = [(p["b_m"], p["z"][p["phase"] == 1], p["p"][p["phase"] == 1]) for p in r.plates]
         r.bekker = fits.fit_bekker(loading)
         for p in r.plates:
-            cycle = p["phase"] <= 2
-            r.unload[p["b_m"]] = fits.fit_unload_stiffness(p["z"][cycle], p["p"][cycle])
+            # The unloading branch starts at the turning point (the last loading sample): a noisy
+            # pressure maximum earlier in the loading must not be taken for the start of unloading.
+            i_turn = np.flatnonzero(p["phase"] == 1)[-1]
+            branch = slice(i_turn, None)
+            cycle = p["phase"][branch] <= 2
+            try:
+                r.unload[p["b_m"]] = fits.fit_unload_stiffness(p["z"][branch][cycle],
+                                                               p["p"][branch][cycle])
+            except FitInputError as e:
+                r.unload_errors[p["b_m"]] = str(e)
 
     for run, done in _runs(d, "shear_s*"):
         r.shears.append(read_shear(run, done))
@@ -206,6 +215,8 @@ def summary(r: Results):
                         "r2": b.r2, "points": b.n_points, "plate_widths_m": list(b.widths_m),
                         "at_bound": list(b.at_bound),
                         "elastic_K_Pa_m": {f"b{w:.4g}": u.Ke_Pa_m for w, u in r.unload.items()}}
+        if r.unload_errors:
+            out["plate"]["elastic_K_errors"] = {f"b{w:.4g}": e for w, e in r.unload_errors.items()}
     if r.shears:
         out["shear"] = {"stresses": [
             {"sigma_n_Pa": s["sigma_Pa"], "sigma_target_Pa": s["sigma_target_Pa"],
@@ -291,7 +302,11 @@ def write_scm(r: Results, path, name=None):
                              f"'shear' test first")
     dem = r.soil["name"]
     widths = ", ".join(f"{p['b_m']:.3g}" for p in r.plates)
-    b_large = max(r.unload)
+    if not r.unload:
+        raise LabResultError(f"{r.directory}: no plate's unloading branch could be fitted for the "
+                             "elastic stiffness: " + "; ".join(
+                                 f"b = {w:.3g} m: {e}" for w, e in sorted(r.unload_errors.items())))
+    b_large = max(r.unload)  # the largest plate whose unloading branch was fitted
     ke = r.unload[b_large]
     sigmas = ", ".join(f"{s['sigma_Pa'] / 1e3:.3g}" for s in r.shears)
     k_values = ", ".join(f"{s['janosi'].K_m:.3g}" for s in r.shears)

@@ -96,6 +96,8 @@ def _report(directory, quiet=False):
                           + ", ".join(f"{k} {v:.4g}" for k, v in vals.items()))
         if r.repose_error:
             print(f"soil-lab: warning: repose: {r.repose_error}")
+        for w, e in sorted(r.unload_errors.items()):
+            print(f"soil-lab: warning: plate b = {w:.4g} m: no elastic stiffness: {e}")
         for q in r.quasi_static:
             diff = f"{100 * q['difference']:+.1f} %" if q["relative"] else \
                 f"{q['difference']:+.2f} {q['unit']}"

@@ -165,9 +165,12 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
             raise LabInputError(
                 f"the repose test does not support multisphere soils yet ('{soil.name}': its frozen "
                 f"rough base needs single spheres); run the other tests with --tests")
-        # Lifted frame on a fixed rough base of side B (>= 10 d_max), column 1.2 B high.
-        B = (8.0 if quick else 10.0) * d
-        Hc = (1.0 if quick else 1.2) * B
+        # Lifted frame on a fixed rough base of side B, column 0.4 B high. The heap left on the
+        # base is a pyramid of height B tan(theta) / 2: B = 30 d_max makes it ~8 grains high at
+        # 29 deg (10 d_max left ~3 grains, too few surface points for a fit). Its volume
+        # B^3 tan(theta) / 6 needs a column of at least B tan(theta) / 6 (0.14 B at 40 deg).
+        B = (16.0 if quick else 30.0) * d
+        Hc = 0.4 * B
         beds["repose"] = Bed("repose", B, B, Hc, bed_vars)
         wall = max(0.5 * d, 0.005)
         frame_h = Hc * 1.4 + 2 * d
