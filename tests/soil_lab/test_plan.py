@@ -23,8 +23,8 @@ class Plan(unittest.TestCase):
         lid = float(shear[0].meshes["lid_mesh"][1])
         hole = float(shear[0].meshes["frame_up_mesh"][1])
         self.assertLess(lid, hole)
-        self.assertEqual(p.beds["repose"].length_m, 30 * d)
-        self.assertAlmostEqual(p.beds["repose"].fill_height_m, 12 * d)
+        self.assertEqual(p.beds["repose"].length_m, 20 * d)
+        self.assertAlmostEqual(p.beds["repose"].fill_height_m, 8 * d)
 
     def test_bad_input_is_named(self):
         cases = {
