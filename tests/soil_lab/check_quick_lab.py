@@ -14,6 +14,7 @@ Exit 0 pass, 1 fail, 77 skip (liggghts-wheel not built).
 import argparse
 import os
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -46,6 +47,7 @@ def main():
         print("SKIP: liggghts-wheel not built")
         return 77
     out = Path(a.work) / "ci_quick"
+    shutil.rmtree(out, ignore_errors=True)  # a fresh lab: the first run must do everything
     env = {**os.environ, "WHEELSIM_BUILD_DIR": str(build)}
     t0 = time.monotonic()
     r = lab("run", "ci", "--preset", "quick", "--speed-check", "--out", str(out), "--np", a.np,
