@@ -165,13 +165,14 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
             raise LabInputError(
                 f"the repose test does not support multisphere soils yet ('{soil.name}': its frozen "
                 f"rough base needs single spheres); run the other tests with --tests")
-        # Lifted frame on a fixed rough base of side B, column 0.4 B high. The heap left on the
+        # Lifted frame on a fixed rough base of side B, column 0.5 B high. The heap left on the
         # base is a pyramid of height B tan(theta) / 2: B = 20 d_max makes it 5.5 grains high at
         # 29 deg, 8.4 at 40 deg (10 d_max left ~3 grains, too few surface points for a fit; 30
         # d_max would cost 3.4x the particles). Its volume B^3 tan(theta) / 6 needs a column of
-        # at least B tan(theta) / 6 (0.14 B at 40 deg).
+        # at least B tan(theta) / 6, and a column lower than the pyramid, B tan(theta) / 2, leaves
+        # a flat top (seen at 39 deg with 0.4 B): 0.5 B holds a full pyramid up to 45 deg.
         B = (12.0 if quick else 20.0) * d
-        Hc = 0.4 * B
+        Hc = 0.5 * B
         beds["repose"] = Bed("repose", B, B, Hc, bed_vars)
         wall = max(0.5 * d, 0.005)
         frame_h = Hc * 1.4 + 2 * d

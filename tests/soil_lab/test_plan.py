@@ -24,7 +24,7 @@ class Plan(unittest.TestCase):
         hole = float(shear[0].meshes["frame_up_mesh"][1])
         self.assertLess(lid, hole)
         self.assertEqual(p.beds["repose"].length_m, 20 * d)
-        self.assertAlmostEqual(p.beds["repose"].fill_height_m, 8 * d)
+        self.assertAlmostEqual(p.beds["repose"].fill_height_m, 10 * d)
 
     def test_bad_input_is_named(self):
         cases = {
