@@ -274,3 +274,28 @@ TEST(ScmSoilLoader, SyntaxErrorsAndMissingFiles) {
 }
 
 } // namespace
+
+// inputs/scm_soils/from_dem/: SCM files fitted to a DEM soil by soil-lab (docs/soil-lab.md). Each
+// loads unchanged, has physically sensible values, and its [source] tables say it was fitted
+// from DEM. The directory may be empty while no DEM soil has been calibrated.
+TEST(ScmSoilFiles, FittedFromDemFilesLoadAndSayWhereTheyCameFrom) {
+  const std::filesystem::path dir = std::filesystem::path(SCM_SOILS_DIR) / "from_dem";
+  ASSERT_TRUE(std::filesystem::is_directory(dir));
+  const std::string readme = read((dir / "README.md").string());
+  for (const auto &e : std::filesystem::directory_iterator(dir)) {
+    if (e.path().extension() != ".toml")
+      continue;
+    SCOPED_TRACE(e.path().string());
+    const SoilParameters s = load_soil_file(e.path().string());
+    EXPECT_GT(s.Bekker_n, 0.0);
+    EXPECT_GT(s.Bekker_Kphi, 0.0);
+    EXPECT_GT(s.Mohr_friction, 0.0);
+    EXPECT_LT(s.Mohr_friction, kPi / 4);
+    EXPECT_GT(s.Janosi_shear, 0.0);
+    const toml::table doc = toml::parse_file(e.path().string());
+    const auto src = doc["source"]["bekker"]["n"].value<std::string>();
+    ASSERT_TRUE(src.has_value());
+    EXPECT_NE(src->find("DEM"), std::string::npos) << *src;
+    EXPECT_NE(readme.find(e.path().filename().string()), std::string::npos);
+  }
+}
