@@ -29,23 +29,31 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void run_one(const std::string &name, const wm::WheelSpec &spec, double density,
-             const std::string &prefix, const std::vector<std::string> &formats,
-             const std::string &props_path) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const wm::GeneratedSolid wheel = wm::generate_wheel(spec, density);
+/// Writes a generated solid (wheel or tool): mesh files under `prefix` (none if empty), the mass
+/// properties to `props_path` (none if empty), and prints the properties and what was written.
+/// Timing goes to stdout only, never into result files.
+template <class Spec>
+void write_solid(const std::string &name, const Spec &spec, const wm::GeneratedSolid &solid,
+                 const std::string &prefix, const std::vector<std::string> &formats,
+                 const std::string &props_path, std::chrono::steady_clock::time_point t0) {
   std::vector<std::string> files;
   if (!prefix.empty())
-    files = wm::write_mesh_files(wheel.mesh, prefix, formats);
+    files = wm::write_mesh_files(solid.mesh, prefix, formats);
   if (!props_path.empty())
-    wm::write_properties(props_path, name, spec, wheel, files);
-  std::cout << wm::format_properties(name, spec, wheel);
+    wm::write_properties(props_path, name, spec, solid, files);
+  std::cout << wm::format_properties(name, spec, solid);
   for (const auto &f : files)
     std::cout << "  wrote " << f << "\n";
   if (!props_path.empty())
     std::cout << "  wrote " << props_path << "\n";
-  // Timing goes to stdout only, never into result files.
   std::cout << "  generated in " << seconds_since(t0) << " s\n";
+}
+
+void run_one(const std::string &name, const wm::WheelSpec &spec, double density,
+             const std::string &prefix, const std::vector<std::string> &formats,
+             const std::string &props_path) {
+  const auto t0 = std::chrono::steady_clock::now();
+  write_solid(name, spec, wm::generate_wheel(spec, density), prefix, formats, props_path, t0);
 }
 
 /// The tool mode in brief: the footer of `wheel-mesh --help`, and `wheel-mesh tool --help`.
@@ -157,18 +165,7 @@ int tool_main(int argc, char **argv) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::string name =
         out_prefix.empty() ? syntax->name : std::filesystem::path(out_prefix).filename().string();
-    const wm::GeneratedSolid tool = wm::generate_tool(spec, density);
-    std::vector<std::string> files;
-    if (!out_prefix.empty())
-      files = wm::write_mesh_files(tool.mesh, out_prefix, formats);
-    if (!props_path.empty())
-      wm::write_properties(props_path, name, spec, tool, files);
-    std::cout << wm::format_properties(name, spec, tool);
-    for (const auto &f : files)
-      std::cout << "  wrote " << f << "\n";
-    if (!props_path.empty())
-      std::cout << "  wrote " << props_path << "\n";
-    std::cout << "  generated in " << seconds_since(t0) << " s\n"; // stdout only
+    write_solid(name, spec, wm::generate_tool(spec, density), out_prefix, formats, props_path, t0);
     return wheelsim::cli::kExitSuccess;
   } catch (const wm::ToolSpecError &e) {
     std::cerr << tool_program << ": error: " << e.what() << "\n";

@@ -28,25 +28,23 @@ def _list(text, what):
     return items
 
 
+def _numbers(text, option, expected):
+    """The comma-separated numbers of `option` (None if not given), or a LabInputError."""
+    if not text:
+        return None
+    try:
+        return [float(x) for x in _list(text, option)]
+    except ValueError:
+        raise plan.LabInputError(f"{option}: expected {expected}, got '{text}'") from None
+
+
 def _run(a):
     import tomli_w
 
     build = Path(a.build_dir or os.environ.get("WHEELSIM_BUILD_DIR") or REPO / "build").resolve()
     tests = _list(a.tests, "--tests")
-    stresses = None
-    if a.normal_stresses:
-        try:
-            stresses = [float(s) for s in _list(a.normal_stresses, "--normal-stresses")]
-        except ValueError:
-            raise plan.LabInputError(f"--normal-stresses: expected numbers in Pa, got "
-                                     f"'{a.normal_stresses}'") from None
-    widths = None
-    if a.plate_widths:
-        try:
-            widths = [float(b) for b in _list(a.plate_widths, "--plate-widths")]
-        except ValueError:
-            raise plan.LabInputError(f"--plate-widths: expected two widths in m, got "
-                                     f"'{a.plate_widths}'") from None
+    stresses = _numbers(a.normal_stresses, "--normal-stresses", "numbers in Pa")
+    widths = _numbers(a.plate_widths, "--plate-widths", "two widths in m")
     bed_vars = {}
     for item in a.bed_var or []:
         if "=" not in item or item.startswith("="):
