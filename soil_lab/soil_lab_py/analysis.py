@@ -40,6 +40,7 @@ class Results:
     repose_error: Optional[str] = None  # why no angle could be fitted (too small a heap, ...)
     quasi_static: List[dict] = field(default_factory=list)  # half-speed comparisons
     costs: List[dict] = field(default_factory=list)
+    bed_costs: Dict[str, float] = field(default_factory=dict)  # bed name -> wall time [s]
 
     @property
     def janosi_K_m(self):
@@ -196,12 +197,17 @@ def analyse(directory):
     for run, done in [(q, _done(q)) for q in sorted(d.iterdir()) if q.is_dir()]:
         if done is not None and "steps" in done:
             r.costs.append({"run": run.name, **{k: done[k] for k in COST_KEYS}})
+    beds = d / "beds"
+    for bed, done in [(q, _done(q)) for q in sorted(beds.iterdir())] if beds.is_dir() else []:
+        if done is not None and "wall_s" in done:
+            r.bed_costs[bed.name] = float(done["wall_s"])
     return r
 
 
 def summary(r: Results):
     """results.toml's content: every measured value with its unit in the key."""
-    out = {"soil": {k: r.soil[k] for k in ("name", "file", "preset") if k in r.soil}}
+    out = {"soil": {k: r.soil[k] for k in ("name", "file", "preset", "invocations")
+                    if k in r.soil}}
     if r.bulk:
         out["bulk"] = {"bulk_density_kg_m3": r.bulk["bulk_density"],
                        "porosity": r.bulk["porosity"],
@@ -247,6 +253,11 @@ def summary(r: Results):
                                for q in r.quasi_static}
     if r.costs:
         out["cost"] = {c["run"]: {k: c[k] for k in COST_KEYS} for c in r.costs}
+    if r.costs or r.bed_costs:
+        runs_s, beds_s = sum(c["wall_s"] for c in r.costs), sum(r.bed_costs.values())
+        out["cost_total"] = {"beds_wall_s": beds_s, "runs_wall_s": runs_s,
+                             "lab_wall_s": beds_s + runs_s,
+                             "beds": {k: v for k, v in r.bed_costs.items()}}
     return out
 
 

@@ -28,6 +28,34 @@ def _list(text, what):
     return items
 
 
+def _invocations(soil_toml):
+    """The provenance of earlier `soil-lab run`s into this directory (a resumed lab has several)."""
+    import tomllib
+
+    try:
+        return tomllib.loads(soil_toml.read_text()).get("invocations", [])
+    except (OSError, tomllib.TOMLDecodeError):
+        return []
+
+
+def _provenance(np_ranks):
+    """Who made these results: command, git commit (and whether the tree had changes), machine,
+    start time (UTC)."""
+    import datetime
+    import platform
+    import subprocess
+    import sys
+
+    def git(*args):
+        r = subprocess.run(["git", "-C", str(REPO), *args], capture_output=True, text=True)
+        return r.stdout.strip() if r.returncode == 0 else "unknown"
+
+    return {"command": " ".join(["soil-lab"] + sys.argv[1:]), "git_commit": git("rev-parse", "HEAD"),
+            "git_changes": git("status", "--porcelain", "--untracked-files=no") not in ("", "unknown"),
+            "host": platform.node(), "cores": os.cpu_count() or 0, "np": np_ranks,
+            "started_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")}
+
+
 def _numbers(text, option, expected):
     """The comma-separated numbers of `option` (None if not given), or a LabInputError."""
     if not text:
@@ -71,7 +99,8 @@ def _run(a):
         "name": soil.name, "file": soil.file, "preset": a.preset, "tests": list(p.tests),
         "dmin_m": soil.dmin_m, "dmax_m": soil.dmax_m, "dref_m": soil.dref_m,
         "density_kg_m3": soil.density_kg_m3, "multisphere": soil.multisphere, "dt_s": soil.dt_s,
-        "youngs_Pa": soil.youngs_Pa}))
+        "youngs_Pa": soil.youngs_Pa,
+        "invocations": _invocations(out / "soil.toml") + [_provenance(a.np)]}))
     lab.say(f"soil '{soil.name}' ({soil.file}): d {soil.dmin_m:g}..{soil.dmax_m:g} m, dt "
             f"{soil.dt_s:.4g} s; tests {', '.join(p.tests)} ({a.preset}); {len(p.beds)} beds, "
             f"{len(p.runs)} runs on {a.np} rank(s) into {out}")
@@ -94,6 +123,10 @@ def _report(directory, quiet=False):
                           + ", ".join(f"{k} {v:.4g}" for k, v in vals.items()))
         if r.repose_error:
             print(f"soil-lab: warning: repose: {r.repose_error}")
+        if r.costs or r.bed_costs:
+            c = analysis.summary(r)["cost_total"]
+            print(f"soil-lab: cost: beds {c['beds_wall_s']:.0f} s + runs {c['runs_wall_s']:.0f} s "
+                  f"= {c['lab_wall_s'] / 60:.1f} min of wall time")
         for w, e in sorted(r.unload_errors.items()):
             print(f"soil-lab: warning: plate b = {w:.4g} m: no elastic stiffness: {e}")
         for q in r.quasi_static:

@@ -69,6 +69,13 @@ def main():
     # granular packing's internal friction angle lies well inside 15..45 deg.
     check(15 < shear.get("friction_deg", 0) < 45, f"friction angle {shear.get('friction_deg')} deg")
     check(len(res.get("cost", {})) == 9, f"cost of 9 runs recorded ({len(res.get('cost', {}))})")
+    total = res.get("cost_total", {})
+    check(len(total.get("beds", {})) == 3 and total.get("lab_wall_s", 0) > total.get("runs_wall_s", 0) > 0,
+          f"lab wall time = beds + runs ({total})")
+    inv = res.get("soil", {}).get("invocations", [])
+    check(len(inv) == 1 and len(inv[0].get("git_commit", "")) == 40 and "--preset quick" in
+          inv[0].get("command", "") and inv[0].get("host"),
+          f"provenance: command, git commit, host ({inv})")
     qs = res.get("quasi_static", {})
     check(set(qs) >= {"plate_b0.032", "shear_s6000"} and
           all(abs(q["difference"]) < (1 if q["relative"] else 15) and q["half_speed"] > 0
