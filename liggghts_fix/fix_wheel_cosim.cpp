@@ -20,6 +20,7 @@
 #include "input.h"
 #include "memory.h"
 #include "modify.h"
+#include "neighbor.h"
 #include "update.h"
 #include "variable.h"
 
@@ -47,6 +48,55 @@ constexpr double kMaxHertzFraction = 0.1;
 /// EEPA (edinburgh) damps with a coefficient that does not shrink with the overlap: the explicit
 /// update is unstable once γn dt / m approaches 1 (seen in both LIGGGHTS and this fix).
 constexpr double kMaxEepaDampingRatio = 1.0;
+/// Candidate list: how far the wheel centre may move, in neighbour skins, before the list is
+/// rebuilt; and a relative allowance on the list's radius so that round-off in the distance test
+/// can never leave out a particle the full scan would test.
+constexpr double kWheelTravelPerSkin = 1.0;
+constexpr double kCandidateRoundOff = 1e-9;
+
+/// The candidate list (docs/fix-wheel-cosim.md, "Candidate list"): the owned particles of the
+/// group that can come within the wheel's bounding sphere (plus their radius) before the list is
+/// rebuilt. A particle is left out only if, at the build, its centre is farther from the wheel
+/// centre than bounding radius + its radius + how far it can move + how far the wheel centre may
+/// move until the next build. The bounding sphere is centred on the wheel centre, so the wheel's
+/// rotation needs no allowance. Valid until LIGGGHTS rebuilds its neighbour lists (atoms are
+/// then migrated and re-sorted, and may have moved half a skin) or the wheel centre has moved
+/// `wheel_travel_m`.
+struct CandidateList {
+  bool enabled = true;    ///< keyword candidates (no: test every particle each step)
+  std::vector<int> atoms; ///< local indices, ascending (the full scan's order)
+  LAMMPS_NS::bigint neighbor_builds = -1; ///< neighbor->ncalls at the build; -1: build next use
+  int nlocal = -1;                        ///< atom->nlocal at the build
+  Eigen::Vector3d centre_m = Eigen::Vector3d::Zero(); ///< wheel centre at the build [m]
+  double wheel_travel_m = 0.0; ///< how far the centre may move until a rebuild [m]
+  bool clear_pending = false;  ///< the histories of non-candidates are still to be emptied
+  bool warned_inexact = false;
+  // statistics of the current run (printed by post_run)
+  long builds_at_neighbor = 0; ///< builds on a step LIGGGHTS rebuilt its lists
+  long builds_between = 0;     ///< builds between those (the wheel had moved)
+  double listed_sum = 0.0;     ///< sum over passes of the list size
+  long passes = 0;
+  long arrived = 0; ///< particles received from other ranks
+};
+
+/// One contact pass over the particles: the wheel frame of the step and the wheel's wrench,
+/// summed over this rank's particles.
+struct ContactPass {
+  const WheelState &state;
+  Eigen::Matrix3d R;  ///< wheel frame -> world
+  Eigen::Matrix3d Rt; ///< world -> wheel frame
+  double bounding_radius_m;
+  double dt_s;
+  bool update_history;
+  bool accumulate_vtk;
+  Eigen::Vector3d wheel_force_N = Eigen::Vector3d::Zero();
+  Eigen::Vector3d wheel_torque_Nm = Eigen::Vector3d::Zero();
+  double ncontacts = 0.0;
+
+  ContactPass(const WheelState &s, double bounding_m, double dt, bool update, bool vtk)
+      : state(s), R(s.orientation.toRotationMatrix()), Rt(R.transpose()),
+        bounding_radius_m(bounding_m), dt_s(dt), update_history(update), accumulate_vtk(vtk) {}
+};
 
 struct WheelCosimState {
   std::string mesh_path;
@@ -82,6 +132,7 @@ struct WheelCosimState {
   double contact_seconds = 0.0, motion_seconds = 0.0; // wall time in post_force this run
   long timed_steps = 0;
   long slot_overflows = 0;                        // contacts without a free history slot
+  CandidateList candidates;
 };
 
 } // namespace wheelsim
@@ -377,6 +428,17 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
       s_->vtk_every = static_cast<int>(every);
       s_->vtk_prefix = arg[iarg + 2];
       iarg += 3;
+    } else if (std::strcmp(key, "candidates") == 0) {
+      need(iarg, 1, "yes or no");
+      if (std::strcmp(arg[iarg + 1], "yes") == 0)
+        s_->candidates.enabled = true;
+      else if (std::strcmp(arg[iarg + 1], "no") == 0)
+        s_->candidates.enabled = false;
+      else
+        bad_argument("keyword 'candidates' expects yes (keep a list of the particles near the "
+                     "wheel) or no (test every particle each step), got '%s'",
+                     arg[iarg + 1]);
+      iarg += 2;
     } else if (std::strcmp(key, "slots") == 0) {
       need(iarg, 1, "the number of contact-history slots per particle, 2..4");
       const double n = number(iarg + 1, key, "an integer 2..4");
@@ -387,7 +449,7 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
     } else {
       bad_argument("unknown keyword '%s'; expected one of scale, origin, model, tangential, "
                    "cohesion, rolling_friction, tangential_damping, limitForce, fixKc, tangential_reduce, "
-                   "torsionTorque, motion, vtk, slots, check_timestep",
+                   "torsionTorque, motion, vtk, slots, candidates, check_timestep",
                    key);
     }
   }
@@ -567,6 +629,18 @@ void FixWheelCosim::setup(int /*vflag*/) {
     }
   }
   s_->state_step = update->ntimestep;
+  s_->candidates.neighbor_builds = -1; // atoms may have been added, moved or deleted since
+  if (s_->candidates.enabled && !candidates_exact() && !s_->candidates.warned_inexact &&
+      comm->me == 0) {
+    char msg[400];
+    snprintf(msg, sizeof(msg),
+             "fix wheel/cosim %s: the candidate list needs neighbour lists checked every step "
+             "('neigh_modify delay 0 every 1'; now delay %d every %d%s): testing every particle "
+             "each step instead",
+             id, neighbor->delay, neighbor->every, neighbor->build_once ? " once yes" : "");
+    error->warning(FLERR, msg);
+    s_->candidates.warned_inexact = true;
+  }
   compute_contacts(false);
   report_wrench(); // the first exchange step's wrench (later setups: already sent)
   if (first_setup_) {
@@ -630,6 +704,30 @@ void FixWheelCosim::post_run() {
   }
   s_->contact_seconds = s_->motion_seconds = 0.0;
   s_->timed_steps = 0;
+  report_candidates();
+}
+
+void FixWheelCosim::report_candidates() {
+  // How much the candidate list saved, and how often it was rebuilt (rank 0's builds: every
+  // rank rebuilds at the same steps unless its particle count changed on its own).
+  wheelsim::CandidateList &list = s_->candidates;
+  double local[2] = {list.listed_sum, static_cast<double>(list.arrived)}, total[2];
+  MPI_Reduce(local, total, 2, MPI_DOUBLE, MPI_SUM, 0, world);
+  if (comm->me == 0 && list.enabled && list.passes > 0) {
+    char line[400];
+    snprintf(line, sizeof(line),
+             "fix wheel/cosim %s: candidate list: %.1f of %.0f particles tested per step (all "
+             "ranks); list builds: %ld with LIGGGHTS' neighbour lists, %ld in between (wheel "
+             "moved > %.3g m); %.0f particles arrived from other ranks\n",
+             id, total[0] / list.passes, static_cast<double>(atom->natoms), list.builds_at_neighbor,
+             list.builds_between, list.wheel_travel_m, total[1]);
+    if (screen)
+      fputs(line, screen);
+    if (logfile)
+      fputs(line, logfile);
+  }
+  list.listed_sum = 0.0;
+  list.passes = list.builds_at_neighbor = list.builds_between = list.arrived = 0;
 }
 
 void FixWheelCosim::end_of_step() {
@@ -669,102 +767,33 @@ void FixWheelCosim::reset_dt() {
 ------------------------------------------------------------------------- */
 
 void FixWheelCosim::compute_contacts(bool update_history) {
-  using Eigen::Vector3d;
-  double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega,
-         **torque = atom->torque;
-  const double *radius = atom->radius, *rmass = atom->rmass;
-  const int *mask = atom->mask, *type = atom->type;
-  const int nlocal = atom->nlocal;
-  const double dt = update->dt;
-
-  const wheelsim::WheelState &state = s_->state;
-  const Eigen::Matrix3d R = state.orientation.toRotationMatrix();
-  const Eigen::Matrix3d Rt = R.transpose();
-  const Vector3d &centre = state.position_m;
-  const double reach = s_->index->bounding_radius_m();
-  const bool accumulate_vtk = update_history && s_->vtk_every > 0;
-
-  Vector3d wheel_force = Vector3d::Zero(), wheel_torque = Vector3d::Zero();
-  double ncontacts = 0.0;
-  wheelsim::SlotQuery queries[wheelsim::kMaxContactsPerParticle];
-  int slot_of[wheelsim::kMaxContactsPerParticle];
-
-  for (int i = 0; i < nlocal; ++i) {
-    contact_force_[i][0] = contact_force_[i][1] = contact_force_[i][2] = 0.0;
-    if (!(mask[i] & groupbit))
-      continue;
-    auto *slots = reinterpret_cast<wheelsim::ContactSlot *>(history_[i]);
-    const double r = radius[i];
-    const Vector3d xi(x[i][0], x[i][1], x[i][2]);
-    const Vector3d d = xi - centre;
-    if (d.squaredNorm() > (reach + r) * (reach + r)) {
-      if (update_history)
-        wheelsim::clear_contact_slots(slots, nslots_);
-      continue;
-    }
-    s_->contacts.clear();
-    int n = s_->index->find_contacts(Rt * d, r, s_->contacts);
-    if (n == 0) {
-      if (update_history)
-        wheelsim::clear_contact_slots(slots, nslots_);
-      continue;
-    }
-    if (n > wheelsim::kMaxContactsPerParticle) {
-      s_->too_many_contacts += n - wheelsim::kMaxContactsPerParticle;
-      n = wheelsim::kMaxContactsPerParticle;
-    }
-    for (int j = 0; j < n; ++j)
-      queries[j] = {s_->contacts[j].feature_key, s_->contacts[j].point_m};
-    wheelsim::match_contact_slots(slots, nslots_, queries, n, r, update_history, slot_of);
-
-    const Vector3d vi(v[i][0], v[i][1], v[i][2]);
-    const Vector3d wi(omega[i][0], omega[i][1], omega[i][2]);
-    Vector3d force_on_particle = Vector3d::Zero(), torque_on_particle = Vector3d::Zero();
-    for (int j = 0; j < n; ++j) {
-      const wheelsim::geometry::SurfaceContact &c = s_->contacts[j];
-      const Vector3d normal = R * c.normal;
-      const Vector3d point = centre + R * c.point_m;
-      wheelsim::contact::ContactState cs;
-      cs.radius = r;
-      cs.mass = rmass[i];
-      cs.overlap = c.overlap_m;
-      cs.normal = normal;
-      cs.vRel = wheelsim::contact::relativeContactVelocity(vi, wi, state.velocity_at(point),
-                                                            normal, r, c.overlap_m);
-      cs.omega = wi;
-      wheelsim::contact::ContactHistory fresh{};
-      wheelsim::contact::ContactHistory &history =
-          slot_of[j] >= 0 ? slots[slot_of[j]].history : fresh;
-      if (slot_of[j] < 0 && update_history)
-        ++s_->slot_overflows;
-      const wheelsim::contact::ContactResult res =
-          wheelsim::contact::evaluate(s_->pair[type[i]], cs, dt, update_history, history);
-      force_on_particle += res.force;
-      torque_on_particle += res.torque;
-      // Reaction on the wheel: -F at the contact point, and minus the rolling-resistance torque
-      // (the particle's torque less the moment of its tangential force about its centre).
-      const Vector3d tangential = res.force - res.force.dot(normal) * normal;
-      const Vector3d lever_torque = -(r - 0.5 * c.overlap_m) * normal.cross(tangential);
-      const Vector3d rolling_torque = res.torque - lever_torque;
-      wheel_force -= res.force;
-      wheel_torque += (point - centre).cross(-res.force) - rolling_torque;
-      ncontacts += 1.0;
-      if (accumulate_vtk) {
-        s_->triangle_normal_force_sum[c.triangle] += res.force.dot(normal);
-        s_->triangle_contact_sum[c.triangle] += 1.0;
-      }
-    }
-    for (int k = 0; k < 3; ++k) {
-      f[i][k] += force_on_particle[k];
-      torque[i][k] += torque_on_particle[k];
-      contact_force_[i][k] = force_on_particle[k];
-    }
+  wheelsim::ContactPass pass(s_->state, s_->index->bounding_radius_m(), update->dt, update_history,
+                             update_history && s_->vtk_every > 0);
+  wheelsim::CandidateList &list = s_->candidates;
+  if (list.enabled && candidates_exact()) {
+    if (candidates_stale())
+      build_candidates();
+    if (update_history && list.clear_pending)
+      clear_history_outside_candidates();
+    for (const int i : list.atoms)
+      contact_particle(i, pass);
+    list.listed_sum += static_cast<double>(list.atoms.size());
+    ++list.passes;
+  } else {
+    for (int i = 0; i < atom->nlocal; ++i)
+      contact_particle(i, pass);
   }
-  if (accumulate_vtk)
+  if (pass.accumulate_vtk)
     ++s_->vtk_window_steps;
 
-  double local[7] = {wheel_force.x(),  wheel_force.y(),  wheel_force.z(), wheel_torque.x(),
-                     wheel_torque.y(), wheel_torque.z(), ncontacts};
+  const Eigen::Vector3d &centre = s_->state.position_m;
+  double local[7] = {pass.wheel_force_N.x(),
+                     pass.wheel_force_N.y(),
+                     pass.wheel_force_N.z(),
+                     pass.wheel_torque_Nm.x(),
+                     pass.wheel_torque_Nm.y(),
+                     pass.wheel_torque_Nm.z(),
+                     pass.ncontacts};
   double total[7];
   MPI_Allreduce(local, total, 7, MPI_DOUBLE, MPI_SUM, world);
   std::copy(total, total + 7, vector_);
@@ -774,9 +803,159 @@ void FixWheelCosim::compute_contacts(bool update_history) {
   vector_[10] = s_->coupled && s_->coupled->rig_finished() ? 1.0 : 0.0;
 }
 
-double FixWheelCosim::compute_vector(int i) {
-  return vector_[i];
+void FixWheelCosim::contact_particle(int i, wheelsim::ContactPass &pass) {
+  using Eigen::Vector3d;
+  double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega,
+         **torque = atom->torque;
+  const double r = atom->radius[i];
+  const wheelsim::WheelState &state = pass.state;
+  const Vector3d &centre = state.position_m;
+
+  contact_force_[i][0] = contact_force_[i][1] = contact_force_[i][2] = 0.0;
+  if (!(atom->mask[i] & groupbit))
+    return;
+  auto *slots = reinterpret_cast<wheelsim::ContactSlot *>(history_[i]);
+  const Vector3d xi(x[i][0], x[i][1], x[i][2]);
+  const Vector3d d = xi - centre;
+  const double reach = pass.bounding_radius_m;
+  if (d.squaredNorm() > (reach + r) * (reach + r)) {
+    if (pass.update_history)
+      wheelsim::clear_contact_slots(slots, nslots_);
+    return;
+  }
+  s_->contacts.clear();
+  int n = s_->index->find_contacts(pass.Rt * d, r, s_->contacts);
+  if (n == 0) {
+    if (pass.update_history)
+      wheelsim::clear_contact_slots(slots, nslots_);
+    return;
+  }
+  if (n > wheelsim::kMaxContactsPerParticle) {
+    s_->too_many_contacts += n - wheelsim::kMaxContactsPerParticle;
+    n = wheelsim::kMaxContactsPerParticle;
+  }
+  wheelsim::SlotQuery queries[wheelsim::kMaxContactsPerParticle];
+  int slot_of[wheelsim::kMaxContactsPerParticle];
+  for (int j = 0; j < n; ++j)
+    queries[j] = {s_->contacts[j].feature_key, s_->contacts[j].point_m};
+  wheelsim::match_contact_slots(slots, nslots_, queries, n, r, pass.update_history, slot_of);
+
+  const Vector3d vi(v[i][0], v[i][1], v[i][2]);
+  const Vector3d wi(omega[i][0], omega[i][1], omega[i][2]);
+  Vector3d force_on_particle = Vector3d::Zero(), torque_on_particle = Vector3d::Zero();
+  for (int j = 0; j < n; ++j) {
+    const wheelsim::geometry::SurfaceContact &c = s_->contacts[j];
+    const Vector3d normal = pass.R * c.normal;
+    const Vector3d point = centre + pass.R * c.point_m;
+    wheelsim::contact::ContactState cs;
+    cs.radius = r;
+    cs.mass = atom->rmass[i];
+    cs.overlap = c.overlap_m;
+    cs.normal = normal;
+    cs.vRel = wheelsim::contact::relativeContactVelocity(vi, wi, state.velocity_at(point), normal,
+                                                         r, c.overlap_m);
+    cs.omega = wi;
+    wheelsim::contact::ContactHistory fresh{};
+    wheelsim::contact::ContactHistory &history =
+        slot_of[j] >= 0 ? slots[slot_of[j]].history : fresh;
+    if (slot_of[j] < 0 && pass.update_history)
+      ++s_->slot_overflows;
+    const wheelsim::contact::ContactResult res = wheelsim::contact::evaluate(
+        s_->pair[atom->type[i]], cs, pass.dt_s, pass.update_history, history);
+    force_on_particle += res.force;
+    torque_on_particle += res.torque;
+    // Reaction on the wheel: -F at the contact point, and minus the rolling-resistance torque
+    // (the particle's torque less the moment of its tangential force about its centre).
+    const Vector3d tangential = res.force - res.force.dot(normal) * normal;
+    const Vector3d lever_torque = -(r - 0.5 * c.overlap_m) * normal.cross(tangential);
+    const Vector3d rolling_torque = res.torque - lever_torque;
+    pass.wheel_force_N -= res.force;
+    pass.wheel_torque_Nm += (point - centre).cross(-res.force) - rolling_torque;
+    pass.ncontacts += 1.0;
+    if (pass.accumulate_vtk) {
+      s_->triangle_normal_force_sum[c.triangle] += res.force.dot(normal);
+      s_->triangle_contact_sum[c.triangle] += 1.0;
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    f[i][k] += force_on_particle[k];
+    torque[i][k] += torque_on_particle[k];
+    contact_force_[i][k] = force_on_particle[k];
+  }
 }
+
+/* ----------------------------------------------------------------------
+   The candidate list (wheelsim::CandidateList)
+------------------------------------------------------------------------- */
+
+bool FixWheelCosim::candidates_exact() const {
+  // LIGGGHTS checks every step whether a particle has moved half a skin since its lists were
+  // built (centre displacement plus radius growth, when radii vary) and rebuilds them if so. With
+  // a delay, a coarser check interval or 'once yes', particles can move further unnoticed.
+  return neighbor->every == 1 && neighbor->delay == 0 && !neighbor->build_once;
+}
+
+bool FixWheelCosim::candidates_stale() const {
+  const wheelsim::CandidateList &list = s_->candidates;
+  const double travel2_m2 = (s_->state.position_m - list.centre_m).squaredNorm();
+  return neighbor->ncalls != list.neighbor_builds || atom->nlocal != list.nlocal ||
+         travel2_m2 > list.wheel_travel_m * list.wheel_travel_m;
+}
+
+void FixWheelCosim::build_candidates() {
+  wheelsim::CandidateList &list = s_->candidates;
+  const double skin_m = neighbor->skin;
+  // How far a particle can move (plus how much its radius can grow) until the next build: half a
+  // skin from where LIGGGHTS built its lists; from anywhere in between, up to another half skin
+  // on top (another skin when radii vary: LIGGGHTS then lets the centre move further while the
+  // radius shrinks).
+  const bool at_neighbor_build = neighbor->ago == 0;
+  const double particle_travel_m =
+      at_neighbor_build ? 0.5 * skin_m : (atom->radvary_flag ? 2.0 : 1.0) * skin_m;
+  list.wheel_travel_m = wheelsim::kWheelTravelPerSkin * skin_m;
+  list.centre_m = s_->state.position_m;
+  const double reach_m = s_->index->bounding_radius_m() + particle_travel_m + list.wheel_travel_m;
+
+  double **x = atom->x;
+  const double *radius = atom->radius;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  list.atoms.clear();
+  for (int i = 0; i < nlocal; ++i) {
+    contact_force_[i][0] = contact_force_[i][1] = contact_force_[i][2] = 0.0;
+    if (!(mask[i] & groupbit))
+      continue;
+    const Eigen::Vector3d d(x[i][0] - list.centre_m.x(), x[i][1] - list.centre_m.y(),
+                            x[i][2] - list.centre_m.z());
+    const double listed_m = (reach_m + radius[i]) * (1.0 + wheelsim::kCandidateRoundOff);
+    if (d.squaredNorm() <= listed_m * listed_m)
+      list.atoms.push_back(i);
+  }
+  list.neighbor_builds = neighbor->ncalls;
+  list.nlocal = nlocal;
+  list.clear_pending = true;
+  ++(at_neighbor_build ? list.builds_at_neighbor : list.builds_between);
+}
+
+void FixWheelCosim::clear_history_outside_candidates() {
+  // A particle left off the list is outside the wheel's reach until the next build: the full
+  // scan would empty its history at every step with history updates; once is enough here.
+  const std::vector<int> &listed = s_->candidates.atoms;
+  const int *mask = atom->mask;
+  std::size_t next = 0;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    if (next < listed.size() && listed[next] == i) {
+      ++next;
+      continue;
+    }
+    if (mask[i] & groupbit)
+      wheelsim::clear_contact_slots(reinterpret_cast<wheelsim::ContactSlot *>(history_[i]),
+                                    nslots_);
+  }
+  s_->candidates.clear_pending = false;
+}
+
+double FixWheelCosim::compute_vector(int i) { return vector_[i]; }
 
 /* ---------------------------------------------------------------------- */
 
@@ -839,6 +1018,7 @@ int FixWheelCosim::pack_exchange(int i, double *buf) {
 }
 
 int FixWheelCosim::unpack_exchange(int nlocal, double *buf) {
+  ++s_->candidates.arrived;
   std::copy(buf, buf + history_columns_, history_[nlocal]);
   std::fill(contact_force_[nlocal], contact_force_[nlocal] + 3, 0.0);
   return history_columns_;

@@ -5,8 +5,10 @@
    Every particle of the group that touches the wheel mesh gets a contact force from wheelsim's
    contact law (liggghts_fix/contact: LIGGGHTS' hertz or edinburgh with history tangential,
    optional sjkr cohesion and epsd2 rolling friction), found against a spatial index of the mesh
-   built once in the wheel frame. The wheel moves by a motion source (prescribed here; the
-   coupled rig in the coupling issue). Full syntax, outputs and restart behaviour:
+   built once in the wheel frame; each step only the particles on a candidate list (those that
+   can reach the wheel before LIGGGHTS' next neighbour-list build or before the wheel has moved a
+   skin) are looked at (keyword candidates). The wheel moves by a motion source (prescribed
+   here; the coupled rig in the coupling issue). Full syntax, outputs and restart behaviour:
    docs/fix-wheel-cosim.md.
 
    Global vector (11): 1-3 contact force on the wheel [N], 4-6 contact torque on the wheel about
@@ -34,6 +36,7 @@ FixStyle(wheel/cosim,FixWheelCosim)
 
 namespace wheelsim {
 struct WheelCosimState; // all non-LIGGGHTS state (Eigen, mesh index, contact law, motion)
+struct ContactPass;     // one step's wheel frame and wrench sums (fix_wheel_cosim.cpp)
 }
 
 namespace LAMMPS_NS {
@@ -48,7 +51,7 @@ public:
   void setup(int vflag) override;
   void post_force(int vflag) override;
   void end_of_step() override;
-  void post_run() override; // prints the fix's wall time of the run (benchmarks)
+  void post_run() override; // prints the fix's wall time and candidate-list use (benchmarks)
   void reset_dt() override;
 
   double compute_vector(int i) override;
@@ -76,6 +79,13 @@ private:
   void read_materials();
   void check_timestep();
   void compute_contacts(bool update_history);
+  void contact_particle(int i, wheelsim::ContactPass &pass); // one owned particle
+  // The candidate list (docs/fix-wheel-cosim.md, "Candidate list")
+  bool candidates_exact() const; // the neighbour settings bound the particles' travel
+  bool candidates_stale() const;
+  void build_candidates();
+  void clear_history_outside_candidates();
+  void report_candidates(); // post_run: list size and builds of the run
   void write_vtk();
   void report_wrench();                                      // to the motion source
   [[noreturn]] void coupling_failed(const std::exception &e); // error->one on rank 0

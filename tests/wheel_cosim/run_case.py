@@ -6,6 +6,7 @@
                       --steps N [--early-window S --early-tol X --floor N] [--window-from K --window-tol X]
   run_case.py restart --launch ... --bed BED --mesh STL --n N --m M --tol X
   run_case.py vtk     --launch ... --bed BED --mesh STL
+  run_case.py candidates --launch ... --bed BED --mesh STL --steps N --tol X [--need-arrivals]
 
 Runs liggghts-wheel on tests/wheel_cosim/in.wheel_roll, then compare_wrench.py. Exit 0 = pass.
 """
@@ -52,7 +53,7 @@ def compare(args, rest):
 
 def main():
     p = argparse.ArgumentParser()
-    p.add_argument("mode", choices=["bed", "compare", "restart", "vtk"])
+    p.add_argument("mode", choices=["bed", "compare", "restart", "vtk", "candidates"])
     p.add_argument("--launch", required=True, help="launcher and executable, ';'-separated")
     p.add_argument("--inputs", required=True)
     p.add_argument("--work", required=True)
@@ -69,6 +70,8 @@ def main():
     p.add_argument("--n", type=int, default=500)
     p.add_argument("--m", type=int, default=300)
     p.add_argument("--tol", type=float, default=1e-6)
+    p.add_argument("--need-arrivals", action="store_true",
+                   help="candidates: fail unless particles moved between ranks during the run")
     a = p.parse_args()
     launch = a.launch.split(";")
     os.makedirs(a.work, exist_ok=True)
@@ -125,6 +128,9 @@ def main():
                            "--tol", str(a.tol), "--force-floor", "1e-3", "--lever", "0.1",
                            "--label", "restart"])
 
+    if a.mode == "candidates":
+        return check_candidates(a, launch, common)
+
     if a.mode == "vtk":
         steps, every = 400, 100
         vx, vz, wy = 0.1125, -0.2, 1.5
@@ -134,6 +140,63 @@ def main():
                         cosim_extra=f"vtk {every} {os.path.join(a.work, 'wheel')}"))
         return check_vtk(a, text, steps, every, vx, vz, wy)
     return 2
+
+
+def check_candidates(a, launch, common):
+    """fix wheel/cosim with its candidate list (candidates yes) against the scan of every particle
+    (candidates no), same deck: the wrench must agree to a relative 1e-12 (the same particles are
+    tested in the same order, so it is expected bit for bit), the contact counts exactly. The run
+    must exercise what could break the list: rebuilds at LIGGGHTS' neighbour-list builds, rebuilds
+    after the wheel alone moved a skin, and (np 2) particles moving between ranks."""
+    import re
+    # sinks fast (0.2 m/s) and rolls: contact from about step 250, and the wheel centre moves
+    # one skin (2 mm for the ci soil) about every 180 steps; neighbour lists by distance check
+    v = dict(common, impl="cosim", steps=a.steps, vz="-0.2", vx="0.1125", wy="1.5",
+             neigh_every_step=0, thermo_every=1)
+    outs = {}
+    for mode in ("no", "yes"):
+        outs[mode] = run(launch, a.work, f"out.candidates_{mode}",
+                         dict(v, cosim_extra=f"candidates {mode}"))
+    stats = re.search(r"candidate list: (\S+) of (\S+) particles tested per step \(all ranks\); "
+                      r"list builds: (\d+) with LIGGGHTS' neighbour lists, (\d+) in between "
+                      r"\(wheel moved > (\S+) m\); (\S+) particles arrived", outs["yes"])
+    if not stats:
+        print("run_case: candidates: no candidate-list summary in the output of 'candidates yes' "
+              "FAIL")
+        return 1
+    listed, natoms, at_neigh, between, travel, arrived = stats.groups()
+    print(f"run_case: candidates: {listed} of {natoms} particles tested per step; list builds: "
+          f"{at_neigh} with LIGGGHTS' neighbour lists, {between} in between (wheel moved > "
+          f"{travel} m); {arrived} particles arrived from other ranks")
+    ok = int(at_neigh) > 1 and int(between) > 0 and float(listed) < float(natoms)
+    if a.need_arrivals and float(arrived) == 0:
+        ok = False
+        print("run_case: candidates: no particle changed rank: migration not exercised FAIL")
+    if not ok:
+        print("run_case: candidates: the run did not exercise the list's rebuilds FAIL")
+    # the contact counts (thermo column nc), step by step
+    counts = {}
+    for mode, text in outs.items():
+        rows, header = {}, None
+        for line in text.splitlines():
+            tok = line.split()
+            if tok[:1] == ["Step"]:
+                header = tok if "nc" in tok else None
+            elif header and len(tok) == len(header) and tok[0].isdigit():
+                rows[int(tok[0])] = float(tok[header.index("nc")])
+        counts[mode] = rows
+    steps = sorted(set(counts["no"]) & set(counts["yes"]))
+    differ = [s for s in steps if counts["no"][s] != counts["yes"][s]]
+    touching = sum(1 for s in steps if counts["no"][s] > 0)
+    print(f"run_case: candidates: contact counts over {len(steps)} steps ({touching} with "
+          f"contacts, up to {max(counts['no'].values()):.0f}): {len(differ)} steps differ "
+          f"{'ok' if not differ and touching > 100 else 'FAIL'}")
+    ok &= not differ and touching > 100
+    rc = compare(a, ["equal", os.path.join(a.work, "out.candidates_yes"),
+                     os.path.join(a.work, "out.candidates_no"), "--from", "0", "--tol",
+                     str(a.tol), "--force-floor", "1e-9", "--lever", "0.1",
+                     "--label", "candidates yes vs no"])
+    return rc if ok else 1
 
 
 def read_vtk(path):
