@@ -3,7 +3,7 @@
 wall/gran), same bed, same deck (tests/wheel_cosim/in.wheel_roll), same prescribed motion.
 
   bench_wheel_cosim.py --exe liggghts-wheel --inputs DIR --mesh test_small.stl --work DIR
-                       [--sizes small,large] [--np 1] [--steps 2000]
+                       [--sizes small,large] [--np 1] [--steps 2000] [--full-scan]
 
 Per bed size: makes the bed with inputs/in.soilbin (cached in WORK), runs both implementations
 and prints from LIGGGHTS' timing summary:
@@ -11,7 +11,9 @@ and prints from LIGGGHTS' timing summary:
   * the wheel's share of the step: 'Modify' time share (LIGGGHTS' "Modify time (%)") of each run,
     which contains the wheel contact (our fix's post_force, or the reference's wall/gran +
     mesh neighbour list + move/mesh) plus the other fixes (gravity, bin walls, integration);
-    the bare share of the other fixes is measured by a third run without any wheel.
+    the bare share of the other fixes is measured by a third run without any wheel;
+  * with --full-scan, a fourth run of our fix with 'candidates no' (every particle tested every
+    step) against the default candidate list: the fix's own time per step in both.
 Not a test (a run takes minutes at 100 000 particles).
 """
 import argparse
@@ -66,6 +68,8 @@ def run(a, restart, impl, x0, sink):
          "gap": 0.004}
     if impl == "none":
         v["impl"] = "none_wheel"
+    if impl == "cosim_full_scan":
+        v["impl"], v["cosim_extra"] = "cosim", "candidates no"
     cmd = a.launch + ["-in", DECK, "-log", "none", "-echo", "none"]
     for k, val in v.items():
         cmd += ["-var", k, str(val)]
@@ -85,6 +89,8 @@ def main():
     p.add_argument("--np", type=int, default=1)
     p.add_argument("--mpiexec", default="mpiexec")
     p.add_argument("--steps", type=int, default=2000)
+    p.add_argument("--full-scan", action="store_true",
+                   help="also run our fix with 'candidates no' and compare its own time")
     a = p.parse_args()
     a.launch = ([a.mpiexec, "-n", str(a.np)] if a.np > 1 else []) + [os.path.abspath(a.exe)]
     os.makedirs(a.work, exist_ok=True)
@@ -112,6 +118,12 @@ def main():
               f"ours {(t_o - t_n) / t_o * 100:.1f} %, reference's wheel "
               f"{(t_r - t_n) / t_r * 100:.1f} % (differences below ~3 % are run-to-run noise)",
               flush=True)
+        if a.full_scan:
+            t_f, _, s_f = run(a, restart, "cosim_full_scan", x0, -0.1)
+            list_s, full_s = s_o["wheel/cosim"][0], s_f["wheel/cosim"][0]
+            print(f"bench:   fix time per step: candidate list {1e6 * list_s / a.steps:.0f} us, "
+                  f"every particle ('candidates no') {1e6 * full_s / a.steps:.0f} us, ratio "
+                  f"{list_s / full_s:.3f}; step {t_o * 1e3:.4g} vs {t_f * 1e3:.4g} ms", flush=True)
 
 
 if __name__ == "__main__":
