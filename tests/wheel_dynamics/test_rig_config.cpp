@@ -223,6 +223,27 @@ TEST(RigConfig, EveryKeyRangeCheckNamesKeyRangeUnitAndValue) {
     EXPECT_NE(std::find(covered.begin(), covered.end(), k), covered.end()) << "no case for " << k;
 }
 
+// A locked wheel (motor.omega = 0) needs an imposed carriage speed; negative ω never.
+TEST(RigConfig, LockedWheelOnlyWithImposedSpeed) {
+  Tables speed = with(with(base(), "carriage.mode", "\"imposed_speed\""), "carriage.slip", "");
+  speed = with(speed, "carriage.speed", "0.2");
+  const RigConfig c = parse_rig_config(render(with(speed, "motor.omega", "0")), "test.toml");
+  EXPECT_EQ(c.carriage.mode, CarriageMode::imposed_speed);
+  EXPECT_EQ(c.motor.mode, MotorMode::omega);
+  EXPECT_EQ(c.motor.omega_rad_s, 0.0);
+  EXPECT_NE(error_of(with(speed, "motor.omega", "-0.5"))
+                .find("motor.omega must be >= 0 rad/s with carriage.mode = \"imposed_speed\" "
+                      "(0 = a locked wheel), got -0.5"),
+            std::string::npos);
+  EXPECT_NE(error_of(with(base(), "motor.omega", "0"))
+                .find("motor.omega must be > 0 rad/s, got 0 (a locked wheel, omega = 0, needs "
+                      "carriage.mode = \"imposed_speed\""),
+            std::string::npos);
+  EXPECT_NE(error_of(with(with(base(), "carriage.mode", "\"constant_load\""), "motor.omega", "0"))
+                .find("motor.omega must be > 0 rad/s"),
+            std::string::npos);
+}
+
 TEST(RigConfig, UnknownKeysAndTablesSuggestTheRightName) {
   EXPECT_NE(error_of(with(base(), "wheel.radius", "0.6"))
                 .find("unknown key 'wheel.radius'; did you mean 'wheel.effective_radius'?"),

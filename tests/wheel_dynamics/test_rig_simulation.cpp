@@ -130,6 +130,65 @@ TEST(RigSimulation, ImposedNegativeSlipBrakesAndZeroSlipSticks) {
   EXPECT_NEAR(dp0.first, 0.0, 1e-3 * kMu * kLoad); // rigid ground: no motion resistance
 }
 
+// Carriage speed and wheel speed imposed independently (carriage.mode = "imposed_speed" with
+// motor.omega). On the flat ground the contact point slides backwards over the ground at
+// v_j = v − ω R_eff < 0 whenever v > ω R_eff, so the Coulomb friction force on the wheel is
+// −μN along x: the carriage must push, DP = −μW; its torque about the centre is (−R)(−μN) =
+// +μNR about +y, which the motor holds: T = −μ W R_eff (a braking torque, the opposite sign of
+// the driving case's +μ W R_eff). That holds for a locked wheel (ω = 0) and for any skid
+// point (v > ω R_eff > 0). With the regularized law the force is μN tanh(|v_j| / v_c).
+std::string with_omega(std::string text, const std::string &omega) {
+  return text.replace(text.find("omega = 1.05"), 12, "omega = " + omega);
+}
+
+TEST(RigSimulation, LockedWheelPulledAtConstantSpeedGivesMinusMuW) {
+  const double v = 0.2; // m/s
+  const SimRun r(with_omega(
+      config("mode = \"imposed_speed\"\nspeed = " + std::to_string(v), kCoulomb), "0.0"));
+  EXPECT_TRUE(r.sim.finished());
+  const auto dp = r.tail(1.0, [](const RigOutputs &o) { return o.drawbar_pull_N; });
+  const auto T = r.tail(1.0, [](const RigOutputs &o) { return o.driving_torque_Nm; });
+  const auto vx = r.tail(1.0, [](const RigOutputs &o) { return o.forward_velocity_m_s; });
+  RecordProperty("drawbar_pull_N", std::to_string(dp.first));
+  RecordProperty("driving_torque_Nm", std::to_string(T.first));
+  // DP = -μW and T = -μ W R_eff within 0.5 %, at every step of the last second within 1 %.
+  EXPECT_NEAR(dp.first, -kMu * kLoad, 0.005 * kMu * kLoad);
+  EXPECT_LT(dp.second, 0.01 * kMu * kLoad);
+  EXPECT_NEAR(T.first, -kMu * kLoad * kR, 0.005 * kMu * kLoad * kR);
+  EXPECT_NEAR(vx.first, v, 1e-12);
+  const RigOutputs &last = r.out.back();
+  EXPECT_DOUBLE_EQ(last.omega_rad_s, 0.0); // the wheel never turns
+  EXPECT_DOUBLE_EQ(last.theta_rad, 0.0);
+  EXPECT_TRUE(std::isnan(last.slip)); // driving slip undefined at ω = 0 (skid convention: -1)
+  EXPECT_NEAR(last.slip_velocity_m_s, -v, 1e-12);
+  // Regularized friction: DP = -μ W tanh(v / v_c), v_c = 0.1 m/s.
+  const SimRun reg(with_omega(
+      config("mode = \"imposed_speed\"\nspeed = " + std::to_string(v), kRegularized), "0"));
+  const auto dp_reg = reg.tail(1.0, [](const RigOutputs &o) { return o.drawbar_pull_N; });
+  const double expected = -kMu * kLoad * std::tanh(v / 0.1);
+  EXPECT_NEAR(dp_reg.first, expected, 0.005 * std::abs(expected));
+}
+
+TEST(RigSimulation, SkidAtImposedSpeedsGivesMinusMuWAndBrakingTorque) {
+  // v = 2 ω R_eff: driving slip 1 - v/(ω R) = -1, skid slip (ω R - v)/v = -0.5.
+  const double v = 2.0 * kOmega * kR;
+  const SimRun r(config("mode = \"imposed_speed\"\nspeed = " + std::to_string(v), kCoulomb));
+  const auto dp = r.tail(1.0, [](const RigOutputs &o) { return o.drawbar_pull_N; });
+  const auto T = r.tail(1.0, [](const RigOutputs &o) { return o.driving_torque_Nm; });
+  const auto s = r.tail(1.0, [](const RigOutputs &o) { return o.slip; });
+  const auto eta = r.tail(1.0, [](const RigOutputs &o) { return o.tractive_efficiency; });
+  RecordProperty("drawbar_pull_N", std::to_string(dp.first));
+  RecordProperty("driving_torque_Nm", std::to_string(T.first));
+  EXPECT_NEAR(dp.first, -kMu * kLoad, 0.005 * kMu * kLoad);
+  EXPECT_NEAR(T.first, -kMu * kLoad * kR, 0.005 * kMu * kLoad * kR);
+  const double v_set = std::stod(std::to_string(v)); // the value written into the config
+  EXPECT_NEAR(s.first, 1.0 - v_set / (kOmega * kR), 1e-9);
+  EXPECT_NEAR(s.first, -1.0, 1e-5);
+  // η = DP v / (T ω) = v / (ω R_eff) (both powers negative: the wheel brakes the carriage).
+  EXPECT_NEAR(eta.first, v_set / (kOmega * kR), 0.01 * v_set / (kOmega * kR));
+  EXPECT_NEAR(r.out.back().omega_rad_s, kOmega, 1e-12);
+}
+
 // Free carriage, constant drawbar load L = μ W / 2 on the regularized law
 // F = μ N tanh(v_j / v_c): steady slip s = v_c atanh(L / μ W) / (ω R).
 TEST(RigSimulation, ConstantLoadSettlesToTheFrictionLawSlip) {

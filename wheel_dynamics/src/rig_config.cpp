@@ -403,13 +403,29 @@ RigConfig parse_rig_config(const std::string &text, const std::string &source_na
   // [motor]
   {
     const Table t = table("motor", true);
-    const auto omega = t.positive("omega", "rad/s");
+    // A locked wheel (omega = 0) is driven by the carriage alone: only with an imposed carriage
+    // speed (carriage.mode is checked in full below).
+    const toml::table *carriage = doc.get_as<toml::table>("carriage");
+    const toml::node *carriage_mode = carriage ? carriage->get("mode") : nullptr;
+    const bool speed_imposed =
+        carriage_mode && carriage_mode->value<std::string>() == std::string("imposed_speed");
+    const auto omega = t.number("omega", "rad/s");
+    if (omega && speed_imposed && !(*omega >= 0))
+      t.fail("omega", "motor.omega must be >= 0 rad/s with carriage.mode = \"imposed_speed\" "
+                      "(0 = a locked wheel), got " +
+                          fmt(*omega));
+    if (omega && !speed_imposed && !(*omega > 0))
+      t.fail("omega", "motor.omega must be > 0 rad/s, got " + fmt(*omega) +
+                          (*omega == 0 ? " (a locked wheel, omega = 0, needs carriage.mode = "
+                                         "\"imposed_speed\" with carriage.speed > 0)"
+                                       : ""));
     const auto torque = t.number("torque", "N m");
     if (omega && torque)
       t.fail("torque", "give either motor.omega (rad/s) or motor.torque (N m), not both");
     if (!omega && !torque)
-      p.fail(nullptr, "missing key 'motor.omega' (imposed angular speed in rad/s, > 0) or "
-                      "'motor.torque' (imposed torque in N m)");
+      p.fail(nullptr, "missing key 'motor.omega' (imposed angular speed in rad/s, > 0; 0 with "
+                      "carriage.mode = \"imposed_speed\": a locked wheel) or 'motor.torque' "
+                      "(imposed torque in N m)");
     if (torque && *torque == 0.0)
       t.fail("torque", "motor.torque must be != 0 N m, got 0");
     c.motor.mode = omega ? MotorMode::omega : MotorMode::torque;
