@@ -397,6 +397,7 @@ int main(int argc, char **argv) {
 
   std::unique_ptr<runfile::RunFile> file;
   int status = 0;
+  const auto wall_start = std::chrono::steady_clock::now(); // the run's cost: run/wall_time
   try {
     rig::RigSimulation sim(config);
     runfile::FlushPolicy flush;
@@ -481,8 +482,12 @@ int main(int argc, char **argv) {
     status = cli::kExitFailure;
   }
   try {
-    if (file)
+    if (file) {
+      // Also for a failed run: what it cost until it stopped (docs/hdf5-layout.md).
+      const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - wall_start;
+      file->set_parameter("run/wall_time", wall.count(), "s");
       file->close();
+    }
   } catch (const std::exception &e) {
     std::fprintf(stderr, "wheel-rig: error closing the run file: %s\n", e.what());
     status = status ? status : 1;
