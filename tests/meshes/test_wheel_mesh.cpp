@@ -188,10 +188,10 @@ TEST(WheelMesh, CatalogueHasTheStudyWheels) {
   std::map<std::string, CatalogEntry> by_name;
   for (const auto &e : entries)
     by_name[e.name] = e;
-  ASSERT_EQ(entries.size(), 14u);
+  ASSERT_EQ(entries.size(), 15u);
   for (const char *n : {"wheel1", "wheel2", "wheel3", "wheel4", "wheel5", "wheel6", "wheel7",
                         "wheel8", "scm_size_1220", "scm_size_1420", "scm_size_1620", "smooth_1234",
-                        "test_small", "test_smooth_wide"}) {
+                        "test_small", "test_smooth_wide", "nakanishi_2020"}) {
     EXPECT_EQ(by_name.count(n), 1u) << n;
   }
   const WheelSpec &w3 = by_name["wheel3"].spec;
@@ -204,4 +204,10 @@ TEST(WheelMesh, CatalogueHasTheStudyWheels) {
   EXPECT_DOUBLE_EQ(by_name["test_smooth_wide"].spec.width_m, 0.14);
   EXPECT_EQ(by_name["wheel5"].spec.type, LugType::straight);
   EXPECT_DOUBLE_EQ(by_name["scm_size_1620"].spec.centre_length_m, 0.120);
+  const WheelSpec &nak = by_name["nakanishi_2020"].spec; // published: validation/nakanishi_2020
+  EXPECT_DOUBLE_EQ(nak.diameter_m, 0.22);
+  EXPECT_EQ(nak.lug_count, 18);
+  EXPECT_DOUBLE_EQ(nak.lug_height_m, 0.010);
+  EXPECT_DOUBLE_EQ(nak.lug_width_m, 0.005);
+  EXPECT_EQ(nak.type, LugType::straight);
 }
