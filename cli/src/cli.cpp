@@ -81,19 +81,38 @@ std::vector<std::string> option_names(const CLI::App &app) {
     for (const std::string &s : o->get_snames())
       names.push_back("-" + s);
   }
+  // The options of the subcommand given on the command line (e.g. scm-soil export --format).
+  for (const CLI::App *sub : app.get_subcommands()) {
+    const std::vector<std::string> more = option_names(*sub);
+    names.insert(names.end(), more.begin(), more.end());
+  }
   return names;
 }
 
 std::string describe_parse_error(const CLI::App &app, const CLI::ParseError &error) {
   // Arguments CLI11 did not recognise come first: a misspelt option is why a required one is
   // "missing".
-  const std::vector<std::string> left = app.remaining();
+  const std::vector<std::string> left = app.remaining(true);
   for (const std::string &arg : left)
     if (looks_like_option(arg))
       return unknown_option_message(arg, option_names(app));
-  if (!left.empty())
-    return "unexpected argument '" + left.front() + "'";
-  return error.what();
+  if (left.empty())
+    return error.what();
+  // A tool with subcommands and none given: the first word was meant as one.
+  const auto commands = app.get_subcommands([](const CLI::App *) { return true; });
+  if (!commands.empty() && app.get_subcommands().empty()) {
+    std::vector<std::string> names;
+    for (const CLI::App *c : commands)
+      names.push_back(c->get_name());
+    std::string message = "unknown command '" + left.front() + "'";
+    const std::string near = config::closest(left.front(), names);
+    if (!near.empty())
+      return message + " (did you mean '" + near + "'?)";
+    for (std::size_t i = 0; i < names.size(); ++i)
+      message += (i ? ", " : "; the commands are ") + names[i];
+    return message;
+  }
+  return "unexpected argument '" + left.front() + "'";
 }
 
 std::optional<int> parse(CLI::App &app, int argc, const char *const *argv) {

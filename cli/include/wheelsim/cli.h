@@ -57,11 +57,12 @@ void setup(CLI::App &app, const std::string &program);
 /// itself would first report a required option that the misspelt one was meant to give).
 std::optional<int> parse(CLI::App &app, int argc, const char *const *argv);
 
-/// The message for a CLI11 parse error: an unknown option with the nearest valid one if any
-/// argument was left over, else CLI11's own message.
+/// The message for a CLI11 parse error: an unknown option with the nearest valid one (of the app
+/// and of the subcommand given) if any argument was left over, an unknown command with the nearest
+/// subcommand for a tool with subcommands, else CLI11's own message.
 std::string describe_parse_error(const CLI::App &app, const CLI::ParseError &error);
 
-/// Every option name of `app` with its dashes ("--radius", "-h").
+/// Every option name of `app` and of its parsed subcommands, with the dashes ("--radius", "-h").
 std::vector<std::string> option_names(const CLI::App &app);
 
 } // namespace wheelsim::cli

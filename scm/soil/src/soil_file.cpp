@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <optional>
@@ -13,6 +14,7 @@
 
 #include <toml++/toml.h>
 
+#include "number_text.h"
 #include "wheelsim/config_messages.h"
 
 namespace wheelsim::scm {
@@ -257,6 +259,79 @@ SoilParameters parse_soil_file(const std::string &text, const std::string &sourc
   s.damping_R =
       get("scm", "damping", false, ">= 0", [](double v) { return v >= 0; }).value_or(s.damping_R);
   return s;
+}
+
+namespace {
+
+/// A TOML basic string.
+std::string toml_string(const std::string &s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\')
+      out += std::string("\\") + c;
+    else if (c == '\n')
+      out += "\\n";
+    else if (c == '\t')
+      out += "\\t";
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      char buffer[8];
+      std::snprintf(buffer, sizeof buffer, "\\u%04x", static_cast<unsigned char>(c));
+      out += buffer;
+    } else
+      out += c;
+  }
+  return out + "\"";
+}
+
+} // namespace
+
+std::string write_soil_file(const SoilParameters &soil, const SoilFileNotes &notes) {
+  const std::vector<std::pair<const char *, double>> values = {
+      {"n", soil.Bekker_n},
+      {"kc", soil.Bekker_Kc},
+      {"kphi", soil.Bekker_Kphi},
+      {"cohesion", soil.Mohr_cohesion},
+      {"friction_angle", soil.Mohr_friction * 180.0 / kPi},
+      {"shear_modulus", soil.Janosi_shear},
+      {"elastic_stiffness", soil.elastic_K},
+      {"damping", soil.damping_R},
+  };
+  std::ostringstream os;
+  os << "# " << soil.name << ": an SCM soil file (docs/scm-soils.md). Units are SI, angles in "
+     << "degrees.\n";
+  os << "name = " << toml_string(soil.name) << "\n";
+  if (!notes.description.empty())
+    os << "description = " << toml_string(notes.description) << "\n";
+  const auto &keys = value_keys();
+  for (const std::string &table : value_tables()) {
+    os << "\n[" << table << "]\n";
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      if (table != keys[i].table)
+        continue;
+      if (std::string(values[i].first) != keys[i].key)
+        throw std::logic_error("write_soil_file: values out of the schema's order");
+      std::string line = std::string(keys[i].key) + " = " + detail::float_text(values[i].second);
+      line.resize(std::max<std::size_t>(line.size() + 1, 26), ' ');
+      os << line << "# " << keys[i].what << " [" << (*keys[i].unit ? keys[i].unit : "-") << "]\n";
+    }
+  }
+  for (const std::string &table : value_tables()) {
+    bool header = false;
+    for (const auto &k : keys) {
+      if (table != k.table)
+        continue;
+      const std::string full = table + "." + k.key;
+      for (const auto &[key, text] : notes.sources) {
+        if (key != full)
+          continue;
+        if (!header)
+          os << "\n[source." << table << "]\n";
+        header = true;
+        os << k.key << " = " << toml_string(text) << "\n";
+      }
+    }
+  }
+  return os.str();
 }
 
 SoilParameters load_soil_file(const std::string &path) {
