@@ -25,6 +25,7 @@
 #include "wheelsim/rig/run_health.h"
 #include "wheelsim/rig/scm_ground.h"
 #include "wheelsim/run_file/run_file.h"
+#include "wheelsim/scm/chrono_soil.h"
 #include "wheelsim_version.h"
 
 #include <CLI/CLI.hpp>
@@ -111,7 +112,8 @@ void run_scm(Sink &sink, runfile::RunFile &file) {
   file.set_parameter("terrain/soil/Bekker_Kc", soil.Bekker_Kc, "N/m^(n+1)");
   file.set_parameter("terrain/soil/Bekker_Kphi", soil.Bekker_Kphi, "N/m^(n+2)");
   file.set_parameter("terrain/soil/Mohr_cohesion", soil.Mohr_cohesion, "Pa");
-  file.set_parameter("terrain/soil/Mohr_friction", soil.Mohr_friction, "rad");
+  // Chrono's unit for the friction angle (docs/hdf5-layout.md, docs/chrono-interop.md).
+  file.set_parameter("terrain/soil/Mohr_friction", scm::to_chrono_soil(soil).Mohr_friction, "deg");
   file.set_parameter("terrain/soil/Janosi_shear", soil.Janosi_shear, "m");
   file.set_parameter("terrain/soil/elastic_K", soil.elastic_K, "Pa/m");
   file.set_parameter("terrain/soil/damping_R", soil.damping_R, "Pa s/m");
