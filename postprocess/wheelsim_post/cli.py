@@ -34,6 +34,7 @@ def main(argv=None):
     """Parses ``argv`` and runs the command; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    args.argv = list(sys.argv[1:] if argv is None else argv)  # for files that record it
     try:
         return args.func(args)
     except PostError as exc:

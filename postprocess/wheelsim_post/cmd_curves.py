@@ -11,13 +11,16 @@ from .csvio import write_csv
 from .metadata import parse_group_by
 from .options import add_window_options, window_from_args
 from .plotting import panel_grid, save
+from .results_table import HELP as RESULTS_HELP
+from .results_table import write_results
 from .quantities import (
     CURVE_QUANTITIES,
     EFFICIENCY_OF_MEANS,
     NORMALISED_CURVE_QUANTITIES,
     NORMALISED_QUANTITIES,
     QUANTITIES,
-    SLIP_OF_MEANS,
+    SLIP_QUANTITIES,
+    of_means,
 )
 
 HELP = "steady-state drawbar pull, torque, sinkage, efficiency, ... against slip"
@@ -58,6 +61,7 @@ def add_parser(subparsers):
     )
     parser.add_argument("--csv", metavar="OUT.csv", help="write the table here")
     parser.add_argument("--png", metavar="OUT.png", help="write the plot here")
+    parser.add_argument("--results", metavar="OUT.csv", help=RESULTS_HELP)
     parser.add_argument(
         "--normalised",
         action="store_true",
@@ -75,7 +79,8 @@ def _stat_columns(name):
 def csv_header():
     """Column names of the curves CSV (units in the names; see docs/postprocess.md)."""
     columns = list(LEAD_COLUMNS)
-    columns += _stat_columns("slip") + [SLIP_OF_MEANS, SLIP_OF_MEANS + "_sem"]
+    for name in SLIP_QUANTITIES:
+        columns += _stat_columns(name) + [of_means(name), of_means(name) + "_sem"]
     for name in CURVE_QUANTITIES + NORMALISED_QUANTITIES:
         columns += _stat_columns(name)
         if name == "tractive_efficiency":
@@ -91,7 +96,8 @@ def csv_row(result, group):
     row = [group, m.wheel, m.soil, m.terrain, m.target_slip, result.path]
     row += [span.test_start, span.start, span.end, s["n_samples"], lugs, span.passes]
     row += [s["r_eff"], s["vertical_load"]]
-    row += list(s["slip"]) + [s[SLIP_OF_MEANS].mean, s[SLIP_OF_MEANS].sem]
+    for name in SLIP_QUANTITIES:
+        row += list(s[name]) + [s[of_means(name)].mean, s[of_means(name)].sem]
     for name in CURVE_QUANTITIES + NORMALISED_QUANTITIES:
         row += list(s[name])
         if name == "tractive_efficiency":
@@ -101,12 +107,13 @@ def csv_row(result, group):
 
 
 def sorted_groups(results, group_by):
-    """{label: [RunResult sorted by measured slip]} in order of first appearance."""
+    """{label: [RunResult sorted by measured slip (signed convention)]} in order of first
+    appearance."""
     groups = {}
     for result in results:
         groups.setdefault(group_label(result.metadata, group_by), []).append(result)
     for members in groups.values():
-        members.sort(key=lambda r: (math.isnan(r.mean("slip")), r.mean("slip")))
+        members.sort(key=lambda r: (math.isnan(r.mean("slip_signed")), r.mean("slip_signed")))
     return groups
 
 
@@ -142,18 +149,19 @@ def clip_efficiency_axis(ax, values):
 
 
 def plot_curves(groups, path, window_text, normalised=False, notes=()):
-    """One panel per quantity against measured slip, error bars ± SEM; points whose health
+    """One panel per quantity against measured slip (signed convention: driving for s ≥ 0,
+    skid for s < 0), error bars ± SEM; points whose health
     is not ok hollow, listed with the window notes in a footnote."""
     names = NORMALISED_CURVE_QUANTITIES if normalised else CURVE_QUANTITIES
     fig, axes = panel_grid(len(names), columns=2)
     efficiency_values = []
-    slip_q = QUANTITIES["slip"]
+    slip_q = QUANTITIES["slip_signed"]
     for ax, name in zip(axes, names):
         q = QUANTITIES[name]
         for index, (label, members) in enumerate(groups.items()):
             colour = f"C{index % 10}"
-            x = np.array([r.mean("slip") for r in members])
-            xerr = np.array([r.sem("slip") for r in members])
+            x = np.array([r.mean("slip_signed") for r in members])
+            xerr = np.array([r.sem("slip_signed") for r in members])
             if name == "tractive_efficiency":
                 y = np.array([r.stats[EFFICIENCY_OF_MEANS].mean for r in members])
                 yerr = np.array([r.stats[EFFICIENCY_OF_MEANS].sem for r in members])
@@ -212,7 +220,8 @@ def run(args):
             codes = f" ({r.health.codes})" if r.health.codes else ""
             print(
                 f"{label}: target slip {r.metadata.target_slip:g}, "
-                f"slip {r.mean('slip'):.4g} ± {r.sem('slip'):.2g}, "
+                f"slip {r.mean('slip'):.4g} ± {r.sem('slip'):.2g} "
+                f"(signed {r.mean('slip_signed'):.4g}), "
                 f"DP {r.mean('drawbar_pull'):.4g} ± {r.sem('drawbar_pull'):.2g} N, "
                 f"T {r.mean('driving_torque'):.4g} ± {r.sem('driving_torque'):.2g} N m, "
                 f"DP/W {r.mean('dp_over_w'):.4g} ± {r.sem('dp_over_w'):.2g}, "
@@ -225,6 +234,8 @@ def run(args):
             "wheelsim-post curves: steady-state mean, std (ddof 0) and standard error of the "
             "mean (_sem: batch means, 20 batches) per run",
             window.describe(),
+            "slip: driving 1 - v/(omega*R_eff); slip_skid: (omega*R_eff - v)/v; slip_signed: "
+            "driving for s >= 0, skid for s < 0 (docs/postprocess.md, 'Slip conventions')",
             "units: see column suffixes (_N, _Nm, _m, _s; none = dimensionless); "
             "tractive_efficiency_of_means = DP_mean*v_mean/(T_mean*omega_mean) is plotted; "
             "dp_over_w = DP/W, torque_over_w_reff = T/(W*R_eff), W = vertical_load_N",
@@ -235,4 +246,7 @@ def run(args):
     if args.png:
         plot_curves(groups, args.png, window.describe(), args.normalised, notes)
         print(f"wrote {args.png}")
+    if args.results:
+        write_results(args.results, results, window, args)
+        print(f"wrote {args.results}")
     return 0

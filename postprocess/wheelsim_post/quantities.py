@@ -45,6 +45,8 @@ QUANTITIES = {
     q.name: q
     for q in (
         Quantity("slip", "1", "slip", "1"),
+        Quantity("slip_skid", "1", "skid slip (ω R_eff − v)/v", "1"),
+        Quantity("slip_signed", "1", "slip (driving s ≥ 0, skid s < 0)", "1"),
         Quantity("drawbar_pull", "N", "drawbar pull", "N"),
         Quantity("driving_torque", "N m", "driving torque", "N m"),
         Quantity("sinkage", "m", "sinkage", "mm", 1000.0),
@@ -77,8 +79,18 @@ NORMALISED_CURVE_QUANTITIES = (
     "tractive_efficiency",
 )
 
+#: The slip conventions (slip.py): driving (the rig's), skid and signed (issue 11's).
+SLIP_QUANTITIES = ("slip", "slip_skid", "slip_signed")
+
+
+def of_means(name):
+    """Column and stats key of a quantity computed from the window means, e.g.
+    'slip_signed_of_means'."""
+    return f"{name}_of_means"
+
+
 #: Extra CSV columns: values computed from the window means (see docs/postprocess.md).
-SLIP_OF_MEANS = "slip_of_means"
+SLIP_OF_MEANS = of_means("slip")
 EFFICIENCY_OF_MEANS = "tractive_efficiency_of_means"
 
 

@@ -136,6 +136,15 @@ class RunFile:
                 f"is missing or not a number (got {value!r})"
             ) from None
 
+    def creator(self):
+        """{'name', 'version', 'git_revision'} of /h5md/creator as str ('' where absent)."""
+        group = self._file.get("h5md/creator")
+        attrs = group.attrs if isinstance(group, h5py.Group) else {}
+        return {
+            key: _text(attrs[key]) if key in attrs else ""
+            for key in ("name", "version", "git_revision")
+        }
+
     def health(self):
         """The rig's health.Health of the run (status 'unchecked' without /health)."""
         return read_health(self._file)

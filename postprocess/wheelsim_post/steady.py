@@ -29,7 +29,8 @@ import numpy as np
 
 from .errors import PostError
 from .metadata import rig_config
-from .quantities import EFFICIENCY_OF_MEANS, SLIP_OF_MEANS
+from .quantities import EFFICIENCY_OF_MEANS, of_means
+from .slip import CONVENTIONS
 
 #: Phase codes of the ``phase`` observable.
 PHASES = {0: "release", 1: "settle", 2: "ramp", 3: "test"}
@@ -391,8 +392,9 @@ def linear_trend(time, values, n_batches=N_BATCHES):
 def steady_state(run, window, lug_count=None, lug_source="unknown"):
     """Window statistics of an open RunFile: a dict of column name -> value.
 
-    Keys: '<quantity>' -> Stat for every name in quantities.QUANTITIES, SLIP_OF_MEANS and
-    EFFICIENCY_OF_MEANS -> Stat (std NaN), 'n_samples', 'span' (the WindowSpan), 'r_eff',
+    Keys: '<quantity>' -> Stat for every name in quantities.QUANTITIES (slip in the three
+    conventions of slip.py: 'slip' driving, 'slip_skid', 'slip_signed'), of_means(<slip
+    name>) and EFFICIENCY_OF_MEANS -> Stat (std NaN), 'n_samples', 'span' (the WindowSpan), 'r_eff',
     'vertical_load' and 'vertical_load_source', 'dp_trend' ((change, standard error) [N]).
     """
     span = resolve_window(run, window, lug_count, lug_source)
@@ -404,17 +406,16 @@ def steady_state(run, window, lug_count=None, lug_source="unknown"):
     sinkage = _scalar_series(run, "sinkage", span.steps)
 
     v_a, omega_a, dp_a, torque_a = _aligned(v, omega, dp, torque)
-    slip_series = 1.0 - _ratio(v_a, omega_a * r_eff)
     eta_series = _ratio(dp_a * v_a, torque_a * omega_a)
 
-    result = {
-        "slip": _stats(slip_series),
+    result = {name: _stats(f(v_a, omega_a * r_eff)) for name, f in CONVENTIONS.items()}
+    result.update({
         "drawbar_pull": _stats(dp[1]),
         "driving_torque": _stats(torque[1]),
         "sinkage": _stats(sinkage[1]),
         "tractive_efficiency": _stats(eta_series),
         "traction_force": scaled(_stats(torque[1]), 1.0 / r_eff),
-    }
+    })
     if run.has_observable("lateral_force"):
         result["lateral_force"] = _stats(
             _scalar_series(run, "lateral_force", span.steps)[1]
@@ -427,13 +428,14 @@ def steady_state(run, window, lug_count=None, lug_source="unknown"):
         )
         result["lateral_force"] = NAN_STAT
 
-    slip_m, slip_sem = _of_means(
-        lambda vm, om: 1.0 - _safe_ratio(vm, om * r_eff), v_a, omega_a
-    )
+    for name, function in CONVENTIONS.items():
+        slip_m, slip_sem = _of_means(
+            lambda vm, om, f=function: f(vm, om * r_eff), v_a, omega_a
+        )
+        result[of_means(name)] = Stat(slip_m, math.nan, slip_sem)
     eta_m, eta_sem = _of_means(
         lambda d, vm, t, om: _safe_ratio(d * vm, t * om), dp_a, v_a, torque_a, omega_a
     )
-    result[SLIP_OF_MEANS] = Stat(slip_m, math.nan, slip_sem)
     result[EFFICIENCY_OF_MEANS] = Stat(eta_m, math.nan, eta_sem)
 
     load, load_source = vertical_load(run, span.steps)
