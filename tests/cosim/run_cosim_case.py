@@ -16,6 +16,10 @@ MODE
                  shows the rig's message.
   dt_from_bed    a rig config without run.dt: wheel-cosim takes the bed's time step (bed_dt of
                  its .vars) for both sides; the run file records it and its source.
+  cost_recorded  the run file of a coupled run records its cost for `wheelsim-post results`:
+                 /parameters/liggghts/atoms = the bed's sphere count (the bed's own log,
+                 'soilbin: spheres = N'), liggghts/np = --np, run/wall_time in (0, the
+                 launcher's elapsed time].
 """
 import argparse
 import os
@@ -243,10 +247,46 @@ def dt_from_bed(a):
     return 0 if ok else 1
 
 
+def cost_recorded(a):
+    rig = rig_config(a, "rig.toml", duration="100.0")
+    bed_dir = os.path.dirname(os.path.abspath(a.bed))
+    spheres = None
+    for name in sorted(os.listdir(bed_dir)):
+        if name.startswith("log."):
+            text = open(os.path.join(bed_dir, name)).read()
+            m = re.search(r"(?m)^soilbin: spheres = (\d+)", text)
+            spheres = int(m.group(1)) if m else spheres
+    if spheres is None:
+        print(f"run_cosim_case: no 'soilbin: spheres = N' in a log.* of {bed_dir}")
+        return 1
+    start = time.monotonic()
+    run = subprocess.run(
+        [os.path.join(a.root, "scripts", "wheel-cosim"), "--rig", rig, "--bed", a.bed,
+         "--deck", os.path.join(a.root, "tests", "cosim", "in.motion_compare"), "--np",
+         str(a.np), "--work", os.path.join(a.work, "run"), "--kinematic", "0.1125 0 -0.2 0 1.5 0",
+         "--", "-var", "motion", "coupled", "-var", "steps", str(a.steps)],
+        capture_output=True, text=True, timeout=600,
+        env=dict(os.environ, WHEELSIM_BUILD_DIR=a.build))
+    elapsed = time.monotonic() - start
+    print(run.stdout[-2000:], run.stderr[-2000:])
+    import h5py
+
+    with h5py.File(os.path.join(a.work, "run", "run.h5"), "r") as f:
+        p = f["parameters"]
+        atoms = int(p["liggghts/atoms"][()]) if "liggghts/atoms" in p else None
+        ranks = p["liggghts/np"].asstr()[()] if "liggghts/np" in p else None
+        wall = float(p["run/wall_time"][()]) if "run/wall_time" in p else None
+    ok = (run.returncode == 0 and atoms == spheres and ranks == str(a.np)
+          and wall is not None and 0.0 < wall <= elapsed)
+    print(f"run_cosim_case: atoms {atoms} (bed: {spheres} spheres), np {ranks} (--np {a.np}), "
+          f"wall_time {wall} s (launcher {elapsed:.2f} s) {'PASS' if ok else 'FAIL'}")
+    return 0 if ok else 1
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("mode", choices=["compare", "kill_rig", "kill_liggghts", "launcher_fail",
-                                    "dt_from_bed"])
+                                    "dt_from_bed", "cost_recorded"])
     p.add_argument("--root", required=True)
     p.add_argument("--build", required=True)
     p.add_argument("--bed", required=True)
@@ -258,7 +298,8 @@ def main():
     a = p.parse_args()
     os.makedirs(a.work, exist_ok=True)
     return {"compare": compare, "kill_rig": kill_rig, "kill_liggghts": kill_liggghts,
-            "launcher_fail": launcher_fail, "dt_from_bed": dt_from_bed}[a.mode](a)
+            "launcher_fail": launcher_fail, "dt_from_bed": dt_from_bed,
+            "cost_recorded": cost_recorded}[a.mode](a)
 
 
 if __name__ == "__main__":
