@@ -1,0 +1,83 @@
+#!/usr/bin/python3
+"""Runs a validation case's smoke version and checks its outputs.
+
+    check_case.py RUN_SH OUT_DIR --slips S1[,S2...] [--slip-tolerance 0.005]
+
+Runs `RUN_SH --smoke --out-dir OUT_DIR` from an empty OUT_DIR, then checks: results.csv has one
+row per expected slip with the issue-11 columns, finite drawbar pull, torque, sinkage and SEM,
+the measured slip equal to the imposed one within the tolerance (the rig holds it), a positive
+normal load, wall time and particle count; comparison.png and provenance.toml exist. Exit 0 when
+all hold, 1 otherwise (each failure printed).
+"""
+import argparse
+import csv
+import math
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+COLUMNS = ["slip", "drawbar_pull_N", "drawbar_pull_sem_N", "driving_torque_Nm", "sinkage_m",
+           "normal_load_N", "wall_s", "particles", "np"]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("run_sh")
+    ap.add_argument("out_dir")
+    ap.add_argument("--slips", required=True)
+    ap.add_argument("--slip-tolerance", type=float, default=0.005)
+    a = ap.parse_args()
+    out = Path(a.out_dir)
+    if out.exists():
+        shutil.rmtree(out)
+    out.mkdir(parents=True)
+    proc = subprocess.run([a.run_sh, "--smoke", "--out-dir", str(out)])
+    failures = []
+    if proc.returncode != 0:
+        failures.append(f"{a.run_sh} --smoke exited {proc.returncode}")
+    results = out / "results.csv"
+    rows = []
+    if results.exists():
+        with open(results, newline="", encoding="utf-8") as f:
+            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    else:
+        failures.append(f"{results} missing")
+    expected = [float(s) for s in a.slips.split(",")]
+    if len(rows) != len(expected):
+        failures.append(f"results.csv: {len(rows)} rows, expected {len(expected)}")
+    for row in rows:
+        missing = [c for c in COLUMNS if c not in row]
+        if missing:
+            failures.append(f"results.csv: columns missing: {missing}")
+            continue
+        for c in COLUMNS:
+            try:
+                v = float(row[c])
+            except ValueError:
+                failures.append(f"results.csv: {c} = '{row[c]}' is not a number")
+                continue
+            if not math.isfinite(v):
+                failures.append(f"results.csv: {c} = {v} is not finite")
+        s = float(row["slip"])
+        if not any(abs(s - e) <= a.slip_tolerance for e in expected):
+            failures.append(f"results.csv: slip {s} is not an imposed slip {expected} "
+                            f"within {a.slip_tolerance}: not held")
+        for c in ("normal_load_N", "wall_s", "particles"):
+            if not float(row[c]) > 0:
+                failures.append(f"results.csv: {c} = {row[c]} must be > 0")
+        print(f"slip {s:.4f}: DP {float(row['drawbar_pull_N']):.3f} ± "
+              f"{float(row['drawbar_pull_sem_N']):.3f} N, T {float(row['driving_torque_Nm']):.4f}"
+              f" N m, sinkage {1000 * float(row['sinkage_m']):.2f} mm, W "
+              f"{float(row['normal_load_N']):.2f} N, {row['particles']} particles, "
+              f"{float(row['wall_s']):.0f} s")
+    for name in ("comparison.png", "provenance.toml"):
+        if not (out / name).is_file():
+            failures.append(f"{out / name} missing")
+    for f in failures:
+        print("FAIL:", f)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
