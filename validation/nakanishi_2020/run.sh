@@ -41,7 +41,8 @@ mapfile -t runs < <(find "$out" -mindepth 4 -name run.h5 -not -path "*/beds/*" |
 # the published runs average after 1 s of driving); smoke: the second half of its 0.3 s.
 if ((smoke)); then window=(--window-start 0.15 --window-end 0.3); dest=$out
 else window=(--window-start 1.0 --window-end 2.4); dest=$here; fi
-"$root/postprocess/wheelsim-post" results "${runs[@]}" "${window[@]}" --csv "$dest/results.csv"
+"$root/postprocess/wheelsim-post" curves "${runs[@]}" "${window[@]}" --results "$dest/results.csv" \
+  --csv "$dest/curves.csv"
 "$python" "$here/compare.py" "$dest/results.csv" "$here/reference.csv" --r-eff 0.11 \
   --png "$dest/comparison.png" --md "$dest/comparison.md"
 wall=$(( $(date +%s) - start ))
