@@ -11,14 +11,20 @@ from pathlib import Path
 
 from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 
-from . import config, runner
+from . import config, estimate, rate, runner
 
-REPO = Path(__file__).resolve().parents[2]
+REPO = Path(__file__).resolve().parents[2]  # the source tree, or <prefix>/share/wheelsim
+# Default outputs: <repo>/runs, or ./runs when installed (docs/building.md, "Install").
+RUNS = REPO / "runs" if (REPO / "CMakeLists.txt").is_file() else Path("runs")
+
+
+def machine_cores():
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    return cores or 1
 
 
 def default_jobs(sweep):
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    cores = cores or 1
+    cores = machine_cores()
     return max(1, cores // sweep.np) if sweep.terrain == "dem" else cores
 
 
@@ -32,22 +38,49 @@ def main(argv=None):
                "point's rig config that wheel-rig --check rejects); 128 + signal number when "
                "interrupted.")
     add_version(ap, "wheel-sweep", start=__file__)
-    ap.add_argument("config", help="sweep config (TOML)")
+    ap.add_argument("config", nargs="?",
+                    help="sweep config (TOML); optional with --measure-rate")
     ap.add_argument("--jobs", "-j", type=int, metavar="N",
                     help="points run at once (default: cores // dem.np for DEM, cores otherwise)")
     ap.add_argument("--out-dir", metavar="DIR",
-                    help="output directory (default: <repo>/runs/sweeps/<config name>)")
+                    help="output directory (default: <repo>/runs/sweeps/<config name>; "
+                         "./runs/sweeps/<config name> when installed)")
     ap.add_argument("--dry-run", action="store_true",
                     help="list the points, whether each is finished, and the commands; "
                          "write nothing")
     ap.add_argument("--force", action="store_true", help="re-run finished points too")
     ap.add_argument("--build-dir", metavar="D",
                     help="build directory (default: $WHEELSIM_BUILD_DIR, else <repo>/build)")
+    cost = ap.add_argument_group("DEM cost estimate (docs/sweeps.md, \"Cost estimate\")")
+    cost.add_argument("--estimate", action="store_true",
+                      help="print each DEM point's and the sweep's particles, time step, "
+                           "simulated time, steps and predicted wall time; run nothing")
+    cost.add_argument("--measure-rate", action="store_true",
+                      help="measure this machine's LIGGGHTS particle-step rate (about a "
+                           "CPU-minute) and cache it (then go on with CONFIG if given)")
+    cost.add_argument("--budget", type=float, metavar="HOURS",
+                      help="refuse a DEM sweep whose estimate exceeds HOURS of wall time "
+                           "(overrides dem.budget_h)")
+    cost.add_argument("--yes", action="store_true",
+                      help="run a DEM sweep even if its estimate exceeds the budget")
+    cost.add_argument("--cores", type=int, metavar="N",
+                      help="cores the estimate assumes (default: this machine's)")
     a = ap.parse_args(argv)
 
     if a.jobs is not None and a.jobs < 1:
         ap.error(f"--jobs must be >= 1, got {a.jobs}")
+    if a.cores is not None and a.cores < 1:
+        ap.error(f"--cores must be >= 1, got {a.cores}")
+    if a.budget is not None and not a.budget > 0:
+        ap.error(f"--budget must be a number of hours > 0, got {a.budget:g}")
+    if a.config is None and not a.measure_rate:
+        ap.error("the following arguments are required: config")
     build = Path(a.build_dir or os.environ.get("WHEELSIM_BUILD_DIR") or REPO / "build").resolve()
+    liggghts = build / "bin" / "liggghts-wheel"
+    if a.measure_rate:
+        rc = measure_rate(liggghts, build)
+        if rc != 0 or a.config is None:
+            return rc
     try:
         sweep = config.load(a.config, REPO, build)
     except config.ConfigError as e:
@@ -61,11 +94,70 @@ def main(argv=None):
             print(f"wheel-sweep: error: {f} not found or not executable (build it, or pass "
                   "--build-dir)", file=sys.stderr)
             return EXIT_USAGE
-    out = Path(a.out_dir) if a.out_dir else REPO / "runs" / "sweeps" / Path(a.config).stem
+    out = Path(a.out_dir) if a.out_dir else RUNS / "sweeps" / Path(a.config).stem
     jobs = a.jobs or default_jobs(sweep)
+    cores = a.cores or machine_cores()
+
+    def machine_rate():
+        try:
+            key = rate.machine_key(rate.liggghts_version(liggghts))
+        except estimate.EstimateError as e:
+            raise estimate.EstimateError(f"the rate cache is keyed by the liggghts-wheel version: "
+                                         f"{e}")
+        return rate.lookup(rate.cache_path(), key)
+    cost = {"rate": machine_rate, "cores": cores, "yes": a.yes,
+            "budget_h": a.budget if a.budget is not None else sweep.budget_h}
+    r = runner.Runner(sweep, out, REPO, build, jobs, force=a.force, dry_run=a.dry_run,
+                      cost=cost)
+    if a.estimate:
+        return print_estimate(r, sweep, cost)
     try:
-        return runner.Runner(sweep, out, REPO, build, jobs, force=a.force,
-                             dry_run=a.dry_run).run()
+        return r.run()
     except RuntimeError as e:
         print(f"wheel-sweep: error: {e}", file=sys.stderr)
         return 1
+
+
+def measure_rate(liggghts, build):
+    mesh = build / "meshes" / "test_small.stl"
+    for f in (liggghts, mesh):
+        if not f.is_file():
+            print(f"wheel-sweep: error: --measure-rate needs {f} (build it, or pass --build-dir)",
+                  file=sys.stderr)
+            return EXIT_USAGE
+    np2 = rate.have_mpirun() and machine_cores() >= 2
+    try:
+        entry = rate.measure(liggghts, REPO, mesh, np2=np2)
+        path = rate.cache_path()
+        rate.write_cache(path, entry)
+    except (estimate.EstimateError, OSError) as e:
+        print(f"wheel-sweep: error: --measure-rate: {e}", file=sys.stderr)
+        return 1
+    print(f"measure-rate: {entry['particles']} particles, {entry['steps']} steps: "
+          f"{entry['rate_per_rank']:.4g} particle-steps/s per rank, np-2 efficiency "
+          f"{entry['efficiency_np2']:.3f}" + ("" if np2 else " (default: np 2 not measured)")
+          + f", startup {entry['startup_s']} s, beds {entry['bed_rate_per_rank']:.4g} "
+          f"particle-steps/s; load average {entry['load_average_1min']} on {entry['cores']} "
+          f"cores; cached in {path}", flush=True)
+    return 0
+
+
+def print_estimate(r, sweep, cost):
+    """--estimate: the whole printout; exit 0 (2 when it cannot be made)."""
+    if sweep.terrain != "dem":
+        print(f"estimate: {sweep.path.name}: terrain {sweep.terrain}: the cost estimate covers "
+              "DEM sweeps only")
+        return 0
+    try:
+        est = r.cost_estimate(cost["rate"], cost["cores"])
+    except estimate.EstimateError as e:
+        print(f"wheel-sweep: error: estimate: {e}", file=sys.stderr)
+        return EXIT_USAGE
+    for line in estimate.report(est, sweep.path.name):
+        print(line)
+    b = cost["budget_h"]
+    if b is not None:
+        verdict = "exceeds" if est.total > b * 3600.0 else "within"
+        print(f"estimate: budget {b:g} h: {verdict} (a run " +
+              ("stops unless --yes" if verdict == "exceeds" else "goes ahead") + ")")
+    return 0

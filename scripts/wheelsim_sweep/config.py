@@ -16,7 +16,7 @@ from pathlib import Path
 
 TERRAINS = ("scm", "dem", "flat")
 TOP_KEYS = ("description", "terrain", "base", "override", "wheels", "soils", "slips", "dem")
-DEM_KEYS = ("np", "bed_np", "deck", "liggghts_args")
+DEM_KEYS = ("np", "bed_np", "deck", "liggghts_args", "budget_h")
 # The rig config's tables and keys (docs/rig-config.md); [terrain] is passed through unchecked
 # because its keys depend on the terrain type (SCM adds keys). wheel-rig checks everything again.
 RIG_KEYS = {
@@ -88,6 +88,7 @@ class Sweep:
     bed_np: int = 1
     deck: Path | None = None
     liggghts_args: list = field(default_factory=list)
+    budget_h: float | None = None  # dem.budget_h: refuse a sweep estimated longer (estimate.py)
 
 
 def _suggest(key, allowed):
@@ -512,6 +513,11 @@ def load(path, repo, build_dir):
         if not isinstance(args, list) or not all(isinstance(a, str) for a in args):
             raise ctx.err("dem.liggghts_args must be an array of strings")
         sweep.liggghts_args = args
+        if "budget_h" in dem:
+            b = dem["budget_h"]
+            if isinstance(b, bool) or not isinstance(b, (int, float)) or not b > 0:
+                raise ctx.err(f"dem.budget_h must be a number of hours > 0, got {b!r}")
+            sweep.budget_h = float(b)
 
     # The points.
     n = 0

@@ -21,7 +21,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
 from pathlib import Path
 
-from . import health, toml_out, watchdog
+from . import estimate, health, toml_out, watchdog
 
 RUN_FILE = "run.h5"
 PART_FILE = "run.part.h5"
@@ -36,14 +36,6 @@ def _write_atomic(path, text):
         f.flush()
         os.fsync(f.fileno())
     os.replace(tmp, path)
-
-
-def _fmt_time(s):
-    if s < 60:
-        return f"{s:.1f} s"
-    if s < 3600:
-        return f"{int(s // 60)} min {int(s % 60)} s"
-    return f"{int(s // 3600)} h {int(s % 3600 // 60)} min"
 
 
 def _last_error(log):
@@ -62,8 +54,12 @@ class Interrupted(Exception):
 
 
 class Runner:
-    def __init__(self, sweep, out_dir, repo, build_dir, jobs, force=False, dry_run=False):
+    def __init__(self, sweep, out_dir, repo, build_dir, jobs, force=False, dry_run=False,
+                 cost=None):
         self.sweep = sweep
+        # DEM cost check before running (cli.py): {"rate": callable -> estimate.Rate, "cores",
+        # "budget_h" (None: no budget), "yes"}; None: no estimate line
+        self.cost = cost
         self.out = Path(out_dir).resolve()
         self.repo = repo
         self.build = build_dir
@@ -280,7 +276,7 @@ class Runner:
                 counter["running"].pop(p.index, None)
                 counter["finished"] += 1
                 self.say(f"[{counter['finished']}/{counter['total']}] {self.describe(p)} "
-                         f"interrupted after {_fmt_time(time.monotonic() - t0)}")
+                         f"interrupted after {estimate.fmt_time(time.monotonic() - t0)}")
             return
         wall = time.monotonic() - t0
         if rc == 0 and not (d / PART_FILE).is_file():
@@ -304,11 +300,12 @@ class Runner:
             del counter["running"][p.index]
             eta = self._eta(counter)
         if rc == 0:
-            self.say(f"[{k}/{counter['total']}] {self.describe(p)} done in {_fmt_time(wall)}{eta}")
+            self.say(f"[{k}/{counter['total']}] {self.describe(p)} done in "
+                     f"{estimate.fmt_time(wall)}{eta}")
         else:
             why = note or _last_error(d / "run.log")
             self.say(f"[{k}/{counter['total']}] {self.describe(p)} FAILED (exit {rc}) after "
-                     f"{_fmt_time(wall)}: {why} [log {d / 'run.log'}]{eta}")
+                     f"{estimate.fmt_time(wall)}: {why} [log {d / 'run.log'}]{eta}")
 
     def _eta(self, counter):
         """Mean wall time of the finished points x the work left (running points count by their
@@ -319,7 +316,51 @@ class Runner:
         mean = sum(counter["walls"]) / len(counter["walls"])
         now = time.monotonic()
         work = pending * mean + sum(max(mean - (now - t), 0.0) for t in counter["running"].values())
-        return f"; ETA {_fmt_time(work / self.jobs_used)}"
+        return f"; ETA {estimate.fmt_time(work / self.jobs_used)}"
+
+    # ---- DEM cost ---------------------------------------------------------------------------------
+    def cost_estimate(self, rate, cores):
+        """The sweep's estimate.SweepEstimate with rate() (called once the points are known to
+        be estimable); raises estimate.EstimateError."""
+        query = estimate.SoilQuery(self.build / "bin" / "liggghts-wheel", self.repo / "inputs")
+        soilbin = self.repo / "inputs" / "in.soilbin"
+        infos = {s.label: estimate.bed_info(s, self.bed_restart(s), query, soilbin)
+                 for s in self.sweep.soils}
+        done = {p.index for p in self.sweep.points if self.finished(p)[0]} if not self.force \
+            else set()
+        return estimate.estimate(self.sweep.points, infos, rate(), self.sweep.np,
+                                 self.sweep.bed_np, self.jobs, cores,
+                                 finished=lambda p: p.index in done)
+
+    def _check_cost(self):
+        """The estimate line at the start of a DEM sweep and the budget check: returns 2 (and
+        says why) when the estimate exceeds the budget without --yes, else None."""
+        c = self.cost
+        budget = c.get("budget_h")
+        try:
+            est = self.cost_estimate(c["rate"], c["cores"])
+        except estimate.EstimateError as e:
+            self.say(f"wheel-sweep: estimate unavailable: {e}")
+            if budget is not None and not c.get("yes"):
+                print(f"wheel-sweep: error: budget {budget:g} h set (dem.budget_h or --budget) "
+                      "but the cost cannot be estimated (above); nothing run. --yes runs anyway",
+                      file=sys.stderr, flush=True)
+                return 2
+            return None
+        self.say(f"wheel-sweep: {estimate.summary_line(est)}")
+        if budget is not None and est.total > budget * 3600.0:
+            if c.get("yes"):
+                self.say(f"wheel-sweep: the estimate {estimate.fmt_time(est.total)} exceeds the "
+                         f"budget of {budget:g} h; running anyway (--yes)")
+                return None
+            beds = f" + beds <= {estimate.fmt_time(est.beds_wall)}" if est.beds else ""
+            print(f"wheel-sweep: error: estimated wall time {estimate.fmt_time(est.total)} "
+                  f"({est.total / 3600:.3g} h: points {estimate.fmt_time(est.points_wall)}"
+                  f"{beds}) exceeds the budget of "
+                  f"{budget:g} h (dem.budget_h or --budget); nothing run. See --estimate; run "
+                  "anyway with --yes, or raise the budget", file=sys.stderr, flush=True)
+            return 2
+        return None
 
     # ---- DEM beds -------------------------------------------------------------------------------
     def prepare_beds(self):
@@ -367,7 +408,7 @@ class Runner:
             _write_atomic(recipe_file, recipe_text)
             os.replace(f"{part}.vars", f"{restart}.vars")
             os.replace(part, restart)
-            self.say(f"bed {soil.label}: ready in {_fmt_time(time.monotonic() - t0)}")
+            self.say(f"bed {soil.label}: ready in {estimate.fmt_time(time.monotonic() - t0)}")
 
     # ---- the sweep ------------------------------------------------------------------------------
     def write_manifest(self):
@@ -406,6 +447,10 @@ class Runner:
         if self.dry_run:
             return self._dry_run(todo)
 
+        if sw.terrain == "dem" and todo and self.cost is not None:
+            refuse = self._check_cost()
+            if refuse is not None:
+                return refuse
         self.out.mkdir(parents=True, exist_ok=True)
         lock = open(self.out / ".wheel-sweep.lock", "w")
         try:

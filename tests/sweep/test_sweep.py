@@ -11,6 +11,7 @@ Exit 0 pass, 1 fail, 77 skip (wheel-rig or the wheel meshes not built).
 import argparse
 import csv
 import json
+import math
 import os
 import re
 import shutil
@@ -485,6 +486,50 @@ liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
     r = subprocess.run(cmd + ["--dry-run"], capture_output=True, text=True, timeout=120)
     check("would run test_small my_sand s=0.2 (inputs changed since it finished)" in r.stdout,
           f"a changed soil file (same path) does not re-run the point:\n{r.stdout}")
+
+
+def case_estimate_example(a, work):
+    """--estimate on inputs/sweeps/dem_small_slips.toml with an empty output directory and no
+    rate cache prints every field: the rate and its source (the default, saying no rate was
+    measured), each point's particles (from the recipe: 11 625, LIGGGHTS inserts 11 624), dt
+    (run.dt), simulated time with release, settle, ramp and test, steps and wall time, the bed to
+    prepare, the sweep total; exit 0, nothing written."""
+    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").exists():
+        raise Skip("liggghts-wheel not built")
+    repo = Path(a.sweep).resolve().parents[1]
+    out = work / "out"
+    env = dict(os.environ, WHEELSIM_RATE_CACHE=str(work / "no_cache.toml"))
+    r = subprocess.run([a.sweep, str(repo / "inputs" / "sweeps" / "dem_small_slips.toml"),
+                        "--build-dir", a.build_dir, "--out-dir", str(out), "--estimate",
+                        "--jobs", "2", "--cores", "2"],
+                       capture_output=True, text=True, timeout=60, env=env)
+    print(r.stdout, r.stderr)
+    check(r.returncode == 0, f"--estimate exited {r.returncode}")
+    lines = r.stdout.splitlines()
+    check(any(line.startswith("estimate: rate 2.9e+06 particle-steps/s per rank") and "DEFAULT"
+              in line and "no rate measured on this machine" in line for line in lines),
+          "no rate line with the default and why")
+    points = [line for line in lines if line.startswith("estimate: point ")]
+    check(len(points) == 3, f"{len(points)} point lines, expected 3")
+    num = r"([0-9.e+-]+)"
+    for line in points:
+        m = re.search(r"particles ([0-9 ]+) \(recipe: .*\); dt 4\.89543e-05 s \(run\.dt\); "
+                      rf"simulated {num} s = release {num} \+ settle <= 0\.2 \+ ramp 0\.05 \+ "
+                      rf"test 0\.3; steps ([0-9 ]+); wall .* \({num} s\)$", line)
+        check(m is not None, f"point line lacks a field: {line}")
+        n = int(m.group(1).replace(" ", ""))
+        check(abs(n - 11624) <= 0.01 * 11624, f"particles {n}, expected 11 624 +- 1 %")
+        sim, rel = float(m.group(2)), float(m.group(3))
+        check(abs(rel - 0.13) < 1e-9 and abs(sim - (rel + 0.55)) < 1e-3, f"phases: {line}")
+        # release: 4 mm at 0.05 m/s reached over 0.1 s = 0.1 + 1.5 mm / 0.05 m/s = 0.13 s
+        steps = math.ceil((0.1 + 0.0015 / 0.05 + 0.2 + 0.05 + 0.3) / 4.89543219523472e-05 - 1e-9)
+        check(int(m.group(4).replace(" ", "")) == steps == 13891, f"steps ({steps}): {line}")
+        check(float(m.group(5)) > 0, f"wall: {line}")
+    check(any(line.startswith("estimate: bed ci_small (to prepare, 2 rank(s)): particles")
+              and "steps <= " in line and "wall <= " in line for line in lines), "no bed line")
+    check(any(line.startswith("estimate: sweep: 3 point(s)") and "= points" in line
+              and "beds <=" in line for line in lines), "no sweep line")
+    check(not out.exists(), "--estimate wrote the output directory")
 
 
 BAD = [

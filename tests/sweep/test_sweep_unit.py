@@ -3,12 +3,14 @@
 
   test_sweep_unit.py CASE --sweep scripts/wheel-sweep --work DIR
 
-CASE: toml_roundtrip, cli, soil_names (see each function and tests/sweep/CMakeLists.txt).
+CASE: toml_roundtrip, cli, soil_names, estimate_arithmetic, rate_cache, budget (see each function
+and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (a prerequisite missing).
 """
 
 import argparse
 import math
+import os
 import re
 import shutil
 import subprocess
@@ -165,6 +167,267 @@ def case_soil_names(a, work):
         raise Fail("two soils named 'dry sand' were accepted")
     except config.ConfigError as e:
         check("soils[0] and soils[1] have the same soil name 'dry sand'" in str(e), str(e))
+
+
+# ---- the DEM cost estimate (scripts/wheelsim_sweep/estimate.py, rate.py) ------------------------
+def _close(got, want, what, rel=1e-12):
+    check(abs(got - want) <= rel * abs(want), f"{what}: {got!r}, expected {want!r}")
+
+
+def _synthetic_rig(dt=1e-4):
+    """release 0.25 s (gap 2 mm at 10 mm/s reached over 0.1 s: 0.1 + 1.5 mm / 10 mm/s), settle
+    <= 0.5 s, ramp 0.25 s, test 1.0 s: 2.0 s simulated = 20 000 steps of 1e-4 s."""
+    return {"run": {"dt": dt, "duration": 1.0, "release_gap": 0.002, "release_speed": 0.01,
+                    "settle_max_time": 0.5},
+            "motor": {"omega": 1.0, "ramp_time": 0.25}}
+
+
+def case_estimate_arithmetic(a, work):
+    """The estimate's arithmetic on a synthetic sweep with known particles, dt, phases and rate:
+    exact numbers for the phases, steps, per-point wall (np 1, 2, 4; oversubscribed), the list
+    schedule, a bed to prepare, skipped finished points, the mean grain volume, the particle
+    count of a recipe and of a prepared bed's log."""
+    from types import SimpleNamespace as NS
+    from wheelsim_sweep import estimate as E
+    _close(E.release_time(0.002, 0.01), 0.25, "release, gap beyond the acceleration")
+    _close(E.release_time(0.0002, 0.01), math.sqrt(0.004), "release within the acceleration")
+    ph = E.phases(_synthetic_rig())
+    check(ph == {"release": ph["release"], "settle": 0.5, "ramp": 0.25, "test": 1.0}, str(ph))
+    _close(ph["release"], 0.25, "phases release")
+    try:
+        E.phases({"run": {"dt": 1e-4}})
+        raise Fail("a rig without run.duration was estimated")
+    except E.EstimateError as e:
+        check("run.duration" in str(e), str(e))
+    check(E.efficiency(1, 0.8) == 1.0, "eff(1)")
+    _close(E.efficiency(2, 0.8), 0.8, "eff(2)")
+    _close(E.efficiency(4, 0.8), 0.64, "eff(4)")
+    # 10 000 particles x 20 000 steps = 2e8 particle-steps at 2e6 /s/rank, startup 2 s
+    _close(E.run_wall(1e4, 20000, 1, 2e6, 0.8, 2.0), 102.0, "np 1")
+    _close(E.run_wall(1e4, 20000, 2, 2e6, 0.8, 2.0), 64.5, "np 2")
+    _close(E.run_wall(1e4, 20000, 4, 2e6, 0.8, 2.0), 2.0 + 2e8 / (2e6 * 4 * 0.64), "np 4")
+    _close(E.schedule([10.0, 20.0, 30.0], 2), 40.0, "schedule 2 slots")
+    _close(E.schedule([10.0, 20.0, 30.0], 5), 30.0, "schedule more slots than points")
+
+    soil = NS(label="bed1")
+    pts = [NS(index=i, soil=soil, rig=_synthetic_rig(), reldir=f"w/bed1/s{i}") for i in range(3)]
+    info = E.BedInfo("bed1", 1e4, "test", 1e-4, "test", prepared=False, prep_steps=5001,
+                     prep_parts={"settle": 0.5})
+    rate = E.Rate(2e6, 0.8, 2.0, 1e6, "test")
+    # 3 points, 2 jobs x 2 ranks on 2 cores: oversubscribed x2 -> (2 + 62.5 x 2) = 127 s each;
+    # two slots: 254 s; the bed (1 rank, 1e6 /s): 2 + 5001 x 1e4 / 1e6 = 52.01 s
+    est = E.estimate(pts, {"bed1": info}, rate, 2, 1, 2, 2)
+    check([e.steps for e in est.points] == [20000] * 3, f"steps {[e.steps for e in est.points]}")
+    _close(est.points[0].sim_time, 2.0, "simulated time")
+    _close(est.points[0].wall, 127.0, "oversubscribed point")
+    _close(est.points_wall, 254.0, "points wall")
+    _close(est.beds_wall, 52.01, "bed wall")
+    _close(est.total, 306.01, "total")
+    # the same on 4 cores: not oversubscribed; the first point finished: 2 left, 1 wave
+    est = E.estimate(pts, {"bed1": info}, rate, 2, 1, 2, 4, finished=lambda p: p.index == 0)
+    check(len(est.todo) == 2 and est.points[0].finished, "finished point not skipped")
+    _close(est.points_wall, 64.5, "points wall, 2 left on 4 cores")
+    line = E.summary_line(est)
+    check("2 point(s) to run" in line and "10 000 particles" in line
+          and "20 000 steps" in line and "1 min 4 s per point" in line, line)
+    rep = "\n".join(E.report(est, "synthetic.toml"))
+    for want in ("point w/bed1/s0 (finished, skipped)", "point w/bed1/s1 (to run)",
+                 "settle <= 0.5", "steps 20 000", "wall 1 min 4 s (64 s)", "bed bed1 (to prepare",
+                 "steps <= 5 001", "1 min 56 s (117 s"):
+        check(want in rep, f"report lacks {want!r}:\n{rep}")
+    # run.dt missing: the bed's dt
+    pts[1].rig["run"].pop("dt")
+    est = E.estimate(pts, {"bed1": info}, rate, 1, 1, 1, 1)
+    check(est.points[1].dt_source == "test" and est.points[0].dt_source == "run.dt", "dt source")
+
+    # the mean grain volume: ci's classes (mass fractions), equal numbers, d_ref only
+    V = [math.pi / 6 * d ** 3 for d in (0.004, 0.006, 0.008)]
+    ci = {"soil_d1": 0.004, "soil_d2": 0.006, "soil_d3": 0.008, "soil_w1": 0.25, "soil_w2": 0.5,
+          "soil_w3": 0.25, "soil_density": 2500.0, "soil_dt": 4.89543219523472e-05,
+          "soil_name": "ci", "soil_dref": 0.006, "soil_multisphere": 0.0}
+    _close(E.mean_grain_volume(ci)[0], 1.0 / (0.25 / V[0] + 0.5 / V[1] + 0.25 / V[2]), "ci V")
+    eq = {k: v for k, v in ci.items() if not k.startswith("soil_w")}
+    _close(E.mean_grain_volume(eq)[0], sum(V) / 3, "equal numbers V")
+    _close(E.mean_grain_volume({"soil_dref": 0.01})[0], math.pi / 6 * 1e-6, "d_ref V")
+    # a recipe (dem_small_slips' bin): 0.36 x 0.12 x 0.035 x 0.6 / V = 11 625 (LIGGGHTS
+    # inserted 11 624, issue 12); in.soilbin's defaults for the keys not given
+    repo = Path(a.sweep).resolve().parents[1]
+    soilbin = repo / "inputs" / "in.soilbin"
+    recipe = NS(label="ci_small", recipe={"soil": "ci", "bin_length": 0.36, "bin_width": 0.12,
+                                          "fill_height": 0.035}, dem_soil_file=Path("ci.in"))
+    bi = E.bed_info(recipe, work / "none" / "soilbin_ci.restart", lambda f: ci, soilbin)
+    n = 0.36 * 0.12 * 0.035 * 0.6 / E.mean_grain_volume(ci)[0]
+    _close(bi.particles, n, "recipe particles")
+    check(round(bi.particles) == 11625 and not bi.prepared, f"recipe particles {bi.particles}")
+    check(bi.prep_parts == {"settle": 3.0} and bi.prep_steps == 1 + math.ceil(3.0 / ci["soil_dt"]),
+          f"bed prep (max_settle_time 3 s, in.soilbin's default): {bi.prep_parts} {bi.prep_steps}")
+    recipe.recipe.update(compaction="plate", plate_time=0.4, max_settle_time=0.5)
+    bi = E.bed_info(recipe, work / "none" / "soilbin_ci.restart", lambda f: ci, soilbin)
+    _close(sum(bi.prep_parts.values()), 0.5 + 0.5 + 1.25 * 0.4, "plate compaction")
+    # a prepared bed: particles from the in.soilbin log that names it (the driver's temporary
+    # name), dt from its .vars; the soil is not asked
+    bed = work / "bed" / "soilbin_ci.restart"
+    bed.parent.mkdir()
+    bed.write_text("x")
+    Path(f"{bed}.vars").write_text("variable soil index ci\nvariable bed_dt index 5e-05\n")
+    (bed.parent / "soilbin.log").write_text(
+        "soilbin: particles = 7\nsoilbin: spheres = 7\nsoilbin: restart = /x/other.restart\n"
+        "soilbin: particles = 11624\nsoilbin: spheres = 11624\n"
+        f"soilbin: restart = {bed.parent}/soilbin_ci.part.restart\n")
+
+    def no_query(f):
+        raise Fail("the soil was asked for a prepared bed with a log")
+    bi = E.bed_info(recipe, bed, no_query, soilbin)
+    check(bi.prepared and bi.particles == 11624 and bi.dt == 5e-05, f"prepared bed: {bi}")
+    # without the log: bulk density x volume / (particle density x V)
+    (bed.parent / "soilbin.log").unlink()
+    Path(f"{bed}.vars").write_text("variable soil index ci\nvariable bin_length index 0.36\n"
+                                   "variable bin_width index 0.12\nvariable bed_depth index 0.035\n"
+                                   "variable bulk_density index 1500\n")
+    bi = E.bed_info(recipe, bed, lambda f: ci, soilbin)
+    _close(bi.particles, 1500 * 0.36 * 0.12 * 0.035 / (2500 * E.mean_grain_volume(ci)[0]),
+           ".vars particles")
+    check(bi.dt is None, "a .vars without bed_dt gave a dt")
+
+
+def _rate_entry(key, **kw):
+    e = dict(key, measured_at="2026-01-01 00:00 UTC", cores=2, load_average_1min=0.5,
+             particles=14000, steps=2000, rate_per_rank=1.5e6, efficiency_np2=0.8,
+             startup_s=1.0, bed_rate_per_rank=1.2e6)
+    e.update(kw)
+    return e
+
+
+def case_rate_cache(a, work):
+    """The rate cache: a missing file gives the defaults and says so; a written entry is read
+    back for the same host, CPU and liggghts-wheel version; another version is stale (defaults,
+    naming both versions); writing replaces the entry of the same host and CPU and keeps other
+    machines'; a damaged file is an error naming it."""
+    from wheelsim_sweep import rate as R
+    from wheelsim_sweep.estimate import EstimateError
+    path = work / "cache" / "dem_rate.toml"
+    os.environ["WHEELSIM_RATE_CACHE"] = str(path)
+    check(R.cache_path() == path, f"cache_path {R.cache_path()} ignores WHEELSIM_RATE_CACHE")
+    key = R.machine_key("liggghts-wheel 0.1.0 (git aaaa)")
+    r = R.lookup(path, key)
+    check(r.rate_per_rank == R.DEFAULT["rate_per_rank"] and "DEFAULT" in r.source
+          and "missing" in r.source, f"missing cache: {r}")
+    R.write_cache(path, _rate_entry(key))
+    other = _rate_entry({"host": "elsewhere", "cpu": "x", "liggghts_wheel": "v"},
+                        rate_per_rank=9e6)
+    R.write_cache(path, other)
+    r = R.lookup(path, key)
+    check((r.rate_per_rank, r.efficiency_np2, r.startup_s, r.bed_rate_per_rank)
+          == (1.5e6, 0.8, 1.0, 1.2e6) and "measured 2026-01-01" in r.source, f"cached: {r}")
+    stale = R.machine_key("liggghts-wheel 0.1.0 (git bbbb)")
+    r = R.lookup(path, stale)
+    check(r.rate_per_rank == R.DEFAULT["rate_per_rank"] and "git aaaa" in r.source
+          and "git bbbb" in r.source, f"stale version not reported: {r.source}")
+    R.write_cache(path, _rate_entry(stale, rate_per_rank=2.5e6))  # re-measured: replaces
+    entries = R.read_cache(path)
+    check(len(entries) == 2 and {e["host"] for e in entries} == {key["host"], "elsewhere"},
+          f"entries after re-measuring: {entries}")
+    check(R.lookup(path, stale).rate_per_rank == 2.5e6, "the re-measured rate is not used")
+    check(R.lookup(path, key).rate_per_rank == R.DEFAULT["rate_per_rank"],
+          "the replaced version's rate is still used")
+    path.write_text("rate = [")
+    try:
+        R.lookup(path, key)
+        raise Fail("a damaged cache was read")
+    except EstimateError as e:
+        check(str(path) in str(e), str(e))
+
+
+def _budget_setup(work):
+    """A DEM sweep of 2 points on a fake prepared bed (100 000 spheres by its log, dt 1e-4 s),
+    2.0 s simulated = 20 000 steps each; the cached rate 1e6 particle-steps/s, startup 0: 2000 s
+    per point, 1 job: 4000 s = 1 h 6 min. A stand-in liggghts-wheel answers --version only."""
+    from wheelsim_sweep import rate as R
+    build = work / "build"
+    (build / "bin").mkdir(parents=True)
+    version = "liggghts-wheel 0.1.0 (git unit)"
+    for name, text in (("liggghts-wheel",
+                        f'if [ "$1" = --version ]; then echo "{version}"; exit 0; fi\nexit 1\n'),
+                       ("wheel-rig", "exit 1\n")):
+        (build / "bin" / name).write_text("#!/bin/sh\n" + text)
+        (build / "bin" / name).chmod(0o755)
+    cache = work / "dem_rate.toml"
+    R.write_cache(cache, _rate_entry(R.machine_key(version), rate_per_rank=1e6, startup_s=0.0))
+    bed = work / "bed" / "soilbin_x.restart"
+    bed.parent.mkdir()
+    bed.write_text("x")
+    Path(f"{bed}.vars").write_text("variable soil index ci\nvariable bed_dt index 1e-4\n"
+                                   "variable bed_depth index 0.05\n")
+    (bed.parent / "soilbin.log").write_text(f"soilbin: spheres = 100000\nsoilbin: restart = {bed}\n")
+    (work / "wheel.stl").write_text("solid w\nendsolid w\n")
+    (work / "in.deck").write_text("# not run\n")
+    rig = work / "rig.toml"
+    rig.write_text('[run]\ndt = 1e-4\nduration = 1.0\nrelease_gap = 0.002\nrelease_speed = 0.01\n'
+                   'settle_max_time = 0.5\n[motor]\nomega = 1.0\nramp_time = 0.25\n'
+                   '[terrain]\ntype = "dem"\n')
+    cfg = work / "sweep.toml"
+    cfg.write_text(f'terrain = "dem"\nbase = "rig.toml"\nwheels = ["wheel.stl"]\n'
+                   f'soils = ["{bed}"]\nslips = [0.1, 0.2]\n'
+                   '[dem]\nnp = 1\ndeck = "in.deck"\nbudget_h = 1.0\n')
+    env = dict(os.environ, WHEELSIM_RATE_CACHE=str(cache))
+    return build, cfg, env
+
+
+def case_budget(a, work):
+    """dem.budget_h and --budget: a DEM sweep estimated over the budget exits 2 naming the
+    estimate and the budget, before anything is written; --budget overrides the key; --estimate
+    says 'exceeds' and exits 0; --yes (and a budget that suffices) go on to the points."""
+    build, cfg, env = _budget_setup(work)
+    out = work / "out"
+
+    def run(*args):
+        r = subprocess.run([a.sweep, str(cfg), "--build-dir", str(build), "--out-dir", str(out),
+                            "--jobs", "1", *args], capture_output=True, text=True, timeout=60,
+                           env=env)
+        print(f"$ wheel-sweep ... {' '.join(args)} -> exit {r.returncode}\n{r.stdout}{r.stderr}")
+        return r
+    r = run()
+    check(r.returncode == 2, f"over budget: exit {r.returncode}, expected 2")
+    check("estimated wall time 1 h 6 min (1.11 h: points 1 h 6 min) exceeds "
+          "the budget of 1 h (dem.budget_h or --budget); nothing run" in r.stderr
+          and "--yes" in r.stderr, f"refusal message: {r.stderr!r}")
+    check("estimate: 2 point(s) to run, 100 000 particles" in r.stdout, "no estimate line")
+    check(not out.exists(), "a refused sweep wrote its output directory")
+    r = run("--budget", "0.5")
+    check(r.returncode == 2 and "budget of 0.5 h" in r.stderr, "--budget does not override")
+    r = run("--estimate")
+    check(r.returncode == 0 and "estimate: budget 1 h: exceeds" in r.stdout
+          and "wall 33 min 20 s (2000 s)" in r.stdout, "--estimate over budget")
+    check(not out.exists(), "--estimate wrote the output directory")
+
+    # past the check, in-process (the points themselves are not run)
+    from wheelsim_sweep import config, estimate, runner
+    repo = Path(a.sweep).resolve().parents[1]
+    sweep = config.load(cfg, repo, build)
+    check(sweep.budget_h == 1.0, f"dem.budget_h read as {sweep.budget_h}")
+    rate = estimate.Rate(1e6, 0.8, 0.0, 1e6, "test")
+    for budget, yes, want in ((1.0, False, 2), (1.0, True, None), (2.0, False, None)):
+        r = runner.Runner(sweep, out, repo, build, 1, cost={"rate": lambda: rate, "cores": 2,
+                                                            "budget_h": budget, "yes": yes})
+        ran = []
+        r.prepare_beds = lambda: ran.append("beds")
+        r._run_points = lambda todo: ran.append(len(todo))
+        got = r.run()
+        if want == 2:
+            check(got == 2 and not ran, f"budget {budget}, yes {yes}: exit {got}, ran {ran}")
+        else:
+            check(ran == ["beds", 2], f"budget {budget}, yes {yes}: points not run ({ran})")
+    try:
+        config.load(_rewrite(cfg, "budget_h = 1.0", "budget_h = -1"), repo, build)
+        raise Fail("dem.budget_h = -1 accepted")
+    except config.ConfigError as e:
+        check("dem.budget_h must be a number of hours > 0, got -1" in str(e), str(e))
+
+
+def _rewrite(path, old, new):
+    p = path.with_name("bad_" + path.name)
+    p.write_text(path.read_text().replace(old, new))
+    return p
 
 
 def main():

@@ -1,0 +1,470 @@
+"""The cost of a DEM sweep before it runs (issue 12 item 4). Reference: docs/sweeps.md,
+"Cost estimate".
+
+Model (one formula, `point_wall`): a coupled point costs
+
+    wall = startup + steps * N / (rate * np * eff(np)) * oversubscription
+
+N the bed's particles (spheres), steps = ceil(simulated time / dt), rate the particle-step rate
+of one LIGGGHTS rank [particle-steps/s] measured on this machine (rate.py, cached), eff(np) the
+parallel efficiency (1 at np 1, the measured np-2 efficiency e2 at np 2, e2^log2(np) beyond: an
+extrapolation, not a measurement), oversubscription = max(1, ranks running at once / cores).
+The simulated time is the rig's phases (docs/rig-config.md): release (the held spindle closing
+run.release_gap at run.release_speed, reached over 0.1 s; the sinking until the soil carries the
+load is not known beforehand and not counted), settle (run.settle_max_time: an upper bound),
+ramp (motor.ramp_time) and test (run.duration). Points run `jobs` at a time in config order
+(list scheduling, as the driver starts them); beds from recipes not yet prepared are prepared
+one after another before the points, their settling counted up to max_settle_time (an upper
+bound; compaction phases added).
+
+Particles: a prepared bed's LIGGGHTS log (`soilbin: spheres = N`), else its .vars (bulk density x
+bin volume / (particle density x mean grain volume)), else the recipe: bin_length x bin_width x
+fill_height x fill_solid_fraction / mean grain volume. Grain sizes come from LIGGGHTS itself:
+the soil file is run with soil_vars_only = 1 (`soil_vars`), so expressions in soil files are
+evaluated as LIGGGHTS does. Time step: run.dt, else the bed's bed_dt, else the soil's soil_dt.
+"""
+
+import math
+import re
+import subprocess
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+RELEASE_ACCEL_TIME_S = 0.1  # the rig reaches run.release_speed linearly over 0.1 s (rig-config.md)
+# rig defaults of the [run] and [motor] keys used here (docs/rig-config.md, "Configuration keys")
+RIG_DEFAULTS = {"release_gap": 0.002, "release_speed": 0.01, "settle_max_time": 5.0,
+                "ramp_time": 1.0}
+SOIL_QUERY_TIMEOUT_S = 30.0
+
+
+class EstimateError(Exception):
+    """The estimate cannot be made; the message says which input is missing or bad."""
+
+
+def fmt_time(s):
+    """Wall time for people: 42.0 s, 3 min 5 s, 2 h 10 min."""
+    if s < 60:
+        return f"{s:.1f} s"
+    if s < 3600:
+        return f"{int(s // 60)} min {int(s % 60)} s"
+    return f"{int(s // 3600)} h {int(s % 3600 // 60)} min"
+
+
+def fmt_int(n):
+    return f"{int(round(n)):,}".replace(",", " ")
+
+
+# ---- the rate and the wall-time formula ---------------------------------------------------------
+@dataclass
+class Rate:
+    """LIGGGHTS' throughput on this machine. rate_per_rank: particle-steps/s of one rank running
+    a coupled-like wheel run; efficiency_np2: speed-up at np 2 / 2; startup_s: wall time of a run
+    outside its steps (start, read the bed, finish); bed_rate_per_rank: the same as rate_per_rank
+    while a bed settles (in.soilbin)."""
+    rate_per_rank: float
+    efficiency_np2: float
+    startup_s: float
+    bed_rate_per_rank: float
+    source: str = ""  # where the numbers come from, for the printout
+
+
+def efficiency(np_, e2):
+    """Parallel efficiency at np ranks: 1 at np 1, e2 at np 2, e2^log2(np) beyond."""
+    return 1.0 if np_ <= 1 else e2 ** math.log2(np_)
+
+
+def oversubscription(ranks_at_once, cores):
+    return max(1.0, ranks_at_once / cores)
+
+
+def run_wall(particles, steps, np_, rate_per_rank, e2, startup_s, over=1.0):
+    """Wall time [s] of one LIGGGHTS run of `steps` steps of `particles` on np ranks."""
+    return startup_s + steps * particles / (rate_per_rank * np_ * efficiency(np_, e2)) * over
+
+
+def schedule(walls, jobs):
+    """Wall time of running `walls` (in order) `jobs` at a time: each starts on the first free
+    slot, as the driver's thread pool does."""
+    slots = [0.0] * max(1, min(jobs, len(walls)))
+    for w in walls:
+        i = slots.index(min(slots))
+        slots[i] += w
+    return max(slots) if walls else 0.0
+
+
+# ---- the rig's simulated time -------------------------------------------------------------------
+def release_time(gap, speed, accel_time=RELEASE_ACCEL_TIME_S):
+    """Time [s] for the held spindle to close `gap` [m]: speed rises linearly to `speed` [m/s]
+    over accel_time, then stays."""
+    d_accel = 0.5 * speed * accel_time
+    if gap <= d_accel:
+        return math.sqrt(2.0 * gap * accel_time / speed)
+    return accel_time + (gap - d_accel) / speed
+
+
+def phases(rig):
+    """The point's simulated phases [s] from its rig config: release, settle (upper bound),
+    ramp, test. Raises EstimateError naming a missing or bad key."""
+    run, motor = rig.get("run", {}), rig.get("motor", {})
+
+    def num(table, tname, key, default=None):
+        v = table.get(key, default)
+        if v is None:
+            raise EstimateError(f"rig config: {tname}.{key} is not set (needed for the "
+                                "simulated time)")
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not v >= 0:
+            raise EstimateError(f"rig config: {tname}.{key} must be a number >= 0, got {v!r}")
+        return float(v)
+    gap = num(run, "run", "release_gap", RIG_DEFAULTS["release_gap"])
+    speed = num(run, "run", "release_speed", RIG_DEFAULTS["release_speed"])
+    if speed <= 0:
+        raise EstimateError(f"rig config: run.release_speed must be > 0 m/s, got {speed!r}")
+    return {"release": release_time(gap, speed),
+            "settle": num(run, "run", "settle_max_time", RIG_DEFAULTS["settle_max_time"]),
+            "ramp": num(motor, "motor", "ramp_time", RIG_DEFAULTS["ramp_time"]),
+            "test": num(run, "run", "duration")}
+
+
+# ---- soils and beds -----------------------------------------------------------------------------
+_VAR_NAME_RE = re.compile(r"^\s*variable\s+(soil_[dw]\d+)\s+equal\s", re.M)
+_SCALARS = ("soil_name", "soil_dt", "soil_density", "soil_dref", "soil_multisphere")
+
+
+def soil_vars(liggghts, soil_file, inputs_dir):
+    """The soil file's variables as LIGGGHTS evaluates them (soil_vars_only = 1): soil_name,
+    soil_dt [s], soil_density [kg/m^3], soil_dref [m], soil_multisphere, and the sieve classes
+    soil_d<i> [m] and mass fractions soil_w<i> that the file defines. Runs liggghts-wheel once
+    (serial, under a second)."""
+    text = Path(soil_file).read_text(errors="replace")
+    names = list(_SCALARS) + sorted(set(_VAR_NAME_RE.findall(text)))
+    with tempfile.TemporaryDirectory(prefix="wheel-sweep-soil-") as tmp:
+        deck = Path(tmp) / "in.soil_vars"
+        deck.write_text("variable soil_vars_only equal 1\n"
+                        f"include {soil_file}\n"
+                        + "".join(f'print "wheel_sweep_var {n} ${{{n}}}"\n' for n in names))
+        try:
+            r = subprocess.run([str(liggghts), "-in", str(deck), "-log", "none", "-echo", "none",
+                                "-var", "inputs_dir", str(inputs_dir)], cwd=tmp,
+                               capture_output=True, text=True, stdin=subprocess.DEVNULL,
+                               timeout=SOIL_QUERY_TIMEOUT_S)
+        except (OSError, subprocess.SubprocessError) as e:
+            raise EstimateError(f"soil file {soil_file}: LIGGGHTS ({liggghts}) could not be asked "
+                                f"for its variables: {e}")
+    out = {}
+    for line in r.stdout.splitlines():
+        f = line.split()
+        if len(f) >= 3 and f[0] == "wheel_sweep_var":
+            out[f[1]] = f[2]
+    missing = [n for n in names if n not in out]
+    if r.returncode != 0 or missing:
+        last = (r.stdout.strip().splitlines() or [""])[-1]
+        raise EstimateError(f"soil file {soil_file}: LIGGGHTS did not give "
+                            f"{', '.join(missing) or 'its variables'} (exit {r.returncode}: {last})")
+    return {k: (v if k == "soil_name" else float(v)) for k, v in out.items()}
+
+
+def mean_grain_volume(sv):
+    """Mean volume [m^3] of one grain, and how it was found. Sieve classes soil_d<i> with mass
+    fractions soil_w<i>: number fractions ~ w_i / V_i, so the mean is sum(w) / sum(w_i / V_i);
+    classes without mass fractions: equal numbers per class; no classes: a sphere of soil_dref."""
+    d = {int(k[6:]): v for k, v in sv.items() if re.fullmatch(r"soil_d\d+", k)}
+    w = {int(k[6:]): v for k, v in sv.items() if re.fullmatch(r"soil_w\d+", k)}
+    vol = {i: math.pi / 6.0 * di ** 3 for i, di in d.items()}
+    if d and set(w) >= set(d) and sum(w[i] for i in d) > 0:
+        return (sum(w[i] for i in d) / sum(w[i] / vol[i] for i in d),
+                f"{len(d)} sieve classes by mass fraction")
+    if d:
+        return sum(vol.values()) / len(vol), f"{len(d)} size classes, equal numbers assumed"
+    dref = sv.get("soil_dref")
+    if not dref or dref <= 0:
+        raise EstimateError("the soil file defines neither soil_d<i> classes nor soil_dref")
+    return math.pi / 6.0 * dref ** 3, "one sphere of soil_dref (rough)"
+
+
+def vars_file(path):
+    """`variable KEY style VALUE` lines of a bed's .vars file (or in.soilbin's defaults) as a
+    dict of strings."""
+    out = {}
+    for line in Path(path).read_text(errors="replace").splitlines():
+        f = line.split()
+        if len(f) >= 4 and f[0] == "variable":
+            out.setdefault(f[1], f[3])
+    return out
+
+
+def soilbin_defaults(soilbin):
+    """in.soilbin's `variable NAME index DEFAULT` values (the recipe keys' defaults)."""
+    return {k: v for k, v in vars_file(soilbin).items()}
+
+
+_LOG_KEY_RE = re.compile(r"^soilbin: (spheres|particles|restart|settle_steps|final_step) = (\S+)",
+                         re.M)
+
+
+def bed_log_spheres(restart):
+    """(spheres, log file) from the in.soilbin log next to a prepared bed whose result block names
+    this restart (or the temporary .part.restart the driver renames), else None."""
+    restart = Path(restart)
+    names = {restart.name, restart.name.replace(".restart", ".part.restart")}
+    logs = [restart.parent / "soilbin.log", restart.parent / "log.soilbin"]
+    logs += sorted(restart.parent.glob("log.soilbin_*"))
+    for log in logs:
+        try:
+            text = log.read_text(errors="replace")
+        except OSError:
+            continue
+        block = {}
+        found = None
+        for k, v in _LOG_KEY_RE.findall(text):
+            block[k] = v
+            if k == "restart":
+                if Path(v).name in names and "spheres" in block:
+                    found = int(float(block["spheres"]))
+                block = {}
+        if found is not None:
+            return found, log
+    return None
+
+
+@dataclass
+class BedInfo:
+    """What the estimate knows of one soil's bed."""
+    label: str
+    particles: float
+    particles_source: str
+    dt: float | None  # the bed's (or soil's) time step [s]
+    dt_source: str
+    prepared: bool
+    soil_name: str = ""
+    prep_steps: int = 0  # beds to prepare: an upper bound
+    prep_parts: dict = field(default_factory=dict)  # [s] insertion, settle, compaction
+
+
+class SoilQuery:
+    """soil_vars once per soil file."""
+
+    def __init__(self, liggghts, inputs_dir):
+        self.liggghts = liggghts
+        self.inputs_dir = inputs_dir
+        self._cache = {}
+
+    def __call__(self, soil_file):
+        key = str(soil_file)
+        if key not in self._cache:
+            if soil_file is None or not Path(soil_file).is_file():
+                raise EstimateError(f"soil file {soil_file} not found (needed for its grain "
+                                    "sizes or time step)")
+            if not Path(self.liggghts).is_file():
+                raise EstimateError(f"{self.liggghts} not found (asked for the soil's variables)")
+            self._cache[key] = soil_vars(self.liggghts, soil_file, self.inputs_dir)
+        return self._cache[key]
+
+
+def _recipe_num(recipe, defaults, key):
+    v = recipe.get(key, defaults.get(key))
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        raise EstimateError(f"recipe key {key} = {v!r}: expected a number")
+
+
+def bed_info(soil, restart, query, soilbin):
+    """BedInfo of a sweep soil: `restart` is where its bed is (or will be), `query` a SoilQuery,
+    `soilbin` inputs/in.soilbin (the recipe keys' defaults)."""
+    restart = Path(restart)
+    vf = Path(f"{restart}.vars")
+    if restart.is_file() and vf.is_file():
+        v = vars_file(vf)
+        dt = float(v["bed_dt"]) if "bed_dt" in v else None
+        got = bed_log_spheres(restart)
+        if got is not None:
+            return BedInfo(soil.label, got[0], f"bed log {got[1]}", dt, "bed_dt (.vars)", True)
+        need = ("bulk_density", "bin_length", "bin_width", "bed_depth")
+        if any(k not in v for k in need):
+            raise EstimateError(f"bed {restart}: no in.soilbin log beside it and its .vars lacks "
+                                f"{', '.join(k for k in need if k not in v)}: particles unknown")
+        soil_file = soil.dem_soil_file or (soilbin.parent / "soils" / f"{v.get('soil')}.in")
+        sv = query(soil_file)
+        vol, how = mean_grain_volume(sv)
+        n = (float(v["bulk_density"]) * float(v["bin_length"]) * float(v["bin_width"])
+             * float(v["bed_depth"]) / (sv["soil_density"] * vol))
+        return BedInfo(soil.label, n, f"bed .vars bulk density / mean grain ({how}; estimate)",
+                       dt, "bed_dt (.vars)", True)
+    if soil.recipe is None:
+        raise EstimateError(f"bed {restart} not found")
+    sv = query(soil.dem_soil_file)
+    defaults = soilbin_defaults(soilbin)
+    r = soil.recipe
+    vol, how = mean_grain_volume(sv)
+    dims = [_recipe_num(r, defaults, k) for k in ("bin_length", "bin_width", "fill_height",
+                                                  "fill_solid_fraction")]
+    n = math.prod(dims) / vol
+    info = BedInfo(soil.label, n, f"recipe: bin x fill solid fraction / mean grain ({how})",
+                   sv["soil_dt"], "soil_dt (soil file)", False, soil_name=sv["soil_name"])
+    info.prep_parts = bed_prep_times(r, defaults, sv)
+    dt = sv["soil_dt"]
+    info.prep_steps = 1 + sum(math.ceil(t / dt - 1e-9) for t in info.prep_parts.values())
+    return info
+
+
+def bed_prep_times(recipe, defaults, sv):
+    """Simulated time [s] of preparing a bed from a recipe, upper bounds (in.soilbin): settling
+    up to max_settle_time (in whole check_time chunks), plus the compaction and its second
+    settling."""
+    def num(k):
+        return _recipe_num(recipe, defaults, k)
+    check = num("check_time")
+    settle_max = math.ceil(num("max_settle_time") / check - 1e-9) * check
+    parts = {"settle": settle_max}
+    comp = str(recipe.get("compaction", defaults.get("compaction", "none")))
+    if comp == "plate":
+        parts["plate"] = 1.25 * num("plate_time")
+        parts["settle_after"] = settle_max
+    elif comp == "drop":
+        v = math.sqrt(2.0 * 9.81 * num("drop_height"))
+        gap = 0.5 * sv.get("soil_dref", 0.0)  # drop_gap = 0.5 d_max; d_ref is close enough
+        stroke = num("drop_stroke") * sv.get("soil_dref", 0.0)
+        parts["drop"] = num("drop_count") * (2.0 * (gap + stroke) / v + num("drop_rest"))
+        parts["settle_after"] = settle_max
+    return parts
+
+
+# ---- the whole estimate -------------------------------------------------------------------------
+@dataclass
+class PointEstimate:
+    point: object
+    particles: float
+    particles_source: str
+    dt: float
+    dt_source: str
+    phases: dict
+    sim_time: float
+    steps: int
+    wall: float
+    finished: bool
+
+
+@dataclass
+class BedEstimate:
+    info: BedInfo
+    dt: float
+    steps: int
+    wall: float
+
+
+@dataclass
+class SweepEstimate:
+    points: list
+    beds: list
+    jobs: int
+    np: int
+    bed_np: int
+    cores: int
+    rate: Rate
+    points_wall: float = 0.0
+    beds_wall: float = 0.0
+
+    @property
+    def total(self):
+        return self.points_wall + self.beds_wall
+
+    @property
+    def todo(self):
+        return [p for p in self.points if not p.finished]
+
+
+def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: False):
+    """The sweep's estimate. points: the sweep's points (each with .rig and .soil.label); infos:
+    soil label -> BedInfo; finished(p): True for a point that will be skipped."""
+    todo = [p for p in points if not finished(p)]
+    at_once = max(1, min(jobs, len(todo)))
+    over = oversubscription(at_once * np_, cores)
+    out = []
+    for p in points:
+        info = infos[p.soil.label]
+        run = p.rig.get("run", {})
+        if run.get("dt") is not None:
+            dt, dt_src = float(run["dt"]), "run.dt"
+        elif info.dt is not None:
+            dt, dt_src = info.dt, info.dt_source
+        else:
+            raise EstimateError(f"point {p.reldir}: no time step (run.dt, the bed's bed_dt or the "
+                                "soil's soil_dt)")
+        if not dt > 0:
+            raise EstimateError(f"point {p.reldir}: run.dt must be > 0 s, got {dt!r}")
+        ph = phases(p.rig)
+        sim = sum(ph.values())
+        steps = math.ceil(sim / dt - 1e-9)
+        wall = run_wall(info.particles, steps, np_, rate.rate_per_rank, rate.efficiency_np2,
+                        rate.startup_s, over)
+        out.append(PointEstimate(p, info.particles, info.particles_source, dt, dt_src, ph, sim,
+                                 steps, wall, finished(p)))
+    beds = []
+    used = {p.soil.label for p in todo}
+    for label, info in infos.items():
+        if info.prepared or label not in used:
+            continue
+        wall = run_wall(info.particles, info.prep_steps, bed_np, rate.bed_rate_per_rank,
+                        rate.efficiency_np2, rate.startup_s, oversubscription(bed_np, cores))
+        beds.append(BedEstimate(info, info.dt, info.prep_steps, wall))
+    est = SweepEstimate(out, beds, at_once, np_, bed_np, cores, rate)
+    est.points_wall = schedule([e.wall for e in out if not e.finished], at_once)
+    est.beds_wall = sum(b.wall for b in beds)
+    return est
+
+
+# ---- printing -----------------------------------------------------------------------------------
+def _range(values, fmt):
+    lo, hi = min(values), max(values)
+    return fmt(lo) if fmt(lo) == fmt(hi) else f"{fmt(lo)}-{fmt(hi)}"
+
+
+def summary_line(est):
+    """The one line at the start of a DEM sweep."""
+    todo = est.todo
+    if not todo:
+        return "estimate: no point to run"
+    beds = (f" + {len(est.beds)} bed(s) to prepare <= {fmt_time(est.beds_wall)}"
+            if est.beds else "")
+    return (f"estimate: {len(todo)} point(s) to run, "
+            f"{_range([e.particles for e in todo], fmt_int)} particles, "
+            f"dt {_range([e.dt for e in todo], lambda x: f'{x:.4g}')} s, "
+            f"{_range([e.sim_time for e in todo], lambda x: f'{x:.3g}')} s simulated = "
+            f"{_range([e.steps for e in todo], fmt_int)} steps each; "
+            f"{_range([e.wall for e in todo], fmt_time)} per point, "
+            f"{fmt_time(est.total)} for the sweep{beds} ({est.jobs} at a time x {est.np} "
+            f"rank(s) on {est.cores} core(s); rate {est.rate.source}; details: --estimate)")
+
+
+def report(est, sweep_name):
+    """The --estimate printout: rate, every point, every bed to prepare, the sweep."""
+    r = est.rate
+    lines = [f"estimate: {sweep_name}: {len(est.points)} point(s), {len(est.todo)} to run; "
+             f"{est.jobs} at a time x {est.np} rank(s) on {est.cores} core(s)",
+             f"estimate: rate {r.rate_per_rank:.3g} particle-steps/s per rank (beds "
+             f"{r.bed_rate_per_rank:.3g}), np-2 efficiency {r.efficiency_np2:.2f}, startup "
+             f"{r.startup_s:.1f} s per run: {r.source}"]
+    for e in est.points:
+        ph = e.phases
+        state = "finished, skipped" if e.finished else "to run"
+        lines.append(
+            f"estimate: point {e.point.reldir} ({state}): particles {fmt_int(e.particles)} "
+            f"({e.particles_source}); dt {e.dt:.6g} s ({e.dt_source}); simulated {e.sim_time:.4g}"
+            f" s = release {ph['release']:.4g} + settle <= {ph['settle']:.4g} + ramp "
+            f"{ph['ramp']:.4g} + test {ph['test']:.4g}; steps {fmt_int(e.steps)}; wall "
+            f"{fmt_time(e.wall)} ({e.wall:.0f} s)")
+    for b in est.beds:
+        parts = " + ".join(f"{k} <= {v:.4g}" for k, v in b.info.prep_parts.items())
+        lines.append(
+            f"estimate: bed {b.info.label} (to prepare, {est.bed_np} rank(s)): particles "
+            f"{fmt_int(b.info.particles)} ({b.info.particles_source}); dt {b.dt:.6g} s "
+            f"({b.info.dt_source}); simulated <= {parts} s; steps <= {fmt_int(b.steps)}; wall "
+            f"<= {fmt_time(b.wall)} ({b.wall:.0f} s)")
+    todo = est.todo
+    lines.append(
+        f"estimate: sweep: {len(todo)} point(s), {fmt_int(sum(e.particles * e.steps for e in todo))}"
+        f" particle-steps, {fmt_int(sum(e.steps for e in todo))} steps; wall {fmt_time(est.total)}"
+        f" ({est.total:.0f} s, {est.total / 3600:.3g} h) = points {fmt_time(est.points_wall)} + "
+        f"beds <= {fmt_time(est.beds_wall)}")
+    return lines
