@@ -160,7 +160,8 @@ def soil_vars(liggghts, soil_file, inputs_dir):
     if r.returncode != 0 or missing:
         last = (r.stdout.strip().splitlines() or [""])[-1]
         raise EstimateError(f"soil file {soil_file}: LIGGGHTS did not give "
-                            f"{', '.join(missing) or 'its variables'} (exit {r.returncode}: {last})")
+                            f"{', '.join(missing) or 'its variables'} "
+                            f"(exit {r.returncode}: {last})")
     return {k: (v if k == "soil_name" else float(v)) for k, v in out.items()}
 
 
@@ -425,8 +426,8 @@ def summary_line(est):
     todo = est.todo
     if not todo:
         return "estimate: no point to run"
-    beds = (f" + {len(est.beds)} bed(s) to prepare <= {fmt_time(est.beds_wall)}"
-            if est.beds else "")
+    beds = (f" (points {fmt_time(est.points_wall)} + {len(est.beds)} bed(s) to prepare <= "
+            f"{fmt_time(est.beds_wall)})" if est.beds else "")
     return (f"estimate: {len(todo)} point(s) to run, "
             f"{_range([e.particles for e in todo], fmt_int)} particles, "
             f"dt {_range([e.dt for e in todo], lambda x: f'{x:.4g}')} s, "
@@ -455,16 +456,18 @@ def report(est, sweep_name):
             f"{ph['ramp']:.4g} + test {ph['test']:.4g}; steps {fmt_int(e.steps)}; wall "
             f"{fmt_time(e.wall)} ({e.wall:.0f} s)")
     for b in est.beds:
-        parts = " + ".join(f"{k} <= {v:.4g}" for k, v in b.info.prep_parts.items())
+        parts = " + ".join(f"{k} {v:.4g}" for k, v in b.info.prep_parts.items())
         lines.append(
             f"estimate: bed {b.info.label} (to prepare, {est.bed_np} rank(s)): particles "
             f"{fmt_int(b.info.particles)} ({b.info.particles_source}); dt {b.dt:.6g} s "
-            f"({b.info.dt_source}); simulated <= {parts} s; steps <= {fmt_int(b.steps)}; wall "
-            f"<= {fmt_time(b.wall)} ({b.wall:.0f} s)")
+            f"({b.info.dt_source}); simulated <= {sum(b.info.prep_parts.values()):.4g} s "
+            f"({parts}); steps <= {fmt_int(b.steps)}; wall <= {fmt_time(b.wall)} "
+            f"({b.wall:.0f} s)")
     todo = est.todo
+    psteps = sum(e.particles * e.steps for e in todo)
     lines.append(
-        f"estimate: sweep: {len(todo)} point(s), {fmt_int(sum(e.particles * e.steps for e in todo))}"
-        f" particle-steps, {fmt_int(sum(e.steps for e in todo))} steps; wall {fmt_time(est.total)}"
-        f" ({est.total:.0f} s, {est.total / 3600:.3g} h) = points {fmt_time(est.points_wall)} + "
+        f"estimate: sweep: {len(todo)} point(s), {fmt_int(psteps)} particle-steps, "
+        f"{fmt_int(sum(e.steps for e in todo))} steps; wall {fmt_time(est.total)} "
+        f"({est.total:.0f} s, {est.total / 3600:.3g} h) = points {fmt_time(est.points_wall)} + "
         f"beds <= {fmt_time(est.beds_wall)}")
     return lines

@@ -318,7 +318,7 @@ class Runner:
         work = pending * mean + sum(max(mean - (now - t), 0.0) for t in counter["running"].values())
         return f"; ETA {estimate.fmt_time(work / self.jobs_used)}"
 
-    # ---- DEM cost ---------------------------------------------------------------------------------
+    # ---- DEM cost -------------------------------------------------------------------------------
     def cost_estimate(self, rate, cores):
         """The sweep's estimate.SweepEstimate with rate() (called once the points are known to
         be estimable); raises estimate.EstimateError."""

@@ -358,7 +358,8 @@ def _budget_setup(work):
     bed.write_text("x")
     Path(f"{bed}.vars").write_text("variable soil index ci\nvariable bed_dt index 1e-4\n"
                                    "variable bed_depth index 0.05\n")
-    (bed.parent / "soilbin.log").write_text(f"soilbin: spheres = 100000\nsoilbin: restart = {bed}\n")
+    (bed.parent / "soilbin.log").write_text(f"soilbin: spheres = 100000\n"
+                                            f"soilbin: restart = {bed}\n")
     (work / "wheel.stl").write_text("solid w\nendsolid w\n")
     (work / "in.deck").write_text("# not run\n")
     rig = work / "rig.toml"
