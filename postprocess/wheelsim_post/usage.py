@@ -28,8 +28,13 @@ import sys
 
 EXIT_USAGE = 2
 
-# Used when no CMakeLists.txt is found above this file (an installed copy of the tools).
+# Used when neither a CMakeLists.txt above this file nor an installed VERSION file is found.
 FALLBACK_VERSION = "0.1.0"
+# An installed copy (cmake --install): <prefix>/share/wheelsim/VERSION holds "<version> <git rev>",
+# written by the build (cmake/WheelsimInstall.cmake); this module is share/wheelsim/postprocess/
+# wheelsim_post/usage.py there.
+_INSTALLED_VERSION_FILE = os.path.join(
+    os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__)))), "VERSION")
 
 _PROJECT_VERSION = re.compile(r"project\s*\(\s*wheelsim\s+VERSION\s+([0-9][0-9A-Za-z.\-]*)")
 _INVALID_CHOICE = re.compile(r"invalid choice: '([^']*)' \(choose from (.*)\)")
@@ -183,9 +188,23 @@ def git_revision(root):
     return rev.stdout.strip()
 
 
+def installed_version():
+    """(version, git revision) from an installed copy's VERSION file, or None."""
+    try:
+        with open(_INSTALLED_VERSION_FILE, encoding="utf-8") as stream:
+            fields = stream.read().split()
+    except OSError:
+        return None
+    return (fields[0], fields[1] if len(fields) > 1 else None) if fields else None
+
+
 def version_text(prog, start=None):
     """'<prog> <version>' plus ' (git <rev>)' when available."""
     root = find_project_root(start)
+    installed = None if root else installed_version()
+    if installed:
+        version, rev = installed
+        return f"{prog} {version} (git {rev})" if rev else f"{prog} {version}"
     text = f"{prog} {project_version(root)}"
     rev = git_revision(root)
     return f"{text} (git {rev})" if rev else text

@@ -18,7 +18,9 @@ from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 from . import analysis, plan, runner
 from ._inputs import FitInputError
 
-REPO = Path(__file__).resolve().parents[2]
+REPO = Path(__file__).resolve().parents[2]  # the source tree, or <prefix>/share/wheelsim
+# Default outputs: <repo>/runs, or ./runs when installed (docs/building.md, "Install").
+RUNS = REPO / "runs" if (REPO / "CMakeLists.txt").is_file() else Path("runs")
 
 
 def _list(text, what):
@@ -89,7 +91,7 @@ def _run(a):
                                      + (f" (did you mean '{near}'?)" if near else "")
                                      + f"; tests: {', '.join(plan.TEST_NAMES)}")
     soil_file = runner.resolve_soil_file(a.soil, REPO / "inputs")
-    out = Path(a.out or REPO / "runs" / "soil_lab" / Path(soil_file).stem).resolve()
+    out = Path(a.out or RUNS / "soil_lab" / Path(soil_file).stem).resolve()
     out.mkdir(parents=True, exist_ok=True)
     lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet)
     soil = lab.soil_info(soil_file)

@@ -1,0 +1,141 @@
+"""`cmake --install` into a temporary prefix, then the tools run from there (docs/building.md,
+"Install"; cmake/WheelsimInstall.cmake).
+
+Usage: test_install.py --build-dir DIR --version X.Y.Z --tools T1,T2,...
+
+Checks, with the source tree out of the way (the tools are started by their installed paths, from
+a working directory outside both trees, with WHEELSIM_BUILD_DIR unset):
+1. every tool is in <prefix>/bin and `<tool> --version` prints "<tool> <version>" (exit 0);
+2. wheel-rig runs the shipped SCM example (wheel_dynamics/examples/rig_scm.toml, installed under
+   share/wheelsim) shortened to a 0.5 s test phase, with the config's relative mesh and soil
+   paths resolved inside the prefix; the run file records the soil's friction angle in degrees,
+   as the installed soil file gives it;
+3. `wheelsim-post curves` on that run file writes one row for wheel2 on LETE sand whose lug count
+   comes from the installed wheel catalogue;
+4. the Python tools find their data installed: `wheel-sweep --dry-run` on the installed SCM demo
+   sweep, `soil-lab --help`, and `scm-soil export` of an installed soil.
+"""
+
+import argparse
+import csv
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import tomllib
+from pathlib import Path
+
+import h5py
+
+
+def run(cmd, cwd, env, what, timeout=120):
+    r = subprocess.run([str(c) for c in cmd], cwd=cwd, env=env, capture_output=True, text=True,
+                       timeout=timeout)
+    if r.returncode != 0:
+        sys.exit(f"FAIL: {what}: exit {r.returncode}\n$ {' '.join(map(str, cmd))}\n"
+                 f"{r.stdout[-3000:]}\n{r.stderr[-3000:]}")
+    return r
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build-dir", required=True)
+    ap.add_argument("--version", required=True)
+    ap.add_argument("--tools", required=True)
+    a = ap.parse_args()
+    tools = a.tools.split(",")
+
+    tmp = Path(tempfile.mkdtemp(prefix="wheelsim_install_"))
+    try:
+        prefix, work = tmp / "prefix", tmp / "work"
+        work.mkdir()
+        env = {k: v for k, v in os.environ.items()
+               if k not in ("WHEELSIM_BUILD_DIR", "PYTHONPATH")}
+        env["MPLBACKEND"] = "Agg"
+        run(["cmake", "--install", a.build_dir, "--prefix", prefix], work, env, "cmake --install")
+        share = prefix / "share" / "wheelsim"
+
+        # 1. every tool, --version
+        for tool in tools:
+            exe = prefix / "bin" / tool
+            if not os.access(exe, os.X_OK):
+                sys.exit(f"FAIL: {exe} is not installed (or not executable)")
+            out = run([exe, "--version"], work, env, f"{tool} --version").stdout.strip()
+            if not out.startswith(f"{tool} {a.version}"):
+                sys.exit(f"FAIL: {tool} --version printed '{out}', expected '{tool} {a.version} ...'")
+            print(f"ok: {out}")
+        # The Python tools run from share/wheelsim, not from the source tree.
+        for tool in ("wheelsim-post", "wheel-sweep", "soil-lab", "wheel-cosim"):
+            if tool in tools and share not in Path(os.path.realpath(prefix / "bin" / tool)).parents:
+                sys.exit(f"FAIL: {prefix / 'bin' / tool} does not lead into {share}")
+
+        # 2. the SCM example, shortened, beside the installed original (its relative paths)
+        examples = share / "wheel_dynamics" / "examples"
+        text = (examples / "rig_scm.toml").read_text()
+        short, n1 = re.subn(r"(?m)^duration = [0-9.]+", "duration = 0.5", text)
+        short, n2 = re.subn(r"(?m)^snapshot_times = \[.*\]", "snapshot_times = [0.25]", short)
+        if n1 != 1 or n2 != 1:
+            sys.exit("FAIL: rig_scm.toml no longer has one 'duration =' and one "
+                     "'snapshot_times =' line to shorten; update this test")
+        config = examples / "rig_scm_short.toml"
+        config.write_text(short)
+        run_h5 = work / "run.h5"
+        run([prefix / "bin" / "wheel-rig", "--config", config, "--out", run_h5, "--quiet"], work,
+            env, "wheel-rig on the shortened SCM example")
+        soil_rel = tomllib.loads(short)["terrain"]["soil"]
+        soil = tomllib.loads((examples / soil_rel).resolve().read_text())
+        with h5py.File(run_h5, "r") as f:
+            phi = f["parameters/terrain/soil/Mohr_friction"]
+            unit = phi.attrs["unit"]
+            unit = unit.decode() if isinstance(unit, bytes) else str(unit)
+            if unit != "deg" or abs(float(phi[()]) - soil["mohr_coulomb"]["friction_angle"]) > 1e-9:
+                sys.exit(f"FAIL: /parameters/terrain/soil/Mohr_friction = {phi[()]} {unit}, "
+                         f"expected {soil['mohr_coulomb']['friction_angle']} deg (the soil file)")
+            soil_file = f["parameters/terrain/soil_file"].asstr()[()]
+        if share not in Path(soil_file).resolve().parents:
+            sys.exit(f"FAIL: the run used the soil file {soil_file}, not the installed one")
+        print(f"ok: wheel-rig, run file {run_h5}, friction angle {soil['mohr_coulomb']['friction_angle']} deg")
+
+        # 3. wheelsim-post curves on it
+        curves = work / "curves.csv"
+        run([prefix / "bin" / "wheelsim-post", "curves", run_h5, "--csv", curves], work, env,
+            "wheelsim-post curves")
+        rows = list(csv.DictReader(line for line in curves.open() if not line.startswith("#")))
+        if len(rows) != 1:
+            sys.exit(f"FAIL: curves.csv has {len(rows)} rows, expected 1")
+        row = rows[0]
+        catalog = tomllib.loads((share / "meshes" / "catalog.toml").read_text())
+        lugs = [w for w in catalog["wheel"] if w["name"] == "wheel2"][0]["lugs"]
+        if (row["wheel"], row["soil"], row["terrain"]) != ("wheel2", soil["name"], "scm") or \
+                int(row["lug_count"]) != lugs or not math.isfinite(float(row["drawbar_pull_mean_N"])):
+            sys.exit(f"FAIL: unexpected curves row: wheel {row['wheel']}, soil {row['soil']}, "
+                     f"terrain {row['terrain']}, lugs {row['lug_count']} (catalogue {lugs}), "
+                     f"DP {row['drawbar_pull_mean_N']}")
+        print(f"ok: wheelsim-post curves, DP {float(row['drawbar_pull_mean_N']):.0f} N, "
+              f"{row['lug_count']} lugs")
+
+        # 4. the Python tools' data lookups, installed
+        if "wheel-sweep" in tools:
+            run([prefix / "bin" / "wheel-sweep", share / "inputs" / "sweeps" / "demo_scm.toml",
+                 "--dry-run", "--out-dir", work / "sweep"], work, env, "wheel-sweep --dry-run")
+            print("ok: wheel-sweep --dry-run on the installed demo_scm.toml")
+        if "soil-lab" in tools:
+            run([prefix / "bin" / "soil-lab", "--help"], work, env, "soil-lab --help")
+        if "scm-soil" in tools:
+            out = run([prefix / "bin" / "scm-soil", "export",
+                       share / "inputs" / "scm_soils" / "lete_sand.toml"], work, env,
+                      "scm-soil export").stdout
+            if '"Mohr friction limit": 31.1' not in out:
+                sys.exit(f"FAIL: scm-soil export printed\n{out}")
+        if (work / "runs").exists() or (share / "runs").exists():
+            sys.exit("FAIL: a tool wrote a default runs/ directory")
+        print("PASS")
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
