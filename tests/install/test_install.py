@@ -55,7 +55,8 @@ def main():
         env = {k: v for k, v in os.environ.items()
                if k not in ("WHEELSIM_BUILD_DIR", "PYTHONPATH")}
         env["MPLBACKEND"] = "Agg"
-        run(["cmake", "--install", a.build_dir, "--prefix", prefix], work, env, "cmake --install")
+        build = Path(a.build_dir).resolve()
+        run(["cmake", "--install", build, "--prefix", prefix], work, env, "cmake --install")
         share = prefix / "share" / "wheelsim"
 
         # 1. every tool, --version
