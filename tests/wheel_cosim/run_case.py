@@ -7,6 +7,8 @@
   run_case.py restart --launch ... --bed BED --mesh STL --n N --m M --tol X
   run_case.py vtk     --launch ... --bed BED --mesh STL
   run_case.py candidates --launch ... --bed BED --mesh STL --steps N --tol X [--need-arrivals]
+  run_case.py ranks   --launch "mpiexec;-n;4;liggghts-wheel" --launch-ref "mpiexec;-n;1;..."
+                      --bed BED --mesh STL --steps N --early-window S --tol X
 
 Runs liggghts-wheel on tests/wheel_cosim/in.wheel_roll, then compare_wrench.py. Exit 0 = pass.
 """
@@ -53,8 +55,9 @@ def compare(args, rest):
 
 def main():
     p = argparse.ArgumentParser()
-    p.add_argument("mode", choices=["bed", "compare", "restart", "vtk", "candidates"])
+    p.add_argument("mode", choices=["bed", "compare", "restart", "vtk", "candidates", "ranks"])
     p.add_argument("--launch", required=True, help="launcher and executable, ';'-separated")
+    p.add_argument("--launch-ref", help="ranks: the reference launcher (np 1), ';'-separated")
     p.add_argument("--inputs", required=True)
     p.add_argument("--work", required=True)
     p.add_argument("--bed")
@@ -131,6 +134,9 @@ def main():
     if a.mode == "candidates":
         return check_candidates(a, launch, common)
 
+    if a.mode == "ranks":
+        return check_ranks(a, launch, a.launch_ref.split(";"), common)
+
     if a.mode == "vtk":
         steps, every = 400, 100
         vx, vz, wy = 0.1125, -0.2, 1.5
@@ -196,6 +202,61 @@ def check_candidates(a, launch, common):
                      os.path.join(a.work, "out.candidates_no"), "--from", "0", "--tol",
                      str(a.tol), "--force-floor", "1e-9", "--lever", "0.1",
                      "--label", "candidates yes vs no"])
+    return rc if ok else 1
+
+
+def thermo_column(text, name):
+    """{step: value} of one thermo column of a run's screen output."""
+    rows, header = {}, None
+    for line in text.splitlines():
+        tok = line.split()
+        if tok[:1] == ["Step"]:
+            header = tok if name in tok else None
+        elif header and len(tok) == len(header) and tok[0].isdigit():
+            rows[int(tok[0])] = float(tok[header.index(name)])
+    return rows
+
+
+def check_ranks(a, launch, launch_ref, common):
+    """The same prescribed-motion run (lugged wheel sinking while rolling at slip 0.25, hertz,
+    neighbour lists by distance check, as in production) on the ranks of --launch (np 4) and of
+    --launch-ref (np 1): the wheel wrench over the first --early-window steps after first contact
+    must agree to --tol (relative, floors 1 N / 0.1 N m) and the contact counts exactly. The
+    wheel is centred on y = 0, so a processor grid split in y (np 4: 2 x 2 x 1) puts its contact
+    patch on several ranks; the run must say so, and particles must move between ranks."""
+    import re
+    # contact from about step 100 (gap 1 mm closed at 0.3 m/s with dt 4.9e-5 s); sinkage ~4.4 mm
+    # after 300 steps of contact
+    v = dict(common, impl="cosim", steps=a.steps, vz=a.vz, vx="0.1125", wy="1.5", gap="0.001",
+             neigh_every_step=0, thermo_every=1)
+    out = {"ref": run(launch_ref, a.work, "out.np_ref", v),
+           "par": run(launch, a.work, "out.np_par", v)}
+    ok = True
+    grid = re.search(r"(\d+) by (\d+) by (\d+) MPI processor grid", out["par"])
+    if not grid or int(grid.group(2)) < 2:
+        print(f"run_case: ranks: processor grid {grid.group(0) if grid else 'not printed'}: the "
+              "wheel (centred on y = 0) is not split between ranks FAIL")
+        ok = False
+    else:
+        print(f"run_case: ranks: {grid.group(0)} (the wheel's contact patch spans the y split)")
+    stats = re.search(r"(\S+) particles arrived", out["par"])
+    if not stats or float(stats.group(1)) == 0:
+        print("run_case: ranks: no particle changed rank during the run FAIL")
+        ok = False
+    else:
+        print(f"run_case: ranks: {stats.group(1)} particles arrived from other ranks")
+    counts = {k: thermo_column(t, "nc") for k, t in out.items()}
+    steps = sorted(set(counts["ref"]) & set(counts["par"]))
+    touching = [s for s in steps if counts["ref"][s] > 0]
+    differ = [s for s in steps if counts["ref"][s] != counts["par"][s]]
+    enough = len(touching) > a.early_window
+    print(f"run_case: ranks: contact counts over {len(steps)} steps ({len(touching)} with "
+          f"contacts, up to {max(counts['ref'].values()):.0f}): {len(differ)} steps differ "
+          f"{'ok' if not differ and enough else 'FAIL'}")
+    ok &= not differ and enough
+    rc = compare(a, ["early", os.path.join(a.work, "out.np_par"),
+                     os.path.join(a.work, "out.np_ref"), "--window", str(a.early_window),
+                     "--tol", str(a.tol), "--force-floor", "1.0", "--lever", "0.1", "--label", "np ranks vs np 1"])
     return rc if ok else 1
 
 
