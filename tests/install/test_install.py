@@ -66,7 +66,8 @@ def main():
                 sys.exit(f"FAIL: {exe} is not installed (or not executable)")
             out = run([exe, "--version"], work, env, f"{tool} --version").stdout.strip()
             if not out.startswith(f"{tool} {a.version}"):
-                sys.exit(f"FAIL: {tool} --version printed '{out}', expected '{tool} {a.version} ...'")
+                sys.exit(f"FAIL: {tool} --version printed '{out}', "
+                         f"expected '{tool} {a.version} ...'")
             print(f"ok: {out}")
         # The Python tools run from share/wheelsim, not from the source tree.
         for tool in ("wheelsim-post", "wheel-sweep", "soil-lab", "wheel-cosim"):
@@ -98,7 +99,8 @@ def main():
             soil_file = f["parameters/terrain/soil_file"].asstr()[()]
         if share not in Path(soil_file).resolve().parents:
             sys.exit(f"FAIL: the run used the soil file {soil_file}, not the installed one")
-        print(f"ok: wheel-rig, run file {run_h5}, friction angle {soil['mohr_coulomb']['friction_angle']} deg")
+        phi_deg = soil["mohr_coulomb"]["friction_angle"]
+        print(f"ok: wheel-rig, run file {run_h5}, friction angle {phi_deg} deg")
 
         # 3. wheelsim-post curves on it
         curves = work / "curves.csv"
@@ -110,8 +112,9 @@ def main():
         row = rows[0]
         catalog = tomllib.loads((share / "meshes" / "catalog.toml").read_text())
         lugs = [w for w in catalog["wheel"] if w["name"] == "wheel2"][0]["lugs"]
-        if (row["wheel"], row["soil"], row["terrain"]) != ("wheel2", soil["name"], "scm") or \
-                int(row["lug_count"]) != lugs or not math.isfinite(float(row["drawbar_pull_mean_N"])):
+        dp = float(row["drawbar_pull_mean_N"])
+        if ((row["wheel"], row["soil"], row["terrain"]) != ("wheel2", soil["name"], "scm")
+                or int(row["lug_count"]) != lugs or not math.isfinite(dp)):
             sys.exit(f"FAIL: unexpected curves row: wheel {row['wheel']}, soil {row['soil']}, "
                      f"terrain {row['terrain']}, lugs {row['lug_count']} (catalogue {lugs}), "
                      f"DP {row['drawbar_pull_mean_N']}")
