@@ -10,9 +10,10 @@ of one LIGGGHTS rank [particle-steps/s] measured on this machine (rate.py, cache
 parallel efficiency (1 at np 1, the measured np-2 efficiency e2 at np 2, e2^log2(np) beyond: an
 extrapolation, not a measurement), oversubscription = max(1, ranks running at once / cores).
 The simulated time is the rig's phases (docs/rig-config.md): release (the held spindle closing
-run.release_gap at run.release_speed, reached over 0.1 s; the sinking until the soil carries the
-load is not known beforehand and not counted), settle (run.settle_max_time: an upper bound),
-ramp (motor.ramp_time) and test (run.duration). Points run `jobs` at a time in config order
+run.release_gap plus RELEASE_SINK_FRACTION x the wheel's outer radius at run.release_speed,
+reached over 0.1 s), settle (run.settle_max_time: an upper bound), ramp (motor.ramp_time) and
+test (run.duration); LIGGGHTS runs whole chunks of the deck's `chunk` steps. A point also costs
+COSIM_OVERHEAD_S for wheel-cosim's launch and finish. Points run `jobs` at a time in config order
 (list scheduling, as the driver starts them); beds from recipes not yet prepared are prepared
 one after another before the points, their settling counted up to max_settle_time (an upper
 bound; compaction phases added).
@@ -32,6 +33,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 RELEASE_ACCEL_TIME_S = 0.1  # the rig reaches run.release_speed linearly over 0.1 s (rig-config.md)
+# After closing the gap the held spindle goes on sinking into the soil until the soil carries the
+# load; that depth is not known beforehand. Allowance: 0.15 x the wheel's outer radius (measured:
+# test_small, R 0.10 m, 15 N on the ci bin of dem_small_slips: release 0.423 s = 0.13 s to close
+# the 4 mm gap + 14.7 mm more at 0.05 m/s = 0.147 R; docs/sweeps.md "Cost estimate").
+RELEASE_SINK_FRACTION = 0.15
+# wheel-cosim's own cost per point beyond LIGGGHTS' start-up (mpirun, the rig's start, waiting
+# for both to finish, the run file's last write): measured 3.3-6.5 s minus the benchmark's 1 s
+# start-up on the busy 2-core machine (dem_small_slips, 3 points).
+COSIM_OVERHEAD_S = 3.0
 # rig defaults of the [run] and [motor] keys used here (docs/rig-config.md, "Configuration keys")
 RIG_DEFAULTS = {"release_gap": 0.002, "release_speed": 0.01, "settle_max_time": 5.0,
                 "ramp_time": 1.0}
@@ -103,9 +113,31 @@ def release_time(gap, speed, accel_time=RELEASE_ACCEL_TIME_S):
     return accel_time + (gap - d_accel) / speed
 
 
-def phases(rig):
-    """The point's simulated phases [s] from its rig config: release, settle (upper bound),
-    ramp, test. Raises EstimateError naming a missing or bad key."""
+def wheel_radius(rig, mesh=None):
+    """The wheel's outer radius [m]: wheel.effective_radius, else the largest distance of the
+    mesh's vertices from the axle (y; ascii STL, as LIGGGHTS reads; mesh units x
+    wheel.mesh_scale), else None."""
+    w = rig.get("wheel", {})
+    if isinstance(w.get("effective_radius"), (int, float)):
+        return float(w["effective_radius"])
+    mesh = mesh or w.get("mesh")
+    try:
+        r2 = 0.0
+        with open(mesh, errors="replace") as f:
+            for line in f:
+                t = line.split()
+                if len(t) == 4 and t[0] == "vertex":
+                    r2 = max(r2, float(t[1]) ** 2 + float(t[3]) ** 2)
+    except (OSError, TypeError, ValueError):
+        return None
+    scale = w.get("mesh_scale", 1.0)
+    return math.sqrt(r2) * float(scale) if r2 > 0 else None
+
+
+def phases(rig, radius=None):
+    """The point's simulated phases [s] from its rig config: release (closing the gap and
+    sinking RELEASE_SINK_FRACTION x radius [m], if given), settle (upper bound), ramp, test.
+    Raises EstimateError naming a missing or bad key."""
     run, motor = rig.get("run", {}), rig.get("motor", {})
 
     def num(table, tname, key, default=None):
@@ -120,7 +152,8 @@ def phases(rig):
     speed = num(run, "run", "release_speed", RIG_DEFAULTS["release_speed"])
     if speed <= 0:
         raise EstimateError(f"rig config: run.release_speed must be > 0 m/s, got {speed!r}")
-    return {"release": release_time(gap, speed),
+    sink = RELEASE_SINK_FRACTION * radius if radius else 0.0
+    return {"release": release_time(gap + sink, speed),
             "settle": num(run, "run", "settle_max_time", RIG_DEFAULTS["settle_max_time"]),
             "ramp": num(motor, "motor", "ramp_time", RIG_DEFAULTS["ramp_time"]),
             "test": num(run, "run", "duration")}
@@ -375,9 +408,29 @@ class SweepEstimate:
         return [p for p in self.points if not p.finished]
 
 
-def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: False):
-    """The sweep's estimate. points: the sweep's points (each with .rig and .soil.label); infos:
-    soil label -> BedInfo; finished(p): True for a point that will be skipped."""
+def deck_chunk(deck, liggghts_args=()):
+    """The steps LIGGGHTS runs between checks of the rig's end (`chunk` of the coupled deck,
+    `-var chunk N` in liggghts_args wins): steps are run in whole chunks. 1 if not known."""
+    args = list(liggghts_args)
+    for i in range(len(args) - 2):
+        if args[i] == "-var" and args[i + 1] == "chunk":
+            try:
+                return max(1, int(args[i + 2]))
+            except ValueError:
+                return 1
+    try:
+        m = re.search(r"^\s*variable\s+chunk\s+index\s+(\d+)", Path(deck).read_text(), re.M)
+    except (OSError, TypeError):
+        return 1
+    return max(1, int(m.group(1))) if m else 1
+
+
+def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: False, chunk=1,
+             overhead_s=COSIM_OVERHEAD_S):
+    """The sweep's estimate. points: the sweep's points (each with .rig and .soil.label; a
+    .wheel.mesh is used for the radius when the rig has no wheel.effective_radius); infos: soil
+    label -> BedInfo; finished(p): True for a point that will be skipped; chunk: the deck's
+    chunk (deck_chunk); overhead_s: per point, beyond the rate's startup."""
     todo = [p for p in points if not finished(p)]
     at_once = max(1, min(jobs, len(todo)))
     over = oversubscription(at_once * np_, cores)
@@ -394,11 +447,12 @@ def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: F
                                 "soil's soil_dt)")
         if not dt > 0:
             raise EstimateError(f"point {p.reldir}: run.dt must be > 0 s, got {dt!r}")
-        ph = phases(p.rig)
+        mesh = getattr(getattr(p, "wheel", None), "mesh", None)
+        ph = phases(p.rig, wheel_radius(p.rig, mesh))
         sim = sum(ph.values())
-        steps = math.ceil(sim / dt - 1e-9)
+        steps = math.ceil(math.ceil(sim / dt - 1e-9) / chunk) * chunk
         wall = run_wall(info.particles, steps, np_, rate.rate_per_rank, rate.efficiency_np2,
-                        rate.startup_s, over)
+                        rate.startup_s + overhead_s, over)
         out.append(PointEstimate(p, info.particles, info.particles_source, dt, dt_src, ph, sim,
                                  steps, wall, finished(p)))
     beds = []

@@ -330,7 +330,9 @@ class Runner:
             else set()
         return estimate.estimate(self.sweep.points, infos, rate(), self.sweep.np,
                                  self.sweep.bed_np, self.jobs, cores,
-                                 finished=lambda p: p.index in done)
+                                 finished=lambda p: p.index in done,
+                                 chunk=estimate.deck_chunk(self.sweep.deck,
+                                                           self.sweep.liggghts_args))
 
     def _check_cost(self):
         """The estimate line at the start of a DEM sweep and the budget check: returns 2 (and

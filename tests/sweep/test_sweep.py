@@ -492,8 +492,8 @@ def case_estimate_example(a, work):
     """--estimate on inputs/sweeps/dem_small_slips.toml with an empty output directory and no
     rate cache prints every field: the rate and its source (the default, saying no rate was
     measured), each point's particles (from the recipe: 11 625, LIGGGHTS inserts 11 624), dt
-    (run.dt), simulated time with release, settle, ramp and test, steps and wall time, the bed to
-    prepare, the sweep total; exit 0, nothing written."""
+    (run.dt), simulated time with release, settle, ramp and test, steps (whole chunks of the
+    deck's 1000) and wall time, the bed to prepare, the sweep total; exit 0, nothing written."""
     if not (Path(a.build_dir) / "bin" / "liggghts-wheel").exists():
         raise Skip("liggghts-wheel not built")
     repo = Path(a.sweep).resolve().parents[1]
@@ -520,10 +520,12 @@ def case_estimate_example(a, work):
         n = int(m.group(1).replace(" ", ""))
         check(abs(n - 11624) <= 0.01 * 11624, f"particles {n}, expected 11 624 +- 1 %")
         sim, rel = float(m.group(2)), float(m.group(3))
-        check(abs(rel - 0.13) < 1e-9 and abs(sim - (rel + 0.55)) < 1e-3, f"phases: {line}")
-        # release: 4 mm at 0.05 m/s reached over 0.1 s = 0.1 + 1.5 mm / 0.05 m/s = 0.13 s
-        steps = math.ceil((0.1 + 0.0015 / 0.05 + 0.2 + 0.05 + 0.3) / 4.89543219523472e-05 - 1e-9)
-        check(int(m.group(4).replace(" ", "")) == steps == 13891, f"steps ({steps}): {line}")
+        # release: the 4 mm gap + 0.15 x R_eff (0.10 m) = 19 mm at 0.05 m/s reached over 0.1 s
+        # = 0.1 + 16.5 mm / 0.05 m/s = 0.43 s
+        check(abs(rel - 0.43) < 1e-9 and abs(sim - (rel + 0.55)) < 1e-3, f"phases: {line}")
+        # 0.98 s / dt = 20 019 steps, in whole chunks of 1000 (in.wheel_coupled's chunk)
+        steps = math.ceil(math.ceil(0.98 / 4.89543219523472e-05) / 1000) * 1000
+        check(int(m.group(4).replace(" ", "")) == steps == 21000, f"steps ({steps}): {line}")
         check(float(m.group(5)) > 0, f"wall: {line}")
     check(any(line.startswith("estimate: bed ci_small (to prepare, 2 rank(s)): particles")
               and "steps <= " in line and "wall <= " in line for line in lines), "no bed line")

@@ -216,7 +216,7 @@ def case_estimate_arithmetic(a, work):
     rate = E.Rate(2e6, 0.8, 2.0, 1e6, "test")
     # 3 points, 2 jobs x 2 ranks on 2 cores: oversubscribed x2 -> (2 + 62.5 x 2) = 127 s each;
     # two slots: 254 s; the bed (1 rank, 1e6 /s): 2 + 5001 x 1e4 / 1e6 = 52.01 s
-    est = E.estimate(pts, {"bed1": info}, rate, 2, 1, 2, 2)
+    est = E.estimate(pts, {"bed1": info}, rate, 2, 1, 2, 2, overhead_s=0.0)
     check([e.steps for e in est.points] == [20000] * 3, f"steps {[e.steps for e in est.points]}")
     _close(est.points[0].sim_time, 2.0, "simulated time")
     _close(est.points[0].wall, 127.0, "oversubscribed point")
@@ -224,7 +224,8 @@ def case_estimate_arithmetic(a, work):
     _close(est.beds_wall, 52.01, "bed wall")
     _close(est.total, 306.01, "total")
     # the same on 4 cores: not oversubscribed; the first point finished: 2 left, 1 wave
-    est = E.estimate(pts, {"bed1": info}, rate, 2, 1, 2, 4, finished=lambda p: p.index == 0)
+    est = E.estimate(pts, {"bed1": info}, rate, 2, 1, 2, 4, finished=lambda p: p.index == 0,
+                     overhead_s=0.0)
     check(len(est.todo) == 2 and est.points[0].finished, "finished point not skipped")
     _close(est.points_wall, 64.5, "points wall, 2 left on 4 cores")
     line = E.summary_line(est)
@@ -235,6 +236,24 @@ def case_estimate_arithmetic(a, work):
                  "settle <= 0.5", "steps 20 000", "wall 1 min 4 s (64 s)", "bed bed1 (to prepare",
                  "steps <= 5 001", "1 min 56 s (117 s"):
         check(want in rep, f"report lacks {want!r}:\n{rep}")
+    # whole chunks of the deck's steps; the per-point overhead
+    est = E.estimate(pts, {"bed1": info}, rate, 1, 1, 1, 4, chunk=3000, overhead_s=1.5)
+    check(est.points[0].steps == 21000, f"chunked steps {est.points[0].steps}")
+    _close(est.points[0].wall, 2.0 + 1.5 + 21000 * 1e4 / 2e6, "wall with chunks and overhead")
+    deck = work / "in.deck"
+    deck.write_text("variable chunk index 500   # [steps]\n")
+    check(E.deck_chunk(deck) == 500 and E.deck_chunk(deck, ["-var", "chunk", "200"]) == 200
+          and E.deck_chunk(work / "missing") == 1, "deck_chunk")
+    # the release sinks 0.15 x the wheel's outer radius beyond the gap: effective_radius, else
+    # the ascii STL's largest distance from the axle (y) x mesh_scale
+    stl = work / "w.stl"
+    stl.write_text("solid w\nfacet normal 0 0 1\n outer loop\n  vertex 0.3 0.1 0.4\n"
+                   "  vertex 0 -0.1 0.2\n  vertex 0.1 0 0\n endloop\nendfacet\nendsolid w\n")
+    check(E.wheel_radius({"wheel": {"effective_radius": 0.7}}, stl) == 0.7, "effective_radius")
+    _close(E.wheel_radius({"wheel": {"mesh_scale": 2.0}}, stl), 1.0, "mesh radius x scale")
+    check(E.wheel_radius({}, work / "missing.stl") is None, "no mesh: no radius")
+    _close(E.phases(_synthetic_rig(), 0.1)["release"], 0.1 + (0.002 + 0.015 - 0.0005) / 0.01,
+           "release with the sinkage allowance")
     # run.dt missing: the bed's dt
     pts[1].rig["run"].pop("dt")
     est = E.estimate(pts, {"bed1": info}, rate, 1, 1, 1, 1)
@@ -340,8 +359,9 @@ def case_rate_cache(a, work):
 
 def _budget_setup(work):
     """A DEM sweep of 2 points on a fake prepared bed (100 000 spheres by its log, dt 1e-4 s),
-    2.0 s simulated = 20 000 steps each; the cached rate 1e6 particle-steps/s, startup 0: 2000 s
-    per point, 1 job: 4000 s = 1 h 6 min. A stand-in liggghts-wheel answers --version only."""
+    2.0 s simulated = 20 000 steps each; the cached rate 1e6 particle-steps/s, startup 0, and
+    wheel-cosim's 3 s: 2003 s per point, 1 job: 4006 s = 1 h 6 min. A stand-in liggghts-wheel
+    answers --version only."""
     from wheelsim_sweep import rate as R
     build = work / "build"
     (build / "bin").mkdir(parents=True)
@@ -398,7 +418,7 @@ def case_budget(a, work):
     check(r.returncode == 2 and "budget of 0.5 h" in r.stderr, "--budget does not override")
     r = run("--estimate")
     check(r.returncode == 0 and "estimate: budget 1 h: exceeds" in r.stdout
-          and "wall 33 min 20 s (2000 s)" in r.stdout, "--estimate over budget")
+          and "wall 33 min 23 s (2003 s)" in r.stdout, "--estimate over budget")
     check(not out.exists(), "--estimate wrote the output directory")
 
     # past the check, in-process (the points themselves are not run)
