@@ -64,7 +64,8 @@ first=$here
 if [[ -n ${SLURM_JOB_NODELIST:-} ]] && command -v scontrol > /dev/null; then
   first=$(scontrol show hostnames "$SLURM_JOB_NODELIST" | head -n 1)
 fi
-echo "slurm_wheel_cosim: job $job on ${SLURM_JOB_NUM_NODES:-1} node(s) (${SLURM_JOB_NODELIST:-$here}), ${SLURM_NTASKS:-?} task(s); this script and the rig on $here"
+echo "slurm_wheel_cosim: job $job on ${SLURM_JOB_NUM_NODES:-1} node(s)" \
+     "(${SLURM_JOB_NODELIST:-$here}), ${SLURM_NTASKS:-?} task(s); this script and the rig on $here"
 # OpenMPI maps ranks by slot from the allocation's first node, where Slurm runs the batch script:
 # rank 0 (the only rank that talks to the rig) shares the node with the rig, as the ipc endpoint
 # requires. Stop early if this is not so.
@@ -73,7 +74,9 @@ echo "slurm_wheel_cosim: job $job on ${SLURM_JOB_NUM_NODES:-1} node(s) (${SLURM_
 
 if [[ -n ${WHEELSIM_SWEEP:-} ]]; then
   if [[ ${SLURM_JOB_NUM_NODES:-1} -gt 1 ]]; then
-    echo "slurm_wheel_cosim: warning: wheel-sweep starts every point's mpirun from this node, and each maps its ranks from the first node: run points at once only within one node, or one point per job (docs/dem-performance.md)" >&2
+    echo "slurm_wheel_cosim: warning: wheel-sweep starts every point's mpirun here, and each" \
+         "maps its ranks from the first node: run points at once only within one node, or one" \
+         "point per job (docs/dem-performance.md)" >&2
   fi
   sweep_cmd=("$root/scripts/wheel-sweep" "$WHEELSIM_SWEEP")
   [[ -n ${WHEELSIM_SWEEP_OUT:-} ]] && sweep_cmd+=(--out-dir "$WHEELSIM_SWEEP_OUT")
