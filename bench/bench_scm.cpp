@@ -30,9 +30,7 @@ constexpr double kOmega = 1.05; // rad/s
 constexpr double kSlip = 0.2;
 constexpr double kDt = 5e-4; // s
 
-scm::SoilParameters lete_sand() {
-  return scm::load_soil_file(WHEELSIM_SOIL_DIR "/lete_sand.toml");
-}
+scm::SoilParameters lete_sand() { return scm::load_soil_file(WHEELSIM_SOIL_DIR "/lete_sand.toml"); }
 
 double outer_radius(const geometry::TriangleMesh &m) {
   double r = 0.0;

@@ -52,8 +52,8 @@ CoupledMotion::~CoupledMotion() { close(); }
 
 std::string CoupledMotion::describe() const {
   std::ostringstream out;
-  out << "coupled: rig at " << settings_.endpoint << ", exchange every "
-      << settings_.exchange_every << " step(s), timeout " << settings_.step_timeout_s << " s";
+  out << "coupled: rig at " << settings_.endpoint << ", exchange every " << settings_.exchange_every
+      << " step(s), timeout " << settings_.step_timeout_s << " s";
   return out.str();
 }
 
@@ -80,16 +80,14 @@ WheelState CoupledMotion::broadcast(const WheelState &state) const {
   return s;
 }
 
-WheelState CoupledMotion::connect(const WheelState &initial, std::int64_t start_step,
-                                  double dt_s) {
+WheelState CoupledMotion::connect(const WheelState &initial, std::int64_t start_step, double dt_s) {
   WheelState state = initial;
   if (rank_ == 0) {
     coupler::Timeouts timeouts;
     timeouts.handshake = millis(settings_.handshake_timeout_s);
     timeouts.step = millis(settings_.step_timeout_s);
     client_ = std::make_unique<coupler::CouplingClient>(
-        coupler::ZmqTransport::connect(settings_.endpoint, "the rig"),
-        timeouts);
+        coupler::ZmqTransport::connect(settings_.endpoint, "the rig"), timeouts);
     coupler::Hello hello;
     hello.exchange_every = static_cast<std::uint32_t>(settings_.exchange_every);
     hello.start_step = start_step;
@@ -111,8 +109,7 @@ bool CoupledMotion::is_exchange_step(std::int64_t step) const {
   return step >= start_step_ && (step - start_step_) % settings_.exchange_every == 0;
 }
 
-void CoupledMotion::wrench_computed(std::int64_t step, double time_s,
-                                    const WheelWrench &wrench) {
+void CoupledMotion::wrench_computed(std::int64_t step, double time_s, const WheelWrench &wrench) {
   if (!connected_ || rig_finished_ || step <= last_sent_step_ || !is_exchange_step(step))
     return;
   last_sent_step_ = step;
@@ -129,8 +126,7 @@ void CoupledMotion::wrench_computed(std::int64_t step, double time_s,
   client_->send_wrench(w);
 }
 
-WheelState CoupledMotion::next_state(const WheelState &now, std::int64_t next_step,
-                                     double dt_s) {
+WheelState CoupledMotion::next_state(const WheelState &now, std::int64_t next_step, double dt_s) {
   const WheelState held = advance_pose(now, now.velocity_m_s, now.angular_velocity_rad_s, dt_s);
   if (rig_finished_ || !is_exchange_step(next_step))
     return held; // zero-order hold

@@ -29,10 +29,10 @@ class CouplingClient;
 class CoupledMotion : public WheelMotion {
 public:
   struct Settings {
-    std::string endpoint;            ///< e.g. ipc:///tmp/run/rig.sock or tcp://127.0.0.1:5555
-    double step_timeout_s = 30.0;    ///< wait for each Pose [s]
+    std::string endpoint;              ///< e.g. ipc:///tmp/run/rig.sock or tcp://127.0.0.1:5555
+    double step_timeout_s = 30.0;      ///< wait for each Pose [s]
     double handshake_timeout_s = 60.0; ///< wait for the rig's Welcome [s]
-    int exchange_every = 1;          ///< exchange every N steps (N >= 1)
+    int exchange_every = 1;            ///< exchange every N steps (N >= 1)
   };
   CoupledMotion(const Settings &settings, MPI_Comm world);
   ~CoupledMotion() override; // sends Close{finished} if the session is open

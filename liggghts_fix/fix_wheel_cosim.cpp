@@ -127,11 +127,11 @@ struct WheelCosimState {
   std::vector<double> triangle_contact_sum;
   long vtk_window_steps = 0;
 
-  std::vector<geometry::SurfaceContact> contacts; // query scratch
-  long too_many_contacts = 0;                     // contacts dropped (> kMaxContacts...)
+  std::vector<geometry::SurfaceContact> contacts;     // query scratch
+  long too_many_contacts = 0;                         // contacts dropped (> kMaxContacts...)
   double contact_seconds = 0.0, motion_seconds = 0.0; // wall time in post_force this run
   long timed_steps = 0;
-  long slot_overflows = 0;                        // contacts without a free history slot
+  long slot_overflows = 0; // contacts without a free history slot
   CandidateList candidates;
 };
 
@@ -180,10 +180,9 @@ FixWheelCosim::FixWheelCosim(LAMMPS *lmp, int narg, char **arg)
   }
   const auto &mesh = s_->index->mesh();
   for (const auto &t : mesh.triangles)
-    s_->triangle_area_m2.push_back(
-        0.5 * (mesh.vertices_m[t[1]] - mesh.vertices_m[t[0]])
-                  .cross(mesh.vertices_m[t[2]] - mesh.vertices_m[t[0]])
-                  .norm());
+    s_->triangle_area_m2.push_back(0.5 * (mesh.vertices_m[t[1]] - mesh.vertices_m[t[0]])
+                                             .cross(mesh.vertices_m[t[2]] - mesh.vertices_m[t[0]])
+                                             .norm());
   s_->state.position_m = s_->origin_m;
 
   // The motion source. Components are constants or equal-style variables (resolved in init()).
@@ -398,8 +397,7 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
           if (std::strcmp(arg[iarg], "timeout") == 0) {
             const double t = number(iarg + 1, "motion coupled timeout", "a time > 0 [s]");
             if (t <= 0.0)
-              bad_argument("motion coupled: 'timeout' expects a time > 0 s, got %s",
-                           arg[iarg + 1]);
+              bad_argument("motion coupled: 'timeout' expects a time > 0 s, got %s", arg[iarg + 1]);
             s_->coupled_settings.step_timeout_s = t;
             s_->coupled_settings.handshake_timeout_s = std::max(t, 60.0);
           } else if (std::strcmp(arg[iarg], "exchange_every") == 0) {
@@ -415,8 +413,7 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
         }
         continue;
       } else {
-        bad_argument("keyword 'motion' expects 'prescribed' or 'coupled', got '%s'",
-                     arg[iarg + 1]);
+        bad_argument("keyword 'motion' expects 'prescribed' or 'coupled', got '%s'", arg[iarg + 1]);
       }
     } else if (std::strcmp(key, "vtk") == 0) {
       need(iarg, 2,
@@ -447,17 +444,16 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
       nslots_ = static_cast<int>(n);
       iarg += 2;
     } else {
-      bad_argument("unknown keyword '%s'; expected one of scale, origin, model, tangential, "
-                   "cohesion, rolling_friction, tangential_damping, limitForce, fixKc, tangential_reduce, "
-                   "torsionTorque, motion, vtk, slots, candidates, check_timestep",
-                   key);
+      bad_argument(
+          "unknown keyword '%s'; expected one of scale, origin, model, tangential, "
+          "cohesion, rolling_friction, tangential_damping, limitForce, fixKc, tangential_reduce, "
+          "torsionTorque, motion, vtk, slots, candidates, check_timestep",
+          key);
     }
   }
 }
 
-int FixWheelCosim::setmask() {
-  return POST_FORCE | END_OF_STEP;
-}
+int FixWheelCosim::setmask() { return POST_FORCE | END_OF_STEP; }
 
 /* ---------------------------------------------------------------------- */
 
@@ -497,8 +493,8 @@ void FixWheelCosim::read_materials() {
   using wheelsim::contact::CohesionModel;
   using wheelsim::contact::NormalModel;
   using wheelsim::contact::RollingModel;
-  FixPropertyGlobal *mur = nullptr, *kcoh = nullptr, *k2 = nullptr, *kc = nullptr,
-                    *f0 = nullptr, *gamma = nullptr, *dex = nullptr, *cex = nullptr;
+  FixPropertyGlobal *mur = nullptr, *kcoh = nullptr, *k2 = nullptr, *kc = nullptr, *f0 = nullptr,
+                    *gamma = nullptr, *dex = nullptr, *cex = nullptr;
   if (s_->settings.rolling != RollingModel::Off)
     mur = find("coefficientRollingFriction", "peratomtypepair", ntypes, ntypes);
   if (s_->settings.cohesion == CohesionModel::Sjkr)
@@ -534,12 +530,11 @@ void FixWheelCosim::read_materials() {
       pm.adhesionExponent = cex->compute_scalar();
     }
     try {
-      s_->pair[t] = wheelsim::contact::makePairConstants(s_->material[t],
-                                                         s_->material[wheel_type_], pm,
-                                                         s_->settings);
+      s_->pair[t] = wheelsim::contact::makePairConstants(s_->material[t], s_->material[wheel_type_],
+                                                         pm, s_->settings);
     } catch (const std::exception &ex) {
-      bad_argument("materials of particle type %d against the wheel's type %d: %s", t,
-                   wheel_type_, ex.what());
+      bad_argument("materials of particle type %d against the wheel's type %d: %s", t, wheel_type_,
+                   ex.what());
     }
   }
 }
@@ -570,8 +565,8 @@ void FixWheelCosim::check_timestep() {
   // The wheel's twist: prescribed values now, or the last known state when coupled.
   const Eigen::Vector3d vw =
       s_->prescribed ? s_->prescribed->velocity_m_s() : s_->state.velocity_m_s;
-  const Eigen::Vector3d ww = s_->prescribed ? s_->prescribed->angular_velocity_rad_s()
-                                            : s_->state.angular_velocity_rad_s;
+  const Eigen::Vector3d ww =
+      s_->prescribed ? s_->prescribed->angular_velocity_rad_s() : s_->state.angular_velocity_rad_s;
   const double v_impact =
       std::max(vmax_all + vw.norm() + ww.norm() * s_->index->bounding_radius_m(),
                1e-3); // a resting bed still needs a finite impact speed for the Hertz estimate
@@ -581,12 +576,11 @@ void FixWheelCosim::check_timestep() {
       continue;
     const auto &m = s_->material[t];
     const double G = m.youngsModulus / (2.0 * (1.0 + m.poissonsRatio));
-    const double rayleigh = M_PI * rmin_all[t] * std::sqrt(rho_all[t] / G) /
-                            (0.1631 * m.poissonsRatio + 0.8766);
+    const double rayleigh =
+        M_PI * rmin_all[t] * std::sqrt(rho_all[t] / G) / (0.1631 * m.poissonsRatio + 0.8766);
     const double Yeff = s_->pair[t].Yeff;
-    const double hertz = 2.87 * std::pow(mass_all[t] * mass_all[t] /
-                                             (rmin_all[t] * Yeff * Yeff * v_impact),
-                                         0.2);
+    const double hertz =
+        2.87 * std::pow(mass_all[t] * mass_all[t] / (rmin_all[t] * Yeff * Yeff * v_impact), 0.2);
     if (s_->settings.normal == wheelsim::contact::NormalModel::Eepa) {
       const double ratio =
           wheelsim::contact::eepaNormalDamping(s_->pair[t], rmin_all[t], mass_all[t]) * dt /
@@ -602,14 +596,17 @@ void FixWheelCosim::check_timestep() {
         error->fix_error(FLERR, this, msg);
       }
     }
-    if (dt > wheelsim::kMaxRayleighFraction * rayleigh || dt > wheelsim::kMaxHertzFraction * hertz) {
+    if (dt > wheelsim::kMaxRayleighFraction * rayleigh ||
+        dt > wheelsim::kMaxHertzFraction * hertz) {
       char msg[512];
-      snprintf(msg, sizeof(msg),
-               "time step %g s is too large for the wheel contact of particle type %d (radius "
-               "%g m): it must be <= %.2g x Rayleigh time %g s and <= %.2g x Hertz time %g s "
-               "(impact speed %g m/s); use timestep <= %g or 'check_timestep off'",
-               dt, t, rmin_all[t], wheelsim::kMaxRayleighFraction, rayleigh, wheelsim::kMaxHertzFraction, hertz,
-               v_impact, std::min(wheelsim::kMaxRayleighFraction * rayleigh, wheelsim::kMaxHertzFraction * hertz));
+      snprintf(
+          msg, sizeof(msg),
+          "time step %g s is too large for the wheel contact of particle type %d (radius "
+          "%g m): it must be <= %.2g x Rayleigh time %g s and <= %.2g x Hertz time %g s "
+          "(impact speed %g m/s); use timestep <= %g or 'check_timestep off'",
+          dt, t, rmin_all[t], wheelsim::kMaxRayleighFraction, rayleigh, wheelsim::kMaxHertzFraction,
+          hertz, v_impact,
+          std::min(wheelsim::kMaxRayleighFraction * rayleigh, wheelsim::kMaxHertzFraction * hertz));
       error->fix_error(FLERR, this, msg);
     }
   }
@@ -648,8 +645,7 @@ void FixWheelCosim::setup(int /*vflag*/) {
     // Particles already overlapping the wheel when the first run starts get a kick.
     int overlapping = 0;
     for (int i = 0; i < atom->nlocal; ++i)
-      if (contact_force_[i][0] != 0.0 || contact_force_[i][1] != 0.0 ||
-          contact_force_[i][2] != 0.0)
+      if (contact_force_[i][0] != 0.0 || contact_force_[i][1] != 0.0 || contact_force_[i][2] != 0.0)
         ++overlapping;
     int total = 0;
     MPI_Allreduce(&overlapping, &total, 1, MPI_INT, MPI_SUM, world);
@@ -751,8 +747,8 @@ void FixWheelCosim::report_wrench() {
 void FixWheelCosim::coupling_failed(const std::exception &e) {
   // Seen on rank 0 only (it alone talks to the rig): a one-rank error, which ends all ranks.
   char msg[1024];
-  snprintf(msg, sizeof(msg), "fix wheel/cosim %s: coupling with the rig failed at step %ld: %s",
-           id, static_cast<long>(update->ntimestep), e.what());
+  snprintf(msg, sizeof(msg), "fix wheel/cosim %s: coupling with the rig failed at step %ld: %s", id,
+           static_cast<long>(update->ntimestep), e.what());
   error->one(FLERR, msg);
   std::abort(); // not reached: error->one ends the run
 }
@@ -962,8 +958,8 @@ double FixWheelCosim::compute_vector(int i) { return vector_[i]; }
 void FixWheelCosim::write_vtk() {
   const std::size_t nt = s_->triangle_area_m2.size();
   std::vector<double> force(nt, 0.0), count(nt, 0.0);
-  MPI_Reduce(s_->triangle_normal_force_sum.data(), force.data(), static_cast<int>(nt),
-             MPI_DOUBLE, MPI_SUM, 0, world);
+  MPI_Reduce(s_->triangle_normal_force_sum.data(), force.data(), static_cast<int>(nt), MPI_DOUBLE,
+             MPI_SUM, 0, world);
   MPI_Reduce(s_->triangle_contact_sum.data(), count.data(), static_cast<int>(nt), MPI_DOUBLE,
              MPI_SUM, 0, world);
   const double steps = static_cast<double>(std::max(1L, s_->vtk_window_steps));
@@ -981,8 +977,8 @@ void FixWheelCosim::write_vtk() {
                                          static_cast<long>(update->ntimestep),
                                          update->get_cur_time())) {
     char msg[1200];
-    snprintf(msg, sizeof(msg), "fix wheel/cosim %s: cannot write VTK file '%s' (keyword vtk)",
-             id, path);
+    snprintf(msg, sizeof(msg), "fix wheel/cosim %s: cannot write VTK file '%s' (keyword vtk)", id,
+             path);
     error->one(FLERR, msg);
   }
 }
@@ -1044,13 +1040,9 @@ void FixWheelCosim::unpack_restart(int nlocal, int nth) {
   std::fill(contact_force_[nlocal], contact_force_[nlocal] + 3, 0.0);
 }
 
-int FixWheelCosim::size_restart(int /*i*/) {
-  return history_columns_ + 1;
-}
+int FixWheelCosim::size_restart(int /*i*/) { return history_columns_ + 1; }
 
-int FixWheelCosim::maxsize_restart() {
-  return history_columns_ + 1;
-}
+int FixWheelCosim::maxsize_restart() { return history_columns_ + 1; }
 
 /* ----------------------------------------------------------------------
    Global restart state: the wheel pose and twist
@@ -1059,11 +1051,19 @@ int FixWheelCosim::maxsize_restart() {
 void FixWheelCosim::write_restart(FILE *fp) {
   const wheelsim::WheelState &st = s_->state;
   double list[14] = {1.0, // format version
-                     st.position_m.x(), st.position_m.y(), st.position_m.z(),
-                     st.orientation.w(), st.orientation.x(), st.orientation.y(),
-                     st.orientation.z(), st.velocity_m_s.x(), st.velocity_m_s.y(),
-                     st.velocity_m_s.z(), st.angular_velocity_rad_s.x(),
-                     st.angular_velocity_rad_s.y(), st.angular_velocity_rad_s.z()};
+                     st.position_m.x(),
+                     st.position_m.y(),
+                     st.position_m.z(),
+                     st.orientation.w(),
+                     st.orientation.x(),
+                     st.orientation.y(),
+                     st.orientation.z(),
+                     st.velocity_m_s.x(),
+                     st.velocity_m_s.y(),
+                     st.velocity_m_s.z(),
+                     st.angular_velocity_rad_s.x(),
+                     st.angular_velocity_rad_s.y(),
+                     st.angular_velocity_rad_s.z()};
   if (comm->me == 0) {
     const int size = sizeof(list);
     fwrite(&size, sizeof(int), 1, fp);
@@ -1080,7 +1080,7 @@ void FixWheelCosim::restart(char *buf) {
   st.orientation = Eigen::Quaterniond(list[4], list[5], list[6], list[7]).normalized();
   st.velocity_m_s = Eigen::Vector3d(list[8], list[9], list[10]);
   st.angular_velocity_rad_s = Eigen::Vector3d(list[11], list[12], list[13]);
-  s_->state_step = -1; // setup() marks the pose as that of the restart step
+  s_->state_step = -1;  // setup() marks the pose as that of the restart step
   first_setup_ = false; // particles touching a wheel restored mid-run are not an error
   if (comm->me == 0) {
     char line[256];

@@ -20,7 +20,7 @@
 
 #ifdef FIX_CLASS
 
-FixStyle(wheel/cosim,FixWheelCosim)
+FixStyle(wheel / cosim, FixWheelCosim)
 
 #else
 
@@ -37,7 +37,7 @@ FixStyle(wheel/cosim,FixWheelCosim)
 namespace wheelsim {
 struct WheelCosimState; // all non-LIGGGHTS state (Eigen, mesh index, contact law, motion)
 struct ContactPass;     // one step's wheel frame and wrench sums (fix_wheel_cosim.cpp)
-}
+} // namespace wheelsim
 
 namespace LAMMPS_NS {
 
@@ -87,18 +87,18 @@ private:
   void clear_history_outside_candidates();
   void report_candidates(); // post_run: list size and builds of the run
   void write_vtk();
-  void report_wrench();                                      // to the motion source
+  void report_wrench();                                       // to the motion source
   [[noreturn]] void coupling_failed(const std::exception &e); // error->one on rank 0
   [[noreturn]] void bad_argument(const char *fmt, ...);
 
   std::unique_ptr<wheelsim::WheelCosimState> s_;
   int wheel_type_;
-  int nslots_;          // history slots per particle
-  int history_columns_; // nslots_ * kSlotDoubles
-  double **history_;    // per atom: nslots_ slots of kSlotDoubles doubles
+  int nslots_;             // history slots per particle
+  int history_columns_;    // nslots_ * kSlotDoubles
+  double **history_;       // per atom: nslots_ slots of kSlotDoubles doubles
   double **contact_force_; // per atom: force of the wheel on the particle [N]
-  double vector_[11];   // the global vector, reduced over ranks
-  bool first_setup_;    // warn about initial overlaps only once
+  double vector_[11];      // the global vector, reduced over ranks
+  bool first_setup_;       // warn about initial overlaps only once
 };
 
 } // namespace LAMMPS_NS

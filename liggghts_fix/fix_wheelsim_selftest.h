@@ -14,7 +14,7 @@
 
 #ifdef FIX_CLASS
 
-FixStyle(wheelsim/selftest,FixWheelsimSelftest)
+FixStyle(wheelsim / selftest, FixWheelsimSelftest)
 
 #else
 

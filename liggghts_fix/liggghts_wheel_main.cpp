@@ -181,8 +181,9 @@ int main(int argc, char **argv) {
   }
   if (rank == 0) {
     char banner[160];
-    std::snprintf(banner, sizeof(banner), "liggghts-wheel: wheelsim %s (git %s) styles registered\n",
-                  WHEELSIM_VERSION, WHEELSIM_GIT_REVISION);
+    std::snprintf(banner, sizeof(banner),
+                  "liggghts-wheel: wheelsim %s (git %s) styles registered\n", WHEELSIM_VERSION,
+                  WHEELSIM_GIT_REVISION);
     if (lmp->screen)
       std::fputs(banner, lmp->screen);
     if (lmp->logfile)

@@ -17,9 +17,9 @@ namespace wheelsim {
 
 /// Pose and twist of the rigid wheel at one step.
 struct WheelState {
-  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();      ///< wheel centre [m]
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity(); ///< R_WB, unit
-  Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();    ///< centre velocity [m/s]
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();             ///< wheel centre [m]
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< R_WB, unit
+  Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();           ///< centre velocity [m/s]
   Eigen::Vector3d angular_velocity_rad_s = Eigen::Vector3d::Zero(); ///< ω [rad/s], world frame
 
   /// Velocity [m/s] of the wheel's material point at `point_m` (world frame).

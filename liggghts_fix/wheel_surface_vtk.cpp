@@ -6,8 +6,7 @@ namespace wheelsim {
 
 bool write_wheel_surface_vtk(const std::string &path, const geometry::TriangleMesh &mesh,
                              const WheelState &state, const std::vector<double> &pressure_Pa,
-                             const std::vector<double> &contact_count, long step,
-                             double time_s) {
+                             const std::vector<double> &contact_count, long step, double time_s) {
   FILE *out = std::fopen(path.c_str(), "w");
   if (out == nullptr)
     return false;

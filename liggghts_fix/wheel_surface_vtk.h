@@ -16,8 +16,7 @@ namespace wheelsim {
 /// per triangle over the averaging window). Returns false if the file cannot be written.
 bool write_wheel_surface_vtk(const std::string &path, const geometry::TriangleMesh &mesh,
                              const WheelState &state, const std::vector<double> &pressure_Pa,
-                             const std::vector<double> &contact_count, long step,
-                             double time_s);
+                             const std::vector<double> &contact_count, long step, double time_s);
 
 } // namespace wheelsim
 

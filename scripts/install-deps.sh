@@ -7,6 +7,8 @@ set -euo pipefail
 packages=(
   # toolchain
   g++ make cmake git ca-certificates
+  # the C++ format check (format.check; Debian 12: clang-format 14)
+  clang-format
   # LIGGGHTS 3.8 (library, headers, and Debian's own binary for reference runs) and MPI
   liggghts libliggghts-dev libopenmpi-dev openmpi-bin
   # C++ libraries

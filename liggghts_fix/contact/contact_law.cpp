@@ -33,9 +33,9 @@ void require(bool ok, const char *name, double value, const char *expected) {
 
 /// Normal-model output consumed by the later sub-models (LIGGGHTS sidata.Fn/kt/gammat).
 struct NormalPart {
-  double Fn;     ///< normal force incl. damping [N]
-  double kt;     ///< tangential stiffness [N/m]
-  double gammat; ///< tangential damping coefficient [N·s/m]
+  double Fn;      ///< normal force incl. damping [N]
+  double kt;      ///< tangential stiffness [N/m]
+  double gammat;  ///< tangential damping coefficient [N·s/m]
   double knDelta; ///< sidata.kn · δ, the "normal force" of rolling model cdt [N]
 };
 

@@ -10,11 +10,11 @@
 #include <random>
 #include <vector>
 
+using Eigen::Vector3d;
 using wheelsim::geometry::SphereContactIndex;
 using wheelsim::geometry::SurfaceContact;
 using wheelsim::geometry::SurfaceFeature;
 using wheelsim::geometry::TriangleMesh;
-using Eigen::Vector3d;
 
 namespace {
 
@@ -22,8 +22,8 @@ namespace {
 /// is fixed afterwards from the signed volume), extruded from y0 to y1. Every wall is split into
 /// `n_along` × `n_y` quads and each cap is triangulated by ear clipping, so flat faces consist
 /// of many triangles with shared edges and vertices.
-TriangleMesh extrude(const std::vector<Eigen::Vector2d> &profile, double y0, double y1,
-                     int n_along, int n_y) {
+TriangleMesh extrude(const std::vector<Eigen::Vector2d> &profile, double y0, double y1, int n_along,
+                     int n_y) {
   TriangleMesh mesh;
   const int np = static_cast<int>(profile.size());
   // Boundary points of the profile, each edge subdivided n_along times.
@@ -69,7 +69,8 @@ TriangleMesh extrude(const std::vector<Eigen::Vector2d> &profile, double y0, dou
         if (j == ia || j == ib || j == ic)
           continue;
         const Eigen::Vector2d &p = ring[j];
-        if (orient * cross(ring[ia], ring[ib], p) >= 0 && orient * cross(ring[ib], ring[ic], p) >= 0 &&
+        if (orient * cross(ring[ia], ring[ib], p) >= 0 &&
+            orient * cross(ring[ib], ring[ic], p) >= 0 &&
             orient * cross(ring[ic], ring[ia], p) >= 0)
           contains = true;
       }
@@ -107,7 +108,8 @@ std::vector<SurfaceContact> contacts_of(const SphereContactIndex &index, const V
 }
 
 TEST(SphereContactIndex, TestSolidsAreValid) {
-  for (const TriangleMesh &m : {step_solid(), extrude({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0, 1, 5, 5)}) {
+  for (const TriangleMesh &m :
+       {step_solid(), extrude({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0, 1, 5, 5)}) {
     const auto report = wheelsim::geometry::check_mesh(m);
     EXPECT_TRUE(report.ok()) << (report.errors.empty() ? "" : report.errors.front());
   }
@@ -139,7 +141,8 @@ TEST(SphereContactIndex, OneContactOnATessellatedFlatFace) {
 TEST(SphereContactIndex, TwoContactsInAConcaveCorner) {
   const SphereContactIndex index(step_solid());
   const double r = 0.05;
-  const Vector3d centre(1.0 + r - 0.004, 0.1, 1.0 + r - 0.007); // 4 mm into the wall, 7 mm into the floor
+  const Vector3d centre(1.0 + r - 0.004, 0.1,
+                        1.0 + r - 0.007); // 4 mm into the wall, 7 mm into the floor
   const auto cs = contacts_of(index, centre, r);
   ASSERT_EQ(cs.size(), 2u);
   int wall = cs[0].normal.x() > 0.5 ? 0 : 1;
@@ -213,7 +216,8 @@ TEST(SphereContactIndex, NeverMissesTheDeepestContactNorCountsOneTwice) {
     for (const auto &t : mesh.triangles) {
       // brute force: sample-free exact distance via the index's own rule is what we test, so
       // use an independent computation: projection + edge checks.
-      const Vector3d &a = mesh.vertices_m[t[0]], &b = mesh.vertices_m[t[1]], &cc = mesh.vertices_m[t[2]];
+      const Vector3d &a = mesh.vertices_m[t[0]], &b = mesh.vertices_m[t[1]],
+                     &cc = mesh.vertices_m[t[2]];
       const Vector3d n = (b - a).cross(cc - a).normalized();
       const Vector3d q = c - (c - a).dot(n) * n;
       const double w0 = (b - a).cross(q - a).dot(n), w1 = (cc - b).cross(q - b).dot(n),
@@ -245,7 +249,8 @@ TEST(SphereContactIndex, NeverMissesTheDeepestContactNorCountsOneTwice) {
     EXPECT_NEAR(deepest, r - closest, 1e-9) << "at " << c.transpose();
     for (std::size_t a = 0; a < cs.size(); ++a)
       for (std::size_t b = a + 1; b < cs.size(); ++b)
-        EXPECT_GT((cs[a].point_m - cs[b].point_m).norm(), 1e-6) << "double contact at " << c.transpose();
+        EXPECT_GT((cs[a].point_m - cs[b].point_m).norm(), 1e-6)
+            << "double contact at " << c.transpose();
     EXPECT_LE(cs.size(), 3u) << "at " << c.transpose();
   }
   EXPECT_GT(tested, 150);
@@ -253,9 +258,9 @@ TEST(SphereContactIndex, NeverMissesTheDeepestContactNorCountsOneTwice) {
 
 TEST(SphereContactIndex, NoContactAwayOrInside) {
   const SphereContactIndex index(step_solid());
-  EXPECT_TRUE(contacts_of(index, Vector3d(0.5, 0, 2.2), 0.05).empty());   // above the top
-  EXPECT_TRUE(contacts_of(index, Vector3d(5, 5, 5), 0.05).empty());       // outside the grid
-  EXPECT_TRUE(contacts_of(index, Vector3d(0.5, 0, 1.0), 0.05).empty());   // deep inside
+  EXPECT_TRUE(contacts_of(index, Vector3d(0.5, 0, 2.2), 0.05).empty()); // above the top
+  EXPECT_TRUE(contacts_of(index, Vector3d(5, 5, 5), 0.05).empty());     // outside the grid
+  EXPECT_TRUE(contacts_of(index, Vector3d(0.5, 0, 1.0), 0.05).empty()); // deep inside
 }
 
 TEST(SphereContactIndex, FeatureKeysAreStable) {

@@ -125,7 +125,8 @@ TEST(ScmRig, SlipTrendsAgainstWongReece) {
     }
     // Wong–Reece: sinkage rises with slip (through c2).
     const scm::WongReeceResult low = scm::solve_wong_reece(soil, {kRadius_m, kWidth_m}, 13200, 0.1);
-    const scm::WongReeceResult high = scm::solve_wong_reece(soil, {kRadius_m, kWidth_m}, 13200, 0.5);
+    const scm::WongReeceResult high =
+        scm::solve_wong_reece(soil, {kRadius_m, kWidth_m}, 13200, 0.5);
     EXPECT_GT(high.sinkage_m, low.sinkage_m) << soil_name;
     // Towards a plateau: the gain per unit slip falls.
     const double gain_low = (runs[1].drawbar_pull_N - runs[0].drawbar_pull_N) / 0.1;
@@ -138,10 +139,9 @@ TEST(ScmRig, SlipTrendsAgainstWongReece) {
 // (docs/scm.md "Time step"): study wheel 2 (15 combined lugs) at 20 % slip, 13.2 kN; the wheel
 // centre must not oscillate (vertical velocity small in the steady window) and nothing blows up.
 TEST(ScmRig, StableAtTheStudyTimeStepOnEveryShippedSoil) {
-  for (const char *soil_name :
-       {"dry_sand", "sandy_loam", "sand_loam", "lete_sand", "upland_sandy_loam",
-        "north_gower_clayey_loam", "grenville_loam", "clayey_soil_thailand", "lean_clay_wes",
-        "lunar_soil"}) {
+  for (const char *soil_name : {"dry_sand", "sandy_loam", "sand_loam", "lete_sand",
+                                "upland_sandy_loam", "north_gower_clayey_loam", "grenville_loam",
+                                "clayey_soil_thailand", "lean_clay_wes", "lunar_soil"}) {
     ScmRunSpec spec;
     spec.wheel = "wheel2";
     spec.soil = soil_name;

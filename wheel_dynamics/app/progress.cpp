@@ -32,8 +32,8 @@ void ProgressLine::print(const RigSimulation &sim, const RigOutputs &out) {
   std::fprintf(out_,
                "wheel-rig: t = %.4f s (%s), %.0f steps/s, slip %.4f, drawbar pull %.4g N, "
                "sinkage %.4g m, ETA %s\n",
-               out.time_s, to_string(out.phase), rate, out.slip, out.drawbar_pull_N,
-               out.sinkage_m, eta);
+               out.time_s, to_string(out.phase), rate, out.slip, out.drawbar_pull_N, out.sinkage_m,
+               eta);
   std::fflush(out_);
   last_ = now;
   last_step_ = out.step;

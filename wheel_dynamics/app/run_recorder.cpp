@@ -53,8 +53,7 @@ void RunRecorder::record(std::int64_t step, const RigOutputs &o, double contacts
   const double v[3] = {w.v_WBo_W.x(), w.v_WBo_W.y(), w.v_WBo_W.z()};
   const double om[3] = {w.w_WB_W.x(), w.w_WB_W.y(), w.w_WB_W.z()};
   const double f[3] = {o.contact.force_N.x(), o.contact.force_N.y(), o.contact.force_N.z()};
-  const double tq[3] = {o.contact.torque_Nm.x(), o.contact.torque_Nm.y(),
-                        o.contact.torque_Nm.z()};
+  const double tq[3] = {o.contact.torque_Nm.x(), o.contact.torque_Nm.y(), o.contact.torque_Nm.z()};
   s_->position->append(step, t, p);
   s_->orientation->append(step, t, q);
   s_->velocity->append(step, t, v);

@@ -8,9 +8,9 @@ namespace wheelsim::rig {
 namespace {
 
 scm::Field field_named(const std::string &name) {
-  for (scm::Field f : {scm::Field::height, scm::Field::sinkage, scm::Field::plastic_sinkage,
-                       scm::Field::pressure, scm::Field::shear_stress,
-                       scm::Field::shear_displacement})
+  for (scm::Field f :
+       {scm::Field::height, scm::Field::sinkage, scm::Field::plastic_sinkage, scm::Field::pressure,
+        scm::Field::shear_stress, scm::Field::shear_displacement})
     if (name == scm::to_string(f))
       return f;
   throw std::invalid_argument("terrain.snapshot_fields: unknown field '" + name + "'");
@@ -54,10 +54,10 @@ void TerrainSnapshots::write(const scm::ScmTerrain &terrain, std::int64_t step, 
     if (map.values.empty())
       continue; // nothing touched yet
     const runfile::Grid2D grid{map.values.data(), map.rows, map.cols};
-    file_.write_snapshot(std::string(scm::to_string(field)) + "/" + step_name, step, time_s, grid,
-                         scm::unit_of(field),
-                         {{"x0", map.x0_m, "m"}, {"y0", map.y0_m, "m"},
-                          {"spacing", map.spacing_m, "m"}});
+    file_.write_snapshot(
+        std::string(scm::to_string(field)) + "/" + step_name, step, time_s, grid,
+        scm::unit_of(field),
+        {{"x0", map.x0_m, "m"}, {"y0", map.y0_m, "m"}, {"spacing", map.spacing_m, "m"}});
   }
   last_step_ = step;
   ++written_;

@@ -287,12 +287,12 @@ const RigOutputs &RigSimulation::advance(const ContactWrench &w) {
     const bool timed_out = in_phase >= config_.run.settle_max_time_s;
     if (settled || timed_out) {
       if (!settled)
-        warnings_.push_back(
-            "settle: |v_z| did not stay below run.settle_velocity = " +
-            fmt(config_.run.settle_velocity_m_s) + " m/s for run.settle_window = " +
-            fmt(config_.run.settle_window_s) + " s within run.settle_max_time = " +
-            fmt(config_.run.settle_max_time_s) + " s (|v_z| = " +
-            fmt(std::abs(rig_.velocities().z_m_s)) + " m/s now); continuing with the ramp");
+        warnings_.push_back("settle: |v_z| did not stay below run.settle_velocity = " +
+                            fmt(config_.run.settle_velocity_m_s) + " m/s for run.settle_window = " +
+                            fmt(config_.run.settle_window_s) + " s within run.settle_max_time = " +
+                            fmt(config_.run.settle_max_time_s) +
+                            " s (|v_z| = " + fmt(std::abs(rig_.velocities().z_m_s)) +
+                            " m/s now); continuing with the ramp");
       static_sinkage_m_ =
           config_.terrain.surface_height_m - (rig_.coordinates().z_m - wheel_.rim_radius_m);
       enter(Phase::ramp);

@@ -60,15 +60,14 @@ scm::ScmSettings scm_settings(const RigConfig &config, const WheelProperties &wh
 }
 
 ScmGround::ScmGround(const RigConfig &config, const WheelProperties &wheel)
-    : terrain_(
-          [&] {
-            try {
-              return scm::ScmTerrain(scm_soil(config.terrain.scm), scm_settings(config, wheel),
-                                     load_wheel_mesh(config));
-            } catch (const std::invalid_argument &e) {
-              throw RigConfigError(config.source + ": [terrain] scm: " + e.what());
-            }
-          }()),
+    : terrain_([&] {
+        try {
+          return scm::ScmTerrain(scm_soil(config.terrain.scm), scm_settings(config, wheel),
+                                 load_wheel_mesh(config));
+        } catch (const std::invalid_argument &e) {
+          throw RigConfigError(config.source + ": [terrain] scm: " + e.what());
+        }
+      }()),
       dt_s_(config.run.dt_s) {}
 
 ContactWrench ScmGround::contact(const WheelState &state, double /*time_s*/) {

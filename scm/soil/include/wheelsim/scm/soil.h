@@ -11,10 +11,10 @@ namespace wheelsim::scm {
 /// One soil. Bekker (1956, 1969) pressure–sinkage p = (kc/b + kφ) z^n; Mohr–Coulomb shear
 /// strength τmax = c + p tan φ; Janosi & Hanamoto (1961) shear τ = τmax (1 − exp(−j/K)).
 struct SoilParameters {
-  std::string name;          ///< e.g. "LETE sand"
-  double Bekker_n = 1.0;     ///< sinkage exponent n [-]
-  double Bekker_Kc = 0.0;    ///< cohesive modulus kc [N/m^(n+1)]
-  double Bekker_Kphi = 0.0;  ///< frictional modulus kφ [N/m^(n+2)]
+  std::string name;           ///< e.g. "LETE sand"
+  double Bekker_n = 1.0;      ///< sinkage exponent n [-]
+  double Bekker_Kc = 0.0;     ///< cohesive modulus kc [N/m^(n+1)]
+  double Bekker_Kphi = 0.0;   ///< frictional modulus kφ [N/m^(n+2)]
   double Mohr_cohesion = 0.0; ///< cohesion c [Pa]
   double Mohr_friction = 0.0; ///< internal friction angle φ [rad]
   double Janosi_shear = 0.01; ///< shear deformation modulus K [m]

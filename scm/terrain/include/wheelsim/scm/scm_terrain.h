@@ -40,8 +40,8 @@ struct BulldozingSettings {
 };
 
 struct ScmSettings {
-  double grid_spacing_m = 0.02;     ///< Δ [m], > 0
-  double surface_height_m = 0.0;    ///< undisturbed surface level [m]
+  double grid_spacing_m = 0.02;  ///< Δ [m], > 0
+  double surface_height_m = 0.0; ///< undisturbed surface level [m]
   NormalDirection normal = NormalDirection::surface;
   BulldozingSettings bulldozing;
   /// Optional domain [m] (x_min, x_max, y_min, y_max); outside it the wheel meets no soil.
@@ -77,11 +77,11 @@ struct ScmStepTimings {
 
 /// Node fields that can be sampled on a window of the grid (snapshots, maps).
 enum class Field {
-  height,         ///< current surface level [m]
-  sinkage,        ///< initial − current level [m] (negative where soil piled up)
-  plastic_sinkage,///< permanent sinkage [m]
-  pressure,       ///< last normal pressure σ [Pa] (0 off contact)
-  shear_stress,   ///< last shear stress τ [Pa]
+  height,             ///< current surface level [m]
+  sinkage,            ///< initial − current level [m] (negative where soil piled up)
+  plastic_sinkage,    ///< permanent sinkage [m]
+  pressure,           ///< last normal pressure σ [Pa] (0 off contact)
+  shear_stress,       ///< last shear stress τ [Pa]
   shear_displacement, ///< accumulated j [m]
 };
 const char *to_string(Field field);
