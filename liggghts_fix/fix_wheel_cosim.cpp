@@ -123,6 +123,7 @@ struct WheelCosimState {
   bool check_timestep = true;
   int vtk_every = 0;
   std::string vtk_prefix;
+  std::unique_ptr<PvdSeries> vtk_series;         // rank 0: PREFIX_<step>.vtk listed in PREFIX.pvd
   std::vector<double> triangle_normal_force_sum; // [N], summed over the VTK window's steps
   std::vector<double> triangle_contact_sum;
   long vtk_window_steps = 0;
@@ -970,15 +971,20 @@ void FixWheelCosim::write_vtk() {
     return;
   for (std::size_t t = 0; t < nt; ++t)
     force[t] /= steps * s_->triangle_area_m2[t]; // time-averaged pressure [Pa]
-  char path[1024];
-  snprintf(path, sizeof(path), "%s_%ld.vtk", s_->vtk_prefix.c_str(),
-           static_cast<long>(update->ntimestep));
-  if (!wheelsim::write_wheel_surface_vtk(path, s_->index->mesh(), s_->state, force, count,
-                                         static_cast<long>(update->ntimestep),
-                                         update->get_cur_time())) {
+  if (!s_->vtk_series)
+    s_->vtk_series = std::make_unique<wheelsim::PvdSeries>(s_->vtk_prefix);
+  const long step = static_cast<long>(update->ntimestep);
+  const double time_s = update->get_cur_time(); // LIGGGHTS' simulation time, as in thermo 'time'
+  const std::string path = s_->vtk_series->vtk_path(step);
+  const char *failed = nullptr;
+  if (!wheelsim::write_wheel_surface_vtk(path, s_->index->mesh(), s_->state, force, count, step,
+                                         time_s))
+    failed = path.c_str();
+  else if (!s_->vtk_series->add(step, time_s))
+    failed = s_->vtk_series->pvd_path().c_str();
+  if (failed != nullptr) {
     char msg[1200];
-    snprintf(msg, sizeof(msg), "fix wheel/cosim %s: cannot write VTK file '%s' (keyword vtk)", id,
-             path);
+    snprintf(msg, sizeof(msg), "fix wheel/cosim %s: cannot write '%s' (keyword vtk)", id, failed);
     error->one(FLERR, msg);
   }
 }

@@ -18,6 +18,43 @@ bool write_wheel_surface_vtk(const std::string &path, const geometry::TriangleMe
                              const WheelState &state, const std::vector<double> &pressure_Pa,
                              const std::vector<double> &contact_count, long step, double time_s);
 
+/// One file of a ParaView Data collection: the step it belongs to, its simulation time [s] and
+/// its name relative to the collection file's folder.
+struct PvdEntry {
+  long step = 0;
+  double time_s = 0.0;
+  std::string file;
+};
+
+/// Writes the ParaView Data collection `path` (XML, `<DataSet timestep=T file=F/>` per entry, in
+/// the given order, times with 17 significant digits) atomically: into `path + ".tmp"`, flushed to
+/// disk, then renamed over `path`, so a crash leaves either the old or the new file, never a torn
+/// one. Returns false (and removes the temporary file) if it cannot be written.
+bool write_pvd(const std::string &path, const std::vector<PvdEntry> &entries);
+
+/// The series `PREFIX_<step>.vtk` of one writer and its collection `PREFIX.pvd` (same folder),
+/// rewritten every time a file is added. A collection that already exists when the first file is
+/// added keeps its entries of earlier steps (a run continued from a restart extends the series of
+/// the run it continues); later ones, left by an older run, are dropped.
+class PvdSeries {
+public:
+  explicit PvdSeries(std::string prefix);
+  /// `PREFIX_<step>.vtk`.
+  std::string vtk_path(long step) const;
+  /// `PREFIX.pvd`.
+  const std::string &pvd_path() const { return pvd_path_; }
+  /// Lists `vtk_path(step)` at time `time_s` [s] (replacing an entry of the same step) and
+  /// rewrites the collection (write_pvd). Returns false if it cannot be written.
+  bool add(long step, double time_s);
+  const std::vector<PvdEntry> &entries() const { return entries_; }
+
+private:
+  void keep_earlier_entries(long step);
+  std::string prefix_, pvd_path_, file_stem_; // file_stem_: PREFIX's file name + "_"
+  std::vector<PvdEntry> entries_;
+  bool started_ = false;
+};
+
 } // namespace wheelsim
 
 #endif

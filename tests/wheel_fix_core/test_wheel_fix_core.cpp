@@ -1,5 +1,5 @@
 // Unit tests of fix wheel/cosim's plain C++ parts: pose integration, prescribed motion, contact
-// history slots, the wheel-surface VTK writer.
+// history slots, the wheel-surface VTK writer and its ParaView collection.
 #include "contact_slots.h"
 #include "prescribed_motion.h"
 #include "wheel_motion.h"
@@ -136,4 +136,48 @@ TEST(WheelSurfaceVtk, WritesThePosedMeshAndCellData) {
   EXPECT_NE(vtk.find("\n10 1 0\n"), std::string::npos) << vtk;
   std::remove(path.c_str());
   EXPECT_FALSE(write_wheel_surface_vtk("/nonexistent-dir/x.vtk", mesh, s, {}, {}, 0, 0));
+}
+
+namespace {
+std::string read_text(const std::string &path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+bool exists(const std::string &path) { return std::ifstream(path).good(); }
+} // namespace
+
+TEST(PvdSeries, ListsEveryFileWithItsTimeAndRewritesAtomically) {
+  const std::string prefix = ::testing::TempDir() + "pvd_series_test";
+  std::remove((prefix + ".pvd").c_str());
+  PvdSeries series(prefix);
+  EXPECT_EQ(series.vtk_path(200), prefix + "_200.vtk");
+  const double dt = 0.25;                  // [s], a binary fraction: times print exactly
+  for (long step : {0L, 100L, 200L, 200L}) // 200 twice: a run's setup repeats the last step
+    ASSERT_TRUE(series.add(step, step * dt));
+  const std::string pvd = read_text(prefix + ".pvd");
+  EXPECT_NE(pvd.find("<VTKFile type=\"Collection\""), std::string::npos) << pvd;
+  EXPECT_NE(pvd.find("timestep=\"25\" group=\"\" part=\"0\" file=\"pvd_series_test_100.vtk\""),
+            std::string::npos)
+      << pvd;
+  std::size_t datasets = 0;
+  for (std::size_t at = pvd.find("<DataSet"); at != std::string::npos;
+       at = pvd.find("<DataSet", at + 1))
+    ++datasets;
+  EXPECT_EQ(datasets, 3u) << pvd;
+  EXPECT_FALSE(exists(prefix + ".pvd.tmp")); // renamed, not left behind
+
+  // a run continued from step 100 keeps the earlier entries, drops the old run's later ones
+  PvdSeries continued(prefix);
+  ASSERT_TRUE(continued.add(100, 0.5));
+  ASSERT_EQ(continued.entries().size(), 2u);
+  EXPECT_EQ(continued.entries()[0].step, 0);
+  EXPECT_EQ(continued.entries()[1].step, 100);
+  EXPECT_DOUBLE_EQ(continued.entries()[1].time_s, 0.5);
+  std::remove((prefix + ".pvd").c_str());
+
+  // an unwritable folder: false, no temporary file
+  PvdSeries nowhere("/nonexistent-dir/wheel");
+  EXPECT_FALSE(nowhere.add(0, 0.0));
 }
