@@ -20,7 +20,10 @@
 
 #ifdef FIX_CLASS
 
-FixStyle(wheel / cosim, FixWheelCosim)
+// The style name is stringified (#key): clang-format must not space the slash.
+// clang-format off
+FixStyle(wheel/cosim,FixWheelCosim)
+// clang-format on
 
 #else
 

@@ -14,7 +14,10 @@
 
 #ifdef FIX_CLASS
 
-FixStyle(wheelsim / selftest, FixWheelsimSelftest)
+// The style name is stringified (#key): clang-format must not space the slash.
+// clang-format off
+FixStyle(wheelsim/selftest,FixWheelsimSelftest)
+// clang-format on
 
 #else
 
