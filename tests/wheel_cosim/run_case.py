@@ -289,6 +289,41 @@ def read_vtk(path):
     return pts, fields
 
 
+def check_pvd(work, files, dt):
+    """wheel.pvd (written by the fix beside its VTK files) lists every one of them once, in step
+    order, with LIGGGHTS' simulation time: t(step) - t(step0) = (step - step0) dt to 1e-12
+    relative (step0: the first file's), and t(step0) as in that file's title (9 digits); no
+    temporary file is left."""
+    import xml.etree.ElementTree as ET
+    pvd = os.path.join(work, "wheel.pvd")
+    if not os.path.exists(pvd):
+        print("run_case: no wheel.pvd beside the VTK files FAIL")
+        return False
+    root = ET.parse(pvd).getroot()
+    sets = root.findall("./Collection/DataSet")
+    listed = [d.get("file") for d in sets]
+    times = [float(d.get("timestep")) for d in sets]
+    steps = [int(f[len("wheel_"):-4]) for f in listed]
+    ok = root.get("type") == "Collection" and sorted(listed) == sorted(files)
+    ok &= steps == sorted(steps) and len(set(steps)) == len(steps)
+    step0, t0 = steps[0], times[0]
+    worst = 0.0
+    for step, t in zip(steps, times):
+        if step != step0:
+            want = (step - step0) * dt
+            worst = max(worst, abs((t - t0) - want) / abs(want))
+    title = open(os.path.join(work, f"wheel_{step0}.vtk")).read().splitlines()[1]
+    t0_title = float(title.split("time ")[1].split()[0])
+    ok &= worst < 1e-12 and abs(t0 - t0_title) <= 1e-8 * max(abs(t0), 1e-30)
+    leftovers = [f for f in os.listdir(work) if f.endswith(".tmp")]
+    ok &= not leftovers
+    print(f"run_case: wheel.pvd: {len(listed)} data sets for {len(files)} VTK files, steps "
+          f"{steps}, times {times} s, max relative error of t - t0 against (step - step0) dt "
+          f"{worst:.3g} (tol 1e-12), t0 {t0!r} vs title {t0_title!r}, temporary files "
+          f"{leftovers} {'ok' if ok else 'FAIL'}")
+    return ok
+
+
 def check_vtk(a, text, steps, every, vx, vz, wy):
     import re
     m = re.search(r"centre start (\S+) 0 (\S+) m, dt (\S+) s", text)
@@ -331,6 +366,7 @@ def check_vtk(a, text, steps, every, vx, vz, wy):
     if not any_pressure:
         print("run_case: no cell with a pressure > 0 although the wheel touches the bed FAIL")
     ok &= any_pressure
+    ok &= check_pvd(a.work, files, dt)
     print(f"run_case: vtk {'PASS' if ok else 'FAIL'}")
     return 0 if ok else 1
 
