@@ -120,7 +120,8 @@ class UsageTest(TempDirTestCase):
             (
                 ["curvs", "run.h5"],
                 "wheelsim-post: error: argument COMMAND: invalid choice: 'curvs' (choose "
-                "from 'curves', 'series', 'maps', 'compare', 'study') (did you mean 'curves'?)",
+                "from 'curves', 'series', 'maps', 'compare', 'study', 'vtk', 'pvd')"
+                " (did you mean 'curves'?)",
             ),
             (
                 ["curves", "run.h5", "--zzz"],
@@ -167,7 +168,8 @@ class HelpTest(unittest.TestCase):
             a for a in parser._actions if isinstance(a, argparse._SubParsersAction)
         )
         self.assertEqual(
-            sorted(subparsers.choices), ["compare", "curves", "maps", "series", "study"]
+            sorted(subparsers.choices),
+            ["compare", "curves", "maps", "pvd", "series", "study", "vtk"],
         )
         for name, sub in subparsers.choices.items():
             for action in sub._actions:
