@@ -4,11 +4,13 @@ contact pressure), LIGGGHTS' particle dump (spheres of their radius, coloured by
 optionally, an SCM terrain snapshot from ``wheelsim-post vtk`` (warped by its height), rendered
 offscreen with VTK's Python bindings, as ParaView would show them (docs/paraview.md).
 
-Needs Debian's python3-vtk9 (``apt-get install python3-vtk9``; not a wheelsim dependency, only
-for this picture). Example:
+Needs Debian's python3-vtk9 and, without a display, xvfb (``apt-get install python3-vtk9 xvfb
+xauth``; not wheelsim dependencies, only for pictures): Debian's VTK renders through X only (no
+OSMesa or EGL window), so headless runs go through ``xvfb-run``. Example (docs/paraview.md):
 
-    /usr/bin/python3 postprocess/paraview_screenshot.py --wheel RUN/wheel_surface_8000.vtk \\
-        --particles RUN/particles_8000.vtk --out docs/images/paraview_coupled.png
+    xvfb-run -a /usr/bin/python3 postprocess/paraview_screenshot.py \\
+        --wheel WORK/wheel_surface_19500.vtk --particles WORK/particles_19500.vtk \\
+        --clip-y 0 --view -30 15 --out docs/images/paraview_coupled.png
 """
 
 import argparse
@@ -21,7 +23,9 @@ try:
     import vtk
     from vtk.util import numpy_support
 except ImportError:
-    sys.exit("paraview_screenshot: error: needs VTK's Python bindings (apt-get install python3-vtk9)")
+    sys.exit(
+        "paraview_screenshot: error: needs VTK's Python bindings (apt-get install python3-vtk9)"
+    )
 
 
 def legacy_reader(path):
@@ -165,6 +169,7 @@ def terrain_actor(path):
     reader = vtk.vtkXMLImageDataReader()
     reader.SetFileName(path)
     reader.Update()
+    _ALIVE.append(reader)
     geometry = vtk.vtkImageDataGeometryFilter()
     geometry.SetInputConnection(reader.GetOutputPort())
     warp = vtk.vtkWarpScalar()
@@ -176,7 +181,15 @@ def terrain_actor(path):
     mapper = vtk.vtkDataSetMapper()
     mapper.SetInputConnection(warp.GetOutputPort())
     mapper.SetScalarModeToUsePointFieldData()
-    mapper.SelectColorArray("sinkage")
+    name = "sinkage" if reader.GetOutput().GetPointData().GetArray("sinkage") else "height"
+    mapper.SelectColorArray(name)
+    mapper.SetScalarRange(reader.GetOutput().GetPointData().GetArray(name).GetRange())
+    lut = vtk.vtkLookupTable()
+    lut.SetHueRange(0.12, 0.02)
+    lut.SetSaturationRange(0.3, 0.9)
+    lut.SetValueRange(0.95, 0.45)
+    lut.Build()
+    mapper.SetLookupTable(lut)
     actor = vtk.vtkActor()
     actor.SetMapper(mapper)
     return actor
@@ -184,7 +197,7 @@ def terrain_actor(path):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--wheel", required=True, metavar="FILE.vtk", help="fix wheel/cosim VTK")
+    parser.add_argument("--wheel", metavar="FILE.vtk", help="fix wheel/cosim VTK")
     parser.add_argument("--particles", metavar="FILE.vtk", help="dump custom/vtk file")
     parser.add_argument("--terrain", metavar="FILE.vti", help="wheelsim-post vtk snapshot")
     parser.add_argument("--out", required=True, metavar="FILE.png", help="picture to write")
@@ -207,19 +220,24 @@ def main(argv=None):
 
     renderer = vtk.vtkRenderer()
     renderer.SetBackground(1.0, 1.0, 1.0)
-    wheel, wheel_bar, match = wheel_actor(args.wheel, args.clip_y)
-    renderer.AddActor(wheel)
-    renderer.AddActor2D(wheel_bar)
-    wheel_bar.SetPosition(0.9, 0.08)
-    caption = "wheel surface"
+    if not (args.wheel or args.particles or args.terrain):
+        parser.error("give at least one of --wheel, --particles, --terrain")
+    parts, match = [], None
+    if args.wheel:
+        wheel, wheel_bar, match = wheel_actor(args.wheel, args.clip_y)
+        renderer.AddActor(wheel)
+        renderer.AddActor2D(wheel_bar)
+        wheel_bar.SetPosition(0.9, 0.08)
+        parts.append("wheel surface")
     if args.particles:
         particles, bar, count = particle_actor(args.particles, args.clip_y)
         renderer.AddActor(particles)
         renderer.AddActor2D(bar)
-        caption += f" + {count} particles"
+        parts.append(f"{count} particles")
     if args.terrain:
         renderer.AddActor(terrain_actor(args.terrain))
-        caption += " + SCM terrain"
+        parts.append("SCM terrain (warped by its height, coloured by sinkage)")
+    caption = " + ".join(parts)
     if args.clip_y is not None:
         caption += f" (cut: y >= {args.clip_y:g} m)"
     if match:
