@@ -11,8 +11,11 @@
 #include <gtest/gtest.h>
 
 #include "wheelsim/geometry/mesh_io.h"
+#include "wheelsim/rig/config_schema.h"
 #include "wheelsim/rig/rig_config.h"
 #include "wheelsim/rig/rig_simulation.h"
+#include "wheelsim/rig/slip_modes.h"
+#include "wheelsim/rig/terrain_registry.h"
 
 namespace wheelsim::rig {
 namespace {
@@ -390,6 +393,43 @@ TEST(RigConfig, EveryKeyIsDocumented) {
   const std::string doc = ss.str();
   for (const auto &k : rig_config_keys())
     EXPECT_NE(doc.find("`" + k + "`"), std::string::npos) << k << " missing in docs/rig-config.md";
+}
+
+// The terrain types and carriage modes come from their registries (terrain_registry.h,
+// slip_modes.h): an unknown name is rejected with the registry's list.
+TEST(RigConfig, UnknownTerrainTypeListsTheRegistry) {
+  const std::string e = error_of(with(base(), "terrain.type", "\"mud\""));
+  EXPECT_NE(e.find("terrain.type must be one of "), std::string::npos) << e;
+  ASSERT_EQ(terrain_names().size(), 3u);
+  for (const std::string &name : terrain_names())
+    EXPECT_NE(e.find("\"" + name + "\""), std::string::npos) << name << " missing in: " << e;
+  EXPECT_NE(error_of(with(base(), "terrain.type", "\"flatt\"")).find("did you mean \"flat\"?"),
+            std::string::npos);
+}
+
+TEST(RigConfig, UnknownCarriageModeListsTheRegistry) {
+  const std::string e = error_of(with(base(), "carriage.mode", "\"towed\""));
+  ASSERT_EQ(slip_mode_names().size(), 4u);
+  for (const std::string &name : slip_mode_names())
+    EXPECT_NE(e.find("\"" + name + "\""), std::string::npos) << name << " missing in: " << e;
+}
+
+// Each registry entry names its own type/mode, and every key of the schema is one the parser
+// accepts; the SCM bulldozing defaults are the SCM module's (one source: scm_terrain.h).
+TEST(RigConfig, RegistriesAndSchemaAgree) {
+  for (const TerrainKind &k : terrain_kinds())
+    EXPECT_STREQ(to_string(k.type), k.name);
+  for (const SlipMode &m : slip_modes())
+    EXPECT_STREQ(to_string(m.mode), m.name);
+  const std::vector<std::string> keys = rig_config_keys();
+  for (const ConfigKey &k : rig_config_schema())
+    EXPECT_NE(std::find(keys.begin(), keys.end(), k.table + "." + k.key), keys.end()) << k.key;
+  const scm::BulldozingSettings scm_defaults;
+  const ScmTerrainConfig rig_defaults;
+  EXPECT_EQ(rig_defaults.erosion_rings, scm_defaults.erosion_rings);
+  EXPECT_EQ(rig_defaults.erosion_rings, 10); // what every wheel-rig SCM run has used
+  EXPECT_EQ(rig_defaults.erosion_iterations, scm_defaults.erosion_iterations);
+  EXPECT_EQ(rig_defaults.erosion_angle_deg, scm_defaults.erosion_angle_deg);
 }
 
 } // namespace

@@ -6,6 +6,7 @@
 //   wheel-rig --config rig.toml [--out run.h5] [--endpoint ipc:///tmp/x.sock]
 //             [--surface-height Z] [--quiet]
 //   wheel-rig --config rig.toml --check      (validate as a run would; no run, no run file)
+//   wheel-rig --list-keys                    (the config schema as JSON, config_schema.h)
 //
 // Exit status (wheelsim/cli.h): 0 finished (or --check: valid; --help, --version), 1 error while
 // running (the message names the side and what failed), 2 bad command line or config (the
@@ -19,13 +20,12 @@
 #include "coupler/coupling.h"
 #include "coupler/transport.h"
 #include "wheelsim/cli.h"
-#include "wheelsim/rig/flat_ground.h"
+#include "wheelsim/rig/config_schema.h"
 #include "wheelsim/rig/rig_config.h"
 #include "wheelsim/rig/rig_simulation.h"
 #include "wheelsim/rig/run_health.h"
-#include "wheelsim/rig/scm_ground.h"
+#include "wheelsim/rig/terrain_registry.h"
 #include "wheelsim/run_file/run_file.h"
-#include "wheelsim/scm/chrono_soil.h"
 #include "wheelsim_version.h"
 
 #include <CLI/CLI.hpp>
@@ -85,49 +85,44 @@ struct Sink {
   }
 };
 
-/// The in-process flat ground.
-void run_flat(Sink &sink) {
-  rig::RigSimulation &sim = sink.sim;
-  rig::FlatGround ground = rig::make_flat_ground(sim.config(), sim.wheel());
-  sink.health.set_contact_stiffness(sim.config().terrain.flat.stiffness_N_m);
-  while (!sim.finished())
-    sink.advance(ground.contact(sim.wheel_state(), sim.time_s()), 1.0);
-}
+/// /parameters of the run file, for the terrain registry's entries.
+class RunFileParameters : public rig::ParameterSink {
+public:
+  explicit RunFileParameters(runfile::RunFile &file) : file_(file) {}
+  void number(const std::string &name, double value, const std::string &unit) override {
+    file_.set_parameter(name, value, unit);
+  }
+  void text(const std::string &name, const std::string &value) override {
+    file_.set_parameter(name, value);
+  }
+  void long_text(const std::string &name, const std::string &text) override {
+    file_.set_parameter_text(name, text);
+  }
 
-/// The in-process SCM soft soil: records the soil and settings in /parameters and writes the
-/// terrain snapshots.
-void run_scm(Sink &sink, runfile::RunFile &file) {
+private:
+  runfile::RunFile &file_;
+};
+
+/// An in-process terrain of the registry (flat, scm): built by its factory, its /parameters
+/// written, stepped once per rig step; terrains with a height grid get /terrain snapshots.
+void run_in_process(const rig::TerrainKind &kind, Sink &sink, runfile::RunFile &file) {
   rig::RigSimulation &sim = sink.sim;
   const rig::RigConfig &config = sim.config();
-  rig::ScmGround ground(config, sim.wheel());
-  const scm::SoilParameters &soil = ground.terrain().soil();
-  const scm::ScmSettings &settings = ground.terrain().settings();
-  std::ifstream soil_in(config.terrain.scm.soil, std::ios::binary);
-  std::ostringstream soil_text;
-  soil_text << soil_in.rdbuf();
-  file.set_parameter("terrain/soil_file", config.terrain.scm.soil);
-  file.set_parameter_text("terrain/soil_file_text", soil_text.str());
-  file.set_parameter("terrain/soil_name", soil.name);
-  file.set_parameter("terrain/soil/Bekker_n", soil.Bekker_n, "1");
-  file.set_parameter("terrain/soil/Bekker_Kc", soil.Bekker_Kc, "N/m^(n+1)");
-  file.set_parameter("terrain/soil/Bekker_Kphi", soil.Bekker_Kphi, "N/m^(n+2)");
-  file.set_parameter("terrain/soil/Mohr_cohesion", soil.Mohr_cohesion, "Pa");
-  // Chrono's unit for the friction angle (docs/hdf5-layout.md, docs/chrono-interop.md).
-  file.set_parameter("terrain/soil/Mohr_friction", scm::to_chrono_soil(soil).Mohr_friction, "deg");
-  file.set_parameter("terrain/soil/Janosi_shear", soil.Janosi_shear, "m");
-  file.set_parameter("terrain/soil/elastic_K", soil.elastic_K, "Pa/m");
-  file.set_parameter("terrain/soil/damping_R", soil.damping_R, "Pa s/m");
-  file.set_parameter("terrain/grid_spacing", settings.grid_spacing_m, "m");
-  file.set_parameter("terrain/normal_direction",
-                     settings.normal == scm::NormalDirection::vertical ? "vertical" : "surface");
-  sink.health.set_grid(settings.grid_spacing_m, soil.elastic_K);
-  rig::TerrainSnapshots snapshots(config.terrain.scm, file);
+  const std::unique_ptr<rig::Terrain> ground = kind.make(config, sim.wheel());
+  RunFileParameters parameters(file);
+  if (kind.start)
+    kind.start(config, *ground, parameters, sink.health);
+  std::optional<rig::TerrainSnapshots> snapshots;
+  if (ground->height_grid())
+    snapshots.emplace(config.terrain.scm, file);
   while (!sim.finished()) {
-    const rig::ContactWrench wrench = ground.contact(sim.wheel_state(), sim.time_s());
-    const rig::RigOutputs &o = sink.advance(wrench, ground.last_contact().contact_nodes);
-    snapshots.after_step(ground.terrain(), o.step, o.time_s);
+    const rig::ContactWrench wrench = ground->contact(sim.wheel_state(), sim.time_s());
+    const rig::RigOutputs &o = sink.advance(wrench, ground->contact_count());
+    if (snapshots)
+      snapshots->after_step(*ground->height_grid(), o.step, o.time_s);
   }
-  snapshots.at_end(ground.terrain(), sim.step(), sim.time_s());
+  if (snapshots)
+    snapshots->at_end(*ground->height_grid(), sim.step(), sim.time_s());
 }
 
 /// What moves the wheel in a DEM run: the rig (normal use) or a fixed twist (--kinematic).
@@ -293,10 +288,8 @@ void run_dem(const rig::RigConfig &config, DemDriver &driver, runfile::RunFile &
 /// terrain (SCM: soil file and grid). Throws rig::RigConfigError naming the key.
 void check_run_inputs(const rig::RigConfig &config) {
   rig::RigSimulation sim(config);
-  if (config.terrain.type == rig::TerrainType::scm)
-    rig::ScmGround ground(config, sim.wheel());
-  else if (config.terrain.type == rig::TerrainType::flat)
-    rig::make_flat_ground(config, sim.wheel());
+  if (const rig::TerrainKind &kind = rig::terrain_kind(config.terrain.type); kind.make)
+    kind.make(config, sim.wheel());
 }
 
 /// Runs the rig on the terrain of `config` (or the --kinematic twist) to its end.
@@ -311,13 +304,11 @@ void run_terrain(const rig::RigConfig &config, const std::vector<double> &kinema
       twist << (twist.tellp() > 0 ? " " : "") << value;
     file.set_parameter("kinematic_twist", twist.str() + " (vx vy vz [m/s] wx wy wz [rad/s])");
     run_dem(config, driver, file, quiet);
-  } else if (config.terrain.type == rig::TerrainType::dem) {
+  } else if (const rig::TerrainKind &kind = rig::terrain_kind(config.terrain.type); kind.make) {
+    run_in_process(kind, sink, file);
+  } else { // the remote terrain: LIGGGHTS over the coupler
     RigDriver driver(sink.sim, sink);
     run_dem(config, driver, file, quiet);
-  } else if (config.terrain.type == rig::TerrainType::scm) {
-    run_scm(sink, file);
-  } else {
-    run_flat(sink);
   }
 }
 
@@ -333,7 +324,8 @@ int main(int argc, char **argv) {
   std::vector<std::string> parameters;
   bool check = false;
   std::optional<double> dt;
-  app.add_option("--config", config_path, "rig configuration (TOML)")->required();
+  bool list_keys = false;
+  app.add_option("--config", config_path, "rig configuration (TOML); required unless --list-keys");
   app.add_option("--out", out_path, "HDF5 run file (default: [output] file of the config)");
   app.add_option("--endpoint", endpoint,
                  "coupling endpoint for terrain type dem (overrides [terrain] endpoint)");
@@ -355,9 +347,18 @@ int main(int argc, char **argv) {
                "would (keys, wheel mesh, SCM soil file, DEM endpoint), print 'CONFIG: ok' (nothing "
                "with --quiet); exit 0 if valid, 2 naming the key if not; runs nothing, writes no "
                "run file");
+  app.add_flag("--list-keys", list_keys,
+               "print the rig config's schema as JSON (every table.key with its type, unit, "
+               "default, range and the terrain type or carriage mode it applies to) and exit 0");
   cli::setup(app, "wheel-rig");
   if (const auto status = cli::parse(app, argc, argv))
     return *status;
+  if (list_keys) {
+    std::fputs(rig::rig_config_schema_json().c_str(), stdout);
+    return cli::kExitSuccess;
+  }
+  if (config_path.empty())
+    return cli::report_usage_error("wheel-rig", "--config is required");
 
   rig::RigConfig config;
   try {

@@ -1,4 +1,5 @@
 #include "wheelsim/rig/rig_simulation.h"
+#include "wheelsim/rig/slip_modes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -187,31 +188,16 @@ void RigSimulation::configure_drives(double t_next) {
     d.wheel = Drive::free;
     d.wheel_value = f_now * m.torque_Nm;
   }
-  switch (c.mode) {
-  case CarriageMode::imposed_slip:
-    d.carriage = Drive::follow_wheel;
-    d.carriage_value = (1.0 - c.slip) * wheel_.effective_radius_m;
-    break;
-  case CarriageMode::imposed_speed:
-    d.carriage = Drive::imposed_velocity;
-    d.carriage_value = f_next * c.speed_m_s;
-    break;
-  case CarriageMode::constant_load:
-    load_command_N_ = f_now * c.load_N;
-    break;
-  case CarriageMode::ramped_load:
-    if (phase_ == Phase::test)
-      load_command_N_ =
-          c.load_start_N + (c.load_end_N - c.load_start_N) *
-                               std::clamp((t - test_start_s_) / c.ramp_time_s, 0.0, 1.0);
-    else
-      load_command_N_ = f_now * c.load_start_N;
-    break;
-  }
-  if (c.mode == CarriageMode::constant_load || c.mode == CarriageMode::ramped_load) {
-    d.carriage = Drive::free;
-    d.carriage_value = -load_command_N_; // the load pulls the rig backwards
-  }
+  CarriageDriveInput in; // the mode's drive law: slip_modes.cpp
+  in.test_phase = phase_ == Phase::test;
+  in.ramp_fraction_now = f_now;
+  in.ramp_fraction_next = f_next;
+  in.time_in_test_s = in.test_phase ? t - test_start_s_ : 0.0;
+  in.effective_radius_m = wheel_.effective_radius_m;
+  const CarriageDrive carriage = slip_mode(c.mode).drive(c, in);
+  d.carriage = carriage.drive;
+  d.carriage_value = carriage.value;
+  load_command_N_ = carriage.load_command_N;
   rig_.set_drives(d);
 }
 

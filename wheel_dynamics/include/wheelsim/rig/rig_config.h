@@ -1,7 +1,9 @@
 // The rig configuration (TOML, DESIGN.md §4.2): every key, its unit, default and range are in
-// docs/rig-config.md. Parsing rejects unknown tables and keys (with a "did you mean" suggestion),
-// values of the wrong type, out-of-range values and keys that do not belong to the chosen mode,
-// with a message that names the key, the expected range with its unit, and the value found.
+// docs/rig-config.md and in the schema (config_schema.h, `wheel-rig --list-keys`); the terrain
+// types and carriage modes are declared in terrain_registry.h and slip_modes.h. Parsing rejects
+// unknown tables and keys (with a "did you mean" suggestion), values of the wrong type,
+// out-of-range values and keys that do not belong to the chosen mode, with a message that names the
+// key, the expected range with its unit, and the value found.
 #pragma once
 
 #include <optional>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "wheelsim/rig/flat_ground.h"
+#include "wheelsim/scm/scm_terrain.h"
 
 namespace wheelsim::rig {
 
@@ -81,11 +84,12 @@ struct ScmTerrainConfig {
   bool vertical_normal = false; ///< normal_direction = "vertical" (Chrono) vs "surface"
   std::optional<double> elastic_stiffness_Pa_m; ///< overrides the soil file's Ke [Pa/m]
   std::optional<double> damping_Pa_s_m;         ///< overrides the soil file's damping R [Pa s/m]
-  bool bulldozing = true;
-  double erosion_angle_deg = 40.0; ///< angle of repose [deg]
-  double flow_factor = 1.0;        ///< [-]
-  long long erosion_iterations = 3;
-  long long erosion_rings = 10;
+  // The bulldozing defaults are the SCM module's (scm::BulldozingSettings, scm_terrain.h).
+  bool bulldozing = scm::BulldozingSettings{}.enabled;
+  double erosion_angle_deg = scm::BulldozingSettings{}.erosion_angle_deg; ///< angle of repose [deg]
+  double flow_factor = scm::BulldozingSettings{}.flow_factor;             ///< [-]
+  long long erosion_iterations = scm::BulldozingSettings{}.erosion_iterations;
+  long long erosion_rings = scm::BulldozingSettings{}.erosion_rings;
   std::vector<double> snapshot_times_s; ///< simulated times [s] of terrain snapshots
   double snapshot_interval_s = 0.0;     ///< also one every this many s [s]; 0 = off
   std::vector<std::string> snapshot_fields = {"height", "sinkage", "pressure", "shear_stress"};
@@ -129,7 +133,8 @@ RigConfig parse_rig_config(const std::string &toml_text, const std::string &sour
 /// Reads `path` and parses it; relative paths resolve against the file's directory.
 RigConfig load_rig_config(const std::string &path);
 
-/// Every key the parser accepts, as "table.key" (the documentation lists the same).
+/// Every key the parser accepts, as "table.key" (the documentation lists the same; the full
+/// schema with units, defaults and ranges: config_schema.h).
 std::vector<std::string> rig_config_keys();
 
 const char *to_string(CarriageMode mode);

@@ -21,6 +21,8 @@ public:
   ContactWrench contact(const WheelState &state, double time_s) override;
 
   const scm::ScmTerrain &terrain() const { return terrain_; }
+  double contact_count() const override { return last_.contact_nodes; }
+  const scm::ScmTerrain *height_grid() const override { return &terrain_; }
   /// The contact of the last call (node and patch counts).
   const scm::ScmContact &last_contact() const { return last_; }
 

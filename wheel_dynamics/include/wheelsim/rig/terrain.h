@@ -1,11 +1,15 @@
 // The wheel's state as the rig reports it, the contact wrench a terrain returns, and the interface
-// of in-process terrains (flat ground for tests, later SCM). A remote terrain (LIGGGHTS through the
-// coupler) does not implement Terrain: its main loop hands the received wrench to Rig::step or
-// RigSimulation::advance directly. See docs/rig-config.md ("Frames").
+// of in-process terrains (the flat ground, SCM; terrain_registry.h). A remote terrain (LIGGGHTS
+// through the coupler) does not implement Terrain: its main loop hands the received wrench to
+// Rig::step or RigSimulation::advance directly. See docs/rig-config.md ("Frames").
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+
+namespace wheelsim::scm {
+class ScmTerrain;
+}
 
 namespace wheelsim::rig {
 
@@ -39,6 +43,11 @@ public:
   virtual ~Terrain() = default;
   /// Contact wrench on the wheel in state `state` at time `time_s` [s].
   virtual ContactWrench contact(const WheelState &state, double time_s) = 0;
+  /// Contacts of the last call (run health, the contact/count series): nodes for SCM; 1 for a
+  /// terrain that does not count them.
+  virtual double contact_count() const { return 1.0; }
+  /// The soil height grid, for terrains that have one (SCM: /terrain snapshots); else nullptr.
+  virtual const scm::ScmTerrain *height_grid() const { return nullptr; }
 };
 
 } // namespace wheelsim::rig

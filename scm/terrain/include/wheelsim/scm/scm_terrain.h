@@ -36,7 +36,9 @@ struct BulldozingSettings {
   double erosion_angle_deg = 40.0; ///< angle of repose [deg], in (0, 90)
   double flow_factor = 1.0;        ///< displaced volume × this goes to the rim [-], ≥ 0
   int erosion_iterations = 3;      ///< smoothing sweeps per step, ≥ 0
-  int erosion_rings = 5;           ///< rings of nodes around a patch that receive soil/erode, ≥ 1
+  /// Rings of nodes around a patch that receive soil/erode, ≥ 1. 10: what every wheel-rig SCM run
+  /// has used (docs/scm.md); also the rig config's default.
+  int erosion_rings = 10;
 };
 
 struct ScmSettings {
