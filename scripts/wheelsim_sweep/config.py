@@ -9,7 +9,9 @@ import copy
 import difflib
 import math
 import os
+import json
 import re
+import subprocess
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -17,19 +19,6 @@ from pathlib import Path
 TERRAINS = ("scm", "dem", "flat")
 TOP_KEYS = ("description", "terrain", "base", "override", "wheels", "soils", "slips", "dem")
 DEM_KEYS = ("np", "bed_np", "deck", "liggghts_args", "budget_h")
-# The rig config's tables and keys (docs/rig-config.md); [terrain] is passed through unchecked
-# because its keys depend on the terrain type (SCM adds keys). wheel-rig checks everything again.
-RIG_KEYS = {
-    "wheel": ("mesh", "mesh_scale", "mass", "inertia", "density", "effective_radius"),
-    "rig": ("spindle_mass", "suspended_mass", "vertical_load", "carriage_mass", "spring_k",
-            "spring_c", "gravity"),
-    "motor": ("omega", "torque", "ramp_time"),
-    "carriage": ("mode", "slip", "speed", "load", "load_start", "load_end", "ramp_time"),
-    "run": ("dt", "duration", "release_gap", "release_speed", "release_timeout",
-            "settle_velocity", "settle_window", "settle_min_time", "settle_max_time"),
-    "terrain": None,
-    "output": ("file", "every", "flush_interval", "progress_interval"),
-}
 WHEEL_ENTRY_KEYS = ("name", "mesh", "mesh_scale", "mass", "inertia", "density", "effective_radius")
 # inputs/in.soilbin variables a DEM bed recipe may set (docs/soil-bins.md); inputs_dir, out_dir
 # and restart_file are the driver's.
@@ -147,19 +136,53 @@ def _deep_merge(base, over):
     return out
 
 
-def _check_rig_tables(ctx, doc, where, check_keys=True):
+_SCHEMAS = {}
+
+
+def rig_keys(build_dir):
+    """{table: (key, ...)} of the rig config, from the schema `<build>/bin/wheel-rig --list-keys`
+    prints (docs/rig-config.md, "The schema and the registries"): the keys are declared once, in
+    wheel-rig. Read once per executable."""
+    rig = Path(build_dir) / "bin" / "wheel-rig"
+    if rig not in _SCHEMAS:
+        how = f"build it: cmake --build {build_dir} --target wheel-rig"
+        if not rig.is_file():
+            raise ConfigError(f"{rig} not found: [override] keys are checked against its "
+                              f"--list-keys ({how})")
+        try:
+            r = subprocess.run([str(rig), "--list-keys"], capture_output=True, text=True,
+                               timeout=60)
+            schema = json.loads(r.stdout) if r.returncode == 0 else None
+        except (OSError, subprocess.TimeoutExpired, json.JSONDecodeError):
+            schema = None
+        if not isinstance(schema, dict) or not isinstance(schema.get("keys"), list):
+            raise ConfigError(f"{rig} --list-keys did not print the rig-config schema (JSON); "
+                              f"an older wheel-rig? ({how})")
+        keys = {t: [] for t in schema.get("tables", ())}
+        for k in schema["keys"]:
+            if k["key"] not in keys.setdefault(k["table"], []):
+                keys[k["table"]].append(k["key"])
+        _SCHEMAS[rig] = {t: tuple(v) for t, v in keys.items()}
+    return _SCHEMAS[rig]
+
+
+def _check_rig_tables(ctx, doc, where, build_dir=None):
     """The rig tables of `doc` (base file or [override]); relative paths made absolute. Keys are
-    checked for [override] only: the base is a rig config that wheel-rig checks itself."""
+    checked for [override] only (against wheel-rig's schema, from `build_dir`): the base is a rig
+    config that wheel-rig checks itself."""
     if not isinstance(doc, dict):
         raise ctx.err(f"{where} must be a table of rig-config tables")
-    for t, v in (doc.items() if check_keys else ()):
+    for t, v in (doc.items() if build_dir is not None else ()):
         name = f"{where}.{t}" if where else t
-        if t not in RIG_KEYS:
-            raise ctx.err(f"unknown table '{name}'{_suggest(t, list(RIG_KEYS))}")
+        try:
+            keys = rig_keys(build_dir)
+        except ConfigError as e:
+            raise ctx.err(f"{where}: {e}")
+        if t not in keys:
+            raise ctx.err(f"unknown table '{name}'{_suggest(t, list(keys))}")
         if not isinstance(v, dict):
             raise ctx.err(f"'{name}' must be a table")
-        if RIG_KEYS[t] is not None:
-            ctx.check_keys(v, RIG_KEYS[t], name)
+        ctx.check_keys(v, keys[t], name)
     for t, k in (("wheel", "mesh"), ("terrain", "soil")):
         if k in doc.get(t, {}):
             doc[t][k] = str(ctx.path_of(doc[t][k], f"{where + '.' if where else ''}{t}.{k}")
@@ -467,9 +490,10 @@ def load(path, repo, build_dir):
     if "base" in doc:
         bpath = ctx.path_of(doc["base"], "base")
         bctx = _Ctx(bpath.resolve())
-        rig = _check_rig_tables(bctx, _load_toml(bpath, ctx), "", check_keys=False)
+        rig = _check_rig_tables(bctx, _load_toml(bpath, ctx), "")
     if "override" in doc:
-        rig = _deep_merge(rig, _check_rig_tables(ctx, copy.deepcopy(doc["override"]), "override"))
+        rig = _deep_merge(rig, _check_rig_tables(ctx, copy.deepcopy(doc["override"]), "override",
+                                                 build_dir))
     if not rig:
         raise ctx.err("no rig config: give 'base' (a rig config file) and/or [override] tables")
     base_type = rig.get("terrain", {}).get("type")

@@ -582,6 +582,54 @@ def case_bad_config(a, work):
     check(not (work / "out").exists(), "a bad config wrote output")
 
 
+def case_override_schema(a, work):
+    """[override.<table>] keys are checked against the schema wheel-rig --list-keys prints: a
+    misspelt key (also in [override.terrain], once passed through) exits 2 with a did-you-mean;
+    a stand-in wheel-rig whose schema has one more key makes that key valid (the list is read
+    from wheel-rig, not copied); a wheel-rig without --list-keys is an error that names it."""
+    base_rig(work / "base.toml", 0.2)
+    good = 'terrain = "flat"\nbase = "base.toml"\nwheels = ["wheel1"]\nslips = [0.1]\n'
+    rig = Path(a.build_dir) / "bin" / "wheel-rig"
+    schema = json.loads(subprocess.run([str(rig), "--list-keys"], capture_output=True,
+                                       text=True, check=True).stdout)
+    cases = [("terrain_key", "[override.terrain]\nstifness = 1e7\n",
+              r"unknown key 'override\.terrain\.stifness'; did you mean 'stiffness'\?"),
+             ("carriage_key", "[override.carriage]\nslipp = 0.1\n",
+              r"unknown key 'override\.carriage\.slipp'; did you mean 'slip'\?"),
+             ("new_key", "[override.run]\nsettle_extra = 1.0\n",
+              r"unknown key 'override\.run\.settle_extra'")]
+    for name, extra, regex in cases:
+        cfg = work / f"{name}.toml"
+        cfg.write_text(good + extra)
+        r = run_sweep(a, cfg, "--out-dir", str(work / "out"), "--dry-run")
+        check(r.returncode == 2, f"{name}: exit {r.returncode}, expected 2")
+        check(re.search(re.escape(str(cfg)) + ".*" + regex, r.stderr),
+              f"{name}: message does not match /{regex}/: {r.stderr}")
+    # A stand-in wheel-rig with run.settle_extra in its schema: the sweep config now loads.
+    build = work / "build"
+    (build / "bin").mkdir(parents=True, exist_ok=True)
+    (build / "meshes").symlink_to(Path(a.build_dir).resolve() / "meshes")
+    schema["keys"].append({**schema["keys"][0], "name": "run.settle_extra", "table": "run",
+                           "key": "settle_extra"})
+    (build / "schema.json").write_text(json.dumps(schema))
+    stand_in = build / "bin" / "wheel-rig"
+    stand_in.write_text(f"#!/bin/sh\ncat '{build / 'schema.json'}'\n")
+    stand_in.chmod(0o755)
+    sys.path.insert(0, str(Path(a.sweep).resolve().parent))
+    from wheelsim_sweep import config
+    repo = Path(a.sweep).resolve().parents[1]
+    sweep = config.load(work / "new_key.toml", repo, build)
+    check(sweep.points[0].rig["run"]["settle_extra"] == 1.0, "the stand-in's key was not taken")
+    stand_in.write_text("#!/bin/sh\necho 'no such option' >&2\nexit 2\n")
+    config._SCHEMAS.clear()
+    try:
+        config.load(work / "new_key.toml", repo, build)
+        check(False, "a wheel-rig without --list-keys was accepted")
+    except config.ConfigError as e:
+        check("--list-keys did not print the rig-config schema" in str(e) and str(stand_in)
+              in str(e), f"message: {e}")
+
+
 def case_dry_run_check(a, work):
     """--dry-run runs `wheel-rig --check` on every point's rig config: a bad value or a misspelt
     key exits 2 naming the point and the key; a valid sweep exits 0; nothing is written."""
