@@ -11,10 +11,7 @@ namespace {
 using detail::fmt;
 using detail::Table;
 
-ConfigKey dem(ConfigKey k) {
-  k.table = "terrain";
-  return key_for("terrain.type", "dem", std::move(k));
-}
+ConfigKey dem(ConfigKey k) { return terrain_key("dem", std::move(k)); }
 
 std::vector<ConfigKey> keys() {
   return {

@@ -12,10 +12,7 @@ namespace {
 using detail::fmt;
 using detail::Table;
 
-ConfigKey flat(ConfigKey k) {
-  k.table = "terrain";
-  return key_for("terrain.type", "flat", std::move(k));
-}
+ConfigKey flat(ConfigKey k) { return terrain_key("flat", std::move(k)); }
 
 std::vector<ConfigKey> keys() {
   const FlatGroundParameters d;

@@ -20,10 +20,7 @@ using detail::Table;
 const std::vector<std::string> kSnapshotFields = {"height",   "sinkage",      "plastic_sinkage",
                                                   "pressure", "shear_stress", "shear_displacement"};
 
-ConfigKey scm(ConfigKey k) {
-  k.table = "terrain";
-  return key_for("terrain.type", "scm", std::move(k));
-}
+ConfigKey scm(ConfigKey k) { return terrain_key("scm", std::move(k)); }
 
 std::string toml_strings(const std::vector<std::string> &v) {
   std::string s = "[";
