@@ -59,6 +59,16 @@ def colour_bar(mapper, title):
 _ALIVE = []  # filters whose output ports are in use (a collected filter leaves a dangling port)
 
 
+def lookup_table(hue, saturation=(1.0, 1.0), value=(1.0, 1.0)):
+    """A colour lookup table over the given (start, end) hue, saturation and value ranges."""
+    lut = vtk.vtkLookupTable()
+    lut.SetHueRange(*hue)
+    lut.SetSaturationRange(*saturation)
+    lut.SetValueRange(*value)
+    lut.Build()
+    return lut
+
+
 def clipped(port, clip_y):
     """The part of ``port``'s data at y >= clip_y (all of it if clip_y is None)."""
     if clip_y is None:
@@ -82,10 +92,7 @@ def wheel_actor(path, clip_y):
     mapper.SelectColorArray("contact_pressure")
     high = data.GetCellData().GetArray("contact_pressure").GetRange()[1]
     mapper.SetScalarRange(0.0, max(high, 1.0))
-    lut = vtk.vtkLookupTable()
-    lut.SetHueRange(0.667, 0.0)
-    lut.Build()
-    mapper.SetLookupTable(lut)
+    mapper.SetLookupTable(lookup_table((0.667, 0.0)))
     actor = vtk.vtkActor()
     actor.SetMapper(mapper)
     title = open(path, encoding="utf-8").read().splitlines()[1]
@@ -152,12 +159,7 @@ def particle_actor(path, clip_y):
     mapper.SelectColorArray("speed")
     high = out.GetPointData().GetArray("speed").GetRange()[1]
     mapper.SetScalarRange(0.0, max(high, 1e-3))
-    lut = vtk.vtkLookupTable()
-    lut.SetHueRange(0.55, 0.1)
-    lut.SetSaturationRange(0.35, 0.8)
-    lut.SetValueRange(0.85, 0.95)
-    lut.Build()
-    mapper.SetLookupTable(lut)
+    mapper.SetLookupTable(lookup_table((0.55, 0.1), (0.35, 0.8), (0.85, 0.95)))
     actor = vtk.vtkActor()
     actor.SetMapper(mapper)
     bar = colour_bar(mapper, "particle speed [m/s]")
@@ -184,12 +186,7 @@ def terrain_actor(path):
     name = "sinkage" if reader.GetOutput().GetPointData().GetArray("sinkage") else "height"
     mapper.SelectColorArray(name)
     mapper.SetScalarRange(reader.GetOutput().GetPointData().GetArray(name).GetRange())
-    lut = vtk.vtkLookupTable()
-    lut.SetHueRange(0.12, 0.02)
-    lut.SetSaturationRange(0.3, 0.9)
-    lut.SetValueRange(0.95, 0.45)
-    lut.Build()
-    mapper.SetLookupTable(lut)
+    mapper.SetLookupTable(lookup_table((0.12, 0.02), (0.3, 0.9), (0.95, 0.45)))
     actor = vtk.vtkActor()
     actor.SetMapper(mapper)
     return actor
