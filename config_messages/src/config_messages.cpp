@@ -1,6 +1,7 @@
 #include "wheelsim/config_messages.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <sstream>
 
 namespace wheelsim::config {
@@ -80,6 +81,38 @@ std::string fmt(double v) {
   std::ostringstream os;
   os << v;
   return os.str();
+}
+
+std::string json_string(const std::string &s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    switch (c) {
+    case '"':
+      out += "\\\"";
+      break;
+    case '\\':
+      out += "\\\\";
+      break;
+    case '\n':
+      out += "\\n";
+      break;
+    case '\t':
+      out += "\\t";
+      break;
+    case '\r':
+      out += "\\r";
+      break;
+    default:
+      if (static_cast<unsigned char>(c) < 0x20) {
+        char buffer[8];
+        std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
+        out += buffer;
+      } else {
+        out += c;
+      }
+    }
+  }
+  return out + "\"";
 }
 
 } // namespace wheelsim::config

@@ -1,12 +1,13 @@
 // The schema assembled from its declarations, and its JSON form (wheel-rig --list-keys).
 #include "wheelsim/rig/config_schema.h"
 
+#include "wheelsim/config_messages.h"
+
 #include "rig_tables.h"
 #include "wheelsim/rig/slip_modes.h"
 #include "wheelsim/rig/terrain_registry.h"
 
 #include <algorithm>
-#include <cstdio>
 
 namespace wheelsim::rig {
 namespace {
@@ -15,28 +16,10 @@ void append(std::vector<ConfigKey> &out, const std::vector<ConfigKey> &more) {
   out.insert(out.end(), more.begin(), more.end());
 }
 
-std::string json_string(const std::string &s) {
-  std::string out = "\"";
-  for (const char ch : s) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (c < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
-
 std::string json_strings(const std::vector<std::string> &v) {
   std::string out = "[";
   for (std::size_t i = 0; i < v.size(); ++i)
-    out += (i ? ", " : "") + json_string(v[i]);
+    out += (i ? ", " : "") + config::json_string(v[i]);
   return out + "]";
 }
 
@@ -94,27 +77,30 @@ std::string rig_config_schema_json() {
   out += "  \"terrain_types\": {";
   for (std::size_t i = 0; i < terrain_kinds().size(); ++i) {
     const TerrainKind &k = terrain_kinds()[i];
-    out += (i ? ", " : "") + json_string(k.name) + ": {\"summary\": " + json_string(k.summary) +
+    out += (i ? ", " : "") + config::json_string(k.name) +
+           ": {\"summary\": " + config::json_string(k.summary) +
            ", \"in_process\": " + (k.make ? "true" : "false") + "}";
   }
   out += "},\n  \"carriage_modes\": {";
   for (std::size_t i = 0; i < slip_modes().size(); ++i) {
     const SlipMode &m = slip_modes()[i];
-    out +=
-        (i ? ", " : "") + json_string(m.name) + ": {\"summary\": " + json_string(m.summary) + "}";
+    out += (i ? ", " : "") + config::json_string(m.name) +
+           ": {\"summary\": " + config::json_string(m.summary) + "}";
   }
   out += "},\n  \"keys\": [\n";
   const auto &schema = rig_config_schema();
   for (std::size_t i = 0; i < schema.size(); ++i) {
     const ConfigKey &k = schema[i];
-    out += "    {\"name\": " + json_string(k.table + "." + k.key) +
-           ", \"table\": " + json_string(k.table) + ", \"key\": " + json_string(k.key) +
-           ", \"type\": " + json_string(k.type) + ", \"unit\": " + json_string(k.unit) +
-           ", \"default\": " + (k.default_value.empty() ? "null" : json_string(k.default_value)) +
-           ", \"range\": " + json_string(k.range) + ", \"when\": ";
+    out += "    {\"name\": " + config::json_string(k.table + "." + k.key) +
+           ", \"table\": " + config::json_string(k.table) +
+           ", \"key\": " + config::json_string(k.key) +
+           ", \"type\": " + config::json_string(k.type) +
+           ", \"unit\": " + config::json_string(k.unit) + ", \"default\": " +
+           (k.default_value.empty() ? "null" : config::json_string(k.default_value)) +
+           ", \"range\": " + config::json_string(k.range) + ", \"when\": ";
     out += k.when_key.empty()
                ? "null"
-               : "{" + json_string(k.when_key) + ": " + json_strings(k.when_values) + "}";
+               : "{" + config::json_string(k.when_key) + ": " + json_strings(k.when_values) + "}";
     out += i + 1 < schema.size() ? "},\n" : "}\n";
   }
   return out + "  ]\n}\n";

@@ -15,6 +15,10 @@ namespace wheelsim::config {
 /// distance up to a third of the word's length (at least 2).
 std::string closest(const std::string &word, const std::vector<std::string> &candidates);
 
+/// `s` as a JSON string literal: in double quotes, with '"', '\\' and control characters
+/// escaped (\n, \t, \r by name, the others as \u00XX). Used by every JSON writer of wheelsim.
+std::string json_string(const std::string &s);
+
 /// Levenshtein distance between a and b.
 std::size_t edit_distance(const std::string &a, const std::string &b);
 

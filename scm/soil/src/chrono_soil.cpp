@@ -192,39 +192,6 @@ void read_soil_object(const Reader &r, const json::Value &soil_object, const Lay
                              " must be > 0 (the soil must resist sinkage), got 0 and 0");
 }
 
-/// A JSON string literal.
-std::string json_string(const std::string &s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    switch (c) {
-    case '"':
-      out += "\\\"";
-      break;
-    case '\\':
-      out += "\\\\";
-      break;
-    case '\n':
-      out += "\\n";
-      break;
-    case '\t':
-      out += "\\t";
-      break;
-    case '\r':
-      out += "\\r";
-      break;
-    default:
-      if (static_cast<unsigned char>(c) < 0x20) {
-        char buffer[8];
-        std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
-        out += buffer;
-      } else {
-        out += c;
-      }
-    }
-  }
-  return out + "\"";
-}
-
 } // namespace
 
 const char *chrono_layout_name(ChronoLayout layout) {
@@ -338,7 +305,7 @@ std::string write_chrono_soil(const ChronoSoil &soil, ChronoLayout layout,
   std::ostringstream os;
   os << "{\n";
   if (!soil.name.empty() || layout == ChronoLayout::soil_parameters)
-    os << "  \"Name\": " << json_string(soil.name) << ",\n";
+    os << "  \"Name\": " << config::json_string(soil.name) << ",\n";
   if (layout == ChronoLayout::terrain_node) {
     os << "  \"Type\": \"SCM\",\n\n"
        << "  \"Patch dimensions\": {\n"
@@ -350,11 +317,11 @@ std::string write_chrono_soil(const ChronoSoil &soil, ChronoLayout layout,
        << "  \"Template\": \"SCM Soil Parameters\",\n\n";
   }
   os << "  "
-     << json_string(layout == ChronoLayout::terrain_node ? kTerrainNode.soil_object
-                                                         : kSoilParameters.soil_object)
+     << config::json_string(layout == ChronoLayout::terrain_node ? kTerrainNode.soil_object
+                                                                 : kSoilParameters.soil_object)
      << ": {\n";
   for (std::size_t i = 0; i < kKeys.size(); ++i)
-    os << "    " << json_string(key_name(kKeys[i], layout)) << ": "
+    os << "    " << config::json_string(key_name(kKeys[i], layout)) << ": "
        << number_text(soil.*kKeys[i].field) << (i + 1 < kKeys.size() ? ",\n" : "\n");
   os << "  }";
   if (layout == ChronoLayout::terrain_node)
