@@ -5,6 +5,7 @@
 #include "contact_slots.h"
 #include "coupled_motion.h"
 #include "coupler/protocol.h"
+#include "coupler/transport.h"
 #include "prescribed_motion.h"
 #include "wheel_motion.h"
 #include "wheel_surface_vtk.h"
@@ -388,10 +389,14 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
         need(iarg + 1, 1, "an endpoint (ipc://PATH or tcp://127.0.0.1:PORT) after 'coupled'");
         s_->motion_is_coupled = true;
         s_->coupled_settings.endpoint = arg[iarg + 2];
-        if (s_->coupled_settings.endpoint.compare(0, 6, "ipc://") != 0 &&
-            s_->coupled_settings.endpoint.compare(0, 6, "tcp://") != 0)
-          bad_argument("motion coupled: endpoint '%s' must start with ipc:// or tcp://",
-                       arg[iarg + 2]);
+        // Checked here, at the fix command, not when the coupling starts after settling: an
+        // ipc path longer than the system's socket-path limit used to fail at the first
+        // coupled step, minutes into the run.
+        try {
+          wheelsim::coupler::normalize_connect_endpoint(s_->coupled_settings.endpoint);
+        } catch (const std::exception &e) {
+          bad_argument("motion coupled: %s", e.what());
+        }
         iarg += 3;
         // optional sub-keywords of 'motion coupled'
         while (iarg + 1 < narg) {

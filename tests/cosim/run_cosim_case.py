@@ -15,7 +15,9 @@ MODE
   launcher_fail  scripts/wheel-cosim with a rig config that the rig rejects exits non-zero and
                  shows the rig's message.
   dt_from_bed    a rig config without run.dt: wheel-cosim takes the bed's time step (bed_dt of
-                 its .vars) for both sides; the run file records it and its source.
+                 its .vars) for both sides; the run file records it and its source. Its work
+                 dir is too deep for <work>/rig.sock (over 107 bytes): the socket goes to a
+                 short private dir under TMPDIR, removed at the end.
   cost_recorded  the run file of a coupled run records its cost for `wheelsim-post results`:
                  /parameters/liggghts/atoms = the bed's sphere count (the bed's own log,
                  'soilbin: spheres = N'), liggghts/np = --np, run/wall_time in (0, the
@@ -226,22 +228,31 @@ def dt_from_bed(a):
     if n != 1:
         raise SystemExit("run_cosim_case: no run.dt line in the rig config")
     open(rig, "w").write(text)
+    # A work dir deep enough that <work>/rig.sock is over the 107-byte socket-path limit:
+    # wheel-cosim must put the socket in a short private dir and remove it afterwards.
+    work = os.path.join(os.path.abspath(a.work), "deep_" + "d" * 100, "run")
     bed_dt = re.search(r"(?m)^variable bed_dt index (\S+)", open(a.bed + ".vars").read()).group(1)
     run = subprocess.run(
         [os.path.join(a.root, "scripts", "wheel-cosim"), "--rig", rig, "--bed", a.bed,
          "--deck", os.path.join(a.root, "tests", "cosim", "in.motion_compare"), "--np",
-         str(a.np), "--work", os.path.join(a.work, "run"), "--kinematic", "0.1125 0 -0.2 0 1.5 0",
+         str(a.np), "--work", work, "--kinematic", "0.1125 0 -0.2 0 1.5 0",
          "--", "-var", "motion", "coupled", "-var", "steps", str(a.steps)],
         capture_output=True, text=True, timeout=600)
     print(run.stdout[-2000:], run.stderr[-2000:])
     import h5py
 
-    with h5py.File(os.path.join(a.work, "run", "run.h5"), "r") as f:
+    m = re.search(r"endpoint ipc://(\S+)/rig\.sock;", run.stdout)
+    socket_dir = m.group(1) if m else None
+    short_socket = (socket_dir is not None and len(socket_dir) + 9 <= 107
+                    and not os.path.exists(socket_dir))
+    print(f"run_cosim_case: work dir {len(work)} bytes; socket dir {socket_dir} "
+          f"({'short and removed' if short_socket else 'NOT short and removed'})")
+    with h5py.File(os.path.join(work, "run.h5"), "r") as f:
         dt = float(f["parameters/run/dt"][()])
         source = f["parameters/run/dt_source"].asstr()[()]
         steps = len(f["observables/wheel/position/step"])
     ok = (run.returncode == 0 and f"dt {bed_dt} s from the bed's time step" in run.stdout
-          and dt == float(bed_dt) and "--dt" in source and steps >= a.steps)
+          and dt == float(bed_dt) and "--dt" in source and steps >= a.steps and short_socket)
     print(f"run_cosim_case: bed_dt {bed_dt} s, run file dt {dt!r} s from '{source}', {steps} rows "
           f"{'PASS' if ok else 'FAIL'}")
     return 0 if ok else 1
