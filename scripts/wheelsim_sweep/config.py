@@ -16,8 +16,16 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .estimate import wheel_radius
+
 TERRAINS = ("scm", "dem", "flat")
-TOP_KEYS = ("description", "terrain", "base", "override", "wheels", "soils", "slips", "dem")
+TOP_KEYS = ("description", "terrain", "base", "override", "wheels", "soils", "slips", "dem",
+            "slip_control")
+# How a point's slip is imposed (docs/sweeps.md, "Slip control"): "imposed_slip" (the default)
+# sets carriage.mode = "imposed_slip" and carriage.slip (driving convention, the carriage follows
+# the wheel); "wheel_speed" keeps the base's carriage.mode = "imposed_speed" (carriage speed v)
+# and sets motor.omega from the target slip in the signed convention (wheel_omega).
+SLIP_CONTROLS = ("imposed_slip", "wheel_speed")
 DEM_KEYS = ("np", "bed_np", "deck", "liggghts_args", "budget_h")
 WHEEL_ENTRY_KEYS = ("name", "mesh", "mesh_scale", "mass", "inertia", "density", "effective_radius")
 # inputs/in.soilbin variables a DEM bed recipe may set (docs/soil-bins.md); inputs_dir, out_dir
@@ -62,6 +70,7 @@ class Point:
     slip: float
     reldir: str  # wheel/soil/s<slip>, relative to the output directory
     rig: dict  # the point's rig config
+    setting: str = ""  # what the driver set to impose the slip, for the listing and rig.toml
 
 
 @dataclass
@@ -78,6 +87,7 @@ class Sweep:
     deck: Path | None = None
     liggghts_args: list = field(default_factory=list)
     budget_h: float | None = None  # dem.budget_h: refuse a sweep estimated longer (estimate.py)
+    slip_control: str = "imposed_slip"  # SLIP_CONTROLS
 
 
 def _suggest(key, allowed):
@@ -428,18 +438,76 @@ def _soils(ctx, entries, terrain, repo):
     return out
 
 
-def _slips(ctx, entries):
+def _slips(ctx, entries, slip_control="imposed_slip"):
+    wheel_speed = slip_control == "wheel_speed"
+    rng = "[-1, 1) (signed convention)" if wheel_speed else "[-1, 1]"
     if not isinstance(entries, list) or not entries:
-        raise ctx.err("slips must be a non-empty array of numbers in [-1, 1]")
+        raise ctx.err(f"slips must be a non-empty array of numbers in {rng}")
     out = []
     for i, v in enumerate(entries):
         s = ctx.number(v, f"slips[{i}]")
+        if wheel_speed and not -1.0 <= s < 1.0:
+            raise ctx.err(f"slips[{i}] must be in [-1, 1) with slip_control = \"wheel_speed\" "
+                          "(signed convention: 0 <= s < 1 driving, -1 <= s < 0 skid, -1 a locked "
+                          f"wheel; s = 1 would need an infinite wheel speed), got {v!r}")
         if not -1.0 <= s <= 1.0:
             raise ctx.err(f"slips[{i}] must be in [-1, 1], got {v!r}")
         if s in out:
             raise ctx.err(f"slips[{i}]: slip {v!r} appears twice")
         out.append(s)
     return out
+
+
+def wheel_omega(slip, speed, r_eff):
+    """The wheel speed ω [rad/s] that gives the target slip `slip` (signed convention, DESIGN.md
+    §5) at carriage speed `speed` v [m/s] > 0 and effective radius `r_eff` [m] > 0:
+    driving, 0 <= s < 1, s = 1 - v/(ω R_eff): ω = v / ((1 - s) R_eff);
+    skid, -1 <= s < 0, s = (ω R_eff - v)/v: ω = v (1 + s) / R_eff (s = -1: ω = 0, locked).
+    ValueError for s outside [-1, 1) or v, R_eff not > 0."""
+    if not (isinstance(slip, (int, float)) and -1.0 <= slip < 1.0):
+        raise ValueError(f"slip must be in [-1, 1) (signed convention), got {slip!r}")
+    if not (isinstance(speed, (int, float)) and speed > 0 and math.isfinite(speed)):
+        raise ValueError(f"carriage speed must be > 0 m/s, got {speed!r}")
+    if not (isinstance(r_eff, (int, float)) and r_eff > 0 and math.isfinite(r_eff)):
+        raise ValueError(f"effective radius must be > 0 m, got {r_eff!r}")
+    if slip >= 0.0:
+        return speed / ((1.0 - slip) * r_eff)
+    return speed * (1.0 + slip) / r_eff
+
+
+def _wheel_speed_base(ctx, rig):
+    """slip_control = "wheel_speed": the base (with [override]) must impose the carriage speed:
+    carriage.mode = "imposed_speed", carriage.speed > 0 m/s, no motor.torque. Returns v [m/s]."""
+    c = rig.get("carriage", {})
+    mode = c.get("mode")
+    if mode != "imposed_speed":
+        got = f"carriage.mode = \"{mode}\"" if mode is not None else "no carriage.mode"
+        raise ctx.err(f"slip_control = \"wheel_speed\" needs carriage.mode = \"imposed_speed\" "
+                      f"(the carriage speed v imposed, the wheel speed set per point) in the base "
+                      f"rig config or [override.carriage], got {got}")
+    if "speed" not in c:
+        raise ctx.err("slip_control = \"wheel_speed\" needs carriage.speed (the carriage speed "
+                      "v [m/s], > 0) in the base rig config or [override.carriage]")
+    v = c["speed"]
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not (v > 0 and math.isfinite(v)):
+        raise ctx.err(f"carriage.speed must be > 0 m/s with slip_control = \"wheel_speed\" "
+                      f"(forward travel; the slips are defined for v > 0), got {v!r}")
+    if "torque" in rig.get("motor", {}):
+        raise ctx.err("slip_control = \"wheel_speed\" sets motor.omega per point; the base rig "
+                      "config has motor.torque (remove it)")
+    return float(v)
+
+
+def _point_r_eff(ctx, rig, wheel):
+    """R_eff [m] of a point: the wheel entry's or base's wheel.effective_radius, else the mesh's
+    outer radius (the rig's default: largest vertex distance from the axle x mesh_scale)."""
+    r = wheel_radius(rig, str(wheel.mesh))
+    if r is None or not r > 0:
+        raise ctx.err(f"wheels: '{wheel.label}': slip_control = \"wheel_speed\" needs R_eff to "
+                      f"set motor.omega: give effective_radius [m] in the wheel entry or the base's "
+                      f"[wheel] (the outer radius of '{wheel.mesh}' could not be read: an ASCII STL "
+                      "is needed for that)")
+    return r
 
 
 def slip_dirname(slip, slips):
@@ -500,10 +568,20 @@ def load(path, repo, build_dir):
     if base_type is not None and base_type != terrain:
         raise ctx.err(f"terrain = \"{terrain}\" but the base rig config has terrain.type = "
                       f"\"{base_type}\" (use a base for this terrain or set override.terrain.type)")
-    mode = rig.get("carriage", {}).get("mode")
-    if mode is not None and mode != "imposed_slip":
-        raise ctx.err(f"the base rig config has carriage.mode = \"{mode}\"; a slip sweep needs "
-                      "\"imposed_slip\"")
+    slip_control = doc.get("slip_control", "imposed_slip")
+    if slip_control not in SLIP_CONTROLS:
+        raise ctx.err(f"slip_control must be one of {', '.join(repr(x) for x in SLIP_CONTROLS)} "
+                      f"(\"imposed_slip\": carriage.slip per point; \"wheel_speed\": motor.omega per "
+                      f"point at the base's imposed carriage speed), got {slip_control!r}")
+    speed = None
+    if slip_control == "wheel_speed":
+        speed = _wheel_speed_base(ctx, rig)
+    else:
+        mode = rig.get("carriage", {}).get("mode")
+        if mode is not None and mode != "imposed_slip":
+            raise ctx.err(f"the base rig config has carriage.mode = \"{mode}\"; a slip sweep needs "
+                          "\"imposed_slip\" (or, for carriage.mode = \"imposed_speed\", "
+                          "slip_control = \"wheel_speed\": the slip set by the wheel speed)")
     if "soil" in doc.get("override", {}).get("terrain", {}):
         raise ctx.err("override.terrain.soil: the soil is set per point from 'soils'")
     rig.get("terrain", {}).pop("soil", None)  # a base's soil is replaced per point
@@ -511,7 +589,8 @@ def load(path, repo, build_dir):
     sweep = Sweep(path=path, terrain=terrain, description=description,
                   wheels=_wheels(ctx, doc["wheels"], terrain, build_dir),
                   soils=_soils(ctx, doc.get("soils"), terrain, repo),
-                  slips=_slips(ctx, doc["slips"]), points=[])
+                  slips=_slips(ctx, doc["slips"], slip_control), points=[],
+                  slip_control=slip_control)
     _unique(ctx, sweep.wheels, "wheels")
     _unique(ctx, sweep.soils, "soils")
 
@@ -545,6 +624,7 @@ def load(path, repo, build_dir):
 
     # The points.
     n = 0
+    r_effs = {}
     for w in sweep.wheels:
         for s in sweep.soils:
             for slip in sweep.slips:
@@ -558,14 +638,27 @@ def load(path, repo, build_dir):
                 wt.update(copy.deepcopy(w.keys))
                 wt["mesh"] = str(w.mesh)
                 c = r.setdefault("carriage", {})
-                c["mode"] = "imposed_slip"
-                c["slip"] = slip
+                if slip_control == "wheel_speed":
+                    if w.label not in r_effs:  # the same for every soil and slip
+                        r_effs[w.label] = _point_r_eff(ctx, r, w)
+                    r_eff = r_effs[w.label]
+                    wt["effective_radius"] = r_eff  # the R_eff omega is computed with
+                    omega = wheel_omega(slip, speed, r_eff)
+                    r.setdefault("motor", {})["omega"] = omega
+                    conv = "driving" if slip >= 0 else "skid"
+                    setting = (f"motor.omega = {omega!r} rad/s for slip {slip!r} ({conv} "
+                               f"convention) at carriage.speed = {speed!r} m/s, "
+                               f"wheel.effective_radius = {r_eff!r} m")
+                else:
+                    c["mode"] = "imposed_slip"
+                    c["slip"] = slip
+                    setting = f"carriage.slip = {slip!r} (driving convention)"
                 t = r.setdefault("terrain", {})
                 t["type"] = terrain
                 t.update(copy.deepcopy(s.terrain_keys))
                 if s.soil_file is not None:
                     t["soil"] = str(s.soil_file)
                 reldir = f"{w.label}/{s.label}/{slip_dirname(slip, sweep.slips)}"
-                sweep.points.append(Point(n, w, s, slip, reldir, r))
+                sweep.points.append(Point(n, w, s, slip, reldir, r, setting))
                 n += 1
     return sweep

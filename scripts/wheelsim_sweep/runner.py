@@ -170,14 +170,16 @@ class Runner:
         """The point's rig.toml: a comment header, then the rig config."""
         header = (f"written by wheel-sweep from {self.sweep.path}\npoint {p.reldir}: wheel "
                   f"{p.wheel.label}, soil {p.soil.name}, slip {p.slip!r}, terrain "
-                  f"{self.sweep.terrain}\n")
+                  f"{self.sweep.terrain}\nslip_control = \"{self.sweep.slip_control}\": "
+                  f"{p.setting}\n")
         return toml_out.dumps(p.rig, header)
 
     def command(self, p):
         d = self.point_dir(p)
         params = []
         for k, v in (("wheel", p.wheel.label), ("soil", p.soil.name), ("slip", repr(p.slip)),
-                     ("terrain", self.sweep.terrain), ("config", str(self.sweep.path))):
+                     ("terrain", self.sweep.terrain), ("config", str(self.sweep.path)),
+                     ("slip_control", self.sweep.slip_control)):
             params += ["--parameter", f"sweep/{k}={v}"]
         if self.sweep.terrain == "dem":
             cmd = [str(self.repo / "scripts" / "wheel-cosim"), "--rig", str(d / "rig.toml"),
@@ -522,6 +524,7 @@ class Runner:
         for p in self.sweep.points:
             if p.index in runs:
                 self.say(f"  would run {self.describe(p)} ({runs[p.index]}): {p.reldir}")
+                self.say(f"      {p.setting}")
                 self.say("      " + " ".join(self.command(p)))
             else:
                 self.say(f"  finished  {self.describe(p)}: {p.reldir}/{RUN_FILE}")

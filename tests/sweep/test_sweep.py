@@ -4,7 +4,7 @@
   test_sweep.py CASE --sweep scripts/wheel-sweep --build-dir BUILD --work DIR
 
 CASE: matrix, resume_marker, resume_sigterm, bad_config, examples_dry_run, scm_smoke, kill_flat,
-kill_dem, dem_soil_file, ... (see each function and tests/sweep/CMakeLists.txt).
+kill_dem, dem_soil_file, wheel_speed_flat, ... (see each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (wheel-rig or the wheel meshes not built).
 """
 
@@ -723,6 +723,83 @@ grid_length = 3.0
             check(test.sum() > 0 and np.allclose(slip, float(x["slip"]), atol=1e-9),
                   f"imposed slip {x['slip']} not held")
             check(np.all(o["sinkage/value"][()][test] > 0), "no sinkage on soft soil")
+
+
+SPEED = 0.2  # m/s, the carriage speed of case wheel_speed_flat
+SKID_SLIP_TOL = 1e-6  # slip_skid (and signed slip) of the window means vs the target: both speeds
+# are imposed exactly after the ramp, so only rounding remains; a wrong omega is off by > 1e-3
+
+
+def case_wheel_speed_flat(a, work):
+    """slip_control = "wheel_speed" end to end on the flat ground (regularized friction, v_c 1 mm/s,
+    wheel1, R_eff = its mesh's outer radius): carriage speed 0.2 m/s imposed and motor.omega set
+    per point for a driving slip 0.5, a skid slip -0.5 and a locked wheel -1. Known answers
+    (RigSimulation.LockedWheelPulledAtConstantSpeedGivesMinusMuW, rig-config.md): driving DP =
+    +mu W; skid and locked DP = -mu W (the slip velocity 0.1 and 0.2 m/s >> v_c). wheelsim-post
+    curves --results reports slip_skid = -0.5 and -1 and slip_driving = 0.5 within SKID_SLIP_TOL;
+    each run's rig config carries the omega that was set."""
+    repo = Path(a.sweep).resolve().parents[1]
+    base_rig(work / "base.toml", duration=0.4)
+    base = (work / "base.toml").read_text().replace(
+        'mode = "imposed_slip"', f'mode = "imposed_speed"\nspeed = {SPEED}')
+    (work / "base.toml").write_text(base)
+    slips = [0.5, -0.5, -1.0]
+    cfg = work / "sweep.toml"
+    cfg.write_text(f"""description = "slip set by the wheel speed"
+terrain = "flat"
+slip_control = "wheel_speed"
+base = "base.toml"
+wheels = ["wheel1"]
+soils = [{SOIL}]
+slips = {json.dumps(slips)}
+""")
+    out = work / "out"
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--jobs", "2")
+    check(r.returncode == 0, "wheel_speed sweep failed")
+    rows = manifest(out)
+    check([(x["slip"], x["status"]) for x in rows] == [(repr(s), "done") for s in slips],
+          f"manifest {rows}")
+    runs = [str(out / x["run_file"]) for x in rows]
+    for x, rf in zip(rows, runs):
+        with h5py.File(rf, "r") as f:
+            check(f["parameters/sweep/slip_control"].asstr()[()] == "wheel_speed",
+                  f"{rf}: /parameters/sweep/slip_control")
+            text = f["parameters/rig_config"].asstr()[()]
+            r_eff = float(f["parameters/wheel/effective_radius"][()])
+        omega = SPEED / ((1 - float(x["slip"])) * r_eff) if float(x["slip"]) >= 0 else \
+            SPEED * (1 + float(x["slip"])) / r_eff
+        check(f'slip_control = "wheel_speed": motor.omega = ' in text and
+              f"for slip {x['slip']} (" in text, f"{rf}: the rig config header lacks the setting")
+        got = float(re.search(r"^omega = (\S+)", text, re.M).group(1))
+        check(abs(got - omega) <= 1e-12 * max(1.0, omega), f"{rf}: motor.omega {got} != {omega}")
+    res = work / "results.csv"
+    p = subprocess.run([str(repo / "postprocess" / "wheelsim-post"), "curves", *runs,
+                        "--window-start", "0.2", "--window-end", "0.38", "--results", str(res)],
+                       capture_output=True, text=True, timeout=60)
+    print(p.stdout + p.stderr)
+    check(p.returncode == 0, "wheelsim-post curves --results failed")
+    with open(res, newline="") as f:
+        table = list(csv.DictReader(ln for ln in f if not ln.startswith("#")))
+    by_target = {float(t["target_slip"]): t for t in table}
+    check(sorted(by_target) == sorted(slips), f"results targets {sorted(by_target)}")
+    for s in slips:
+        t = by_target[s]
+        W = float(t["normal_load_N"])
+        dp = float(t["drawbar_pull_N"])
+        want_dp = FRICTION * W if s > 0 else -FRICTION * W
+        print(f"target {s}: slip {t['slip']} driving {t['slip_driving']} skid {t['slip_skid']} "
+              f"DP {dp:.2f} N (expected {want_dp:.2f}), W {W:.1f} N")
+        check(abs(float(t["slip"]) - s) <= SKID_SLIP_TOL, f"target {s}: signed slip {t['slip']}")
+        if s < 0:
+            check(abs(float(t["slip_skid"]) - s) <= SKID_SLIP_TOL,
+                  f"target {s}: slip_skid {t['slip_skid']} not within {SKID_SLIP_TOL}")
+        else:
+            check(abs(float(t["slip_driving"]) - s) <= SKID_SLIP_TOL,
+                  f"target {s}: slip_driving {t['slip_driving']}")
+        if s == -1.0:
+            check(math.isnan(float(t["slip_driving"])), "locked: slip_driving not nan")
+        # DP = +-mu W within 1 % (the known answer; regularized tanh(v_j / v_c) = 1 - 1e-80)
+        check(abs(dp - want_dp) <= 0.01 * FRICTION * W, f"target {s}: DP {dp}, want {want_dp}")
 
 
 def scm_tiny_config(cfg, repo, soils, wheels='["wheel2"]', slips="[0.2]", extra=""):

@@ -3,8 +3,8 @@
 
   test_sweep_unit.py CASE --sweep scripts/wheel-sweep --work DIR
 
-CASE: toml_roundtrip, cli, soil_names, estimate_arithmetic, rate_cache, budget (see each function
-and tests/sweep/CMakeLists.txt).
+CASE: toml_roundtrip, cli, soil_names, estimate_arithmetic, rate_cache, budget, slip_control (see
+each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (a prerequisite missing).
 """
 
@@ -443,6 +443,170 @@ def case_budget(a, work):
         raise Fail("dem.budget_h = -1 accepted")
     except config.ConfigError as e:
         check("dem.budget_h must be a number of hours > 0, got -1" in str(e), str(e))
+
+
+# ---- slip_control = "wheel_speed" (config.wheel_omega, config.load, --dry-run) -------------------
+def _signed_slip(v, omega, r_eff):
+    """The signed slip of a forward operating point (docs/postprocess.md, "Slip conventions"),
+    written out independently of the code under test."""
+    u = omega * r_eff
+    return 1.0 - v / u if u >= v else (u - v) / v
+
+
+def _ascii_stl(path, radius, half_width=0.02):
+    """A closed-enough ASCII STL whose largest vertex distance from the axle (y) is `radius`:
+    only its vertices are read here."""
+    tris = [((radius, -half_width, 0.0), (0.0, half_width, radius), (-radius, 0.0, 0.0)),
+            ((0.0, -half_width, -radius), (0.5 * radius, half_width, 0.5 * radius),
+             (0.1 * radius, 0.0, 0.0))]
+    lines = ["solid w"]
+    for t in tris:
+        lines += ["facet normal 0 0 0", "outer loop"]
+        lines += [f"vertex {x:.9g} {y:.9g} {z:.9g}" for x, y, z in t]
+        lines += ["endloop", "endfacet"]
+    path.write_text("\n".join(lines + ["endsolid w", ""]))
+
+
+def case_slip_control(a, work):
+    """slip_control = "wheel_speed": the mapping target slip -> motor.omega (both conventions,
+    the locked wheel), what each point's rig config gets, R_eff from the entry, the base or the
+    mesh, every config error naming its key and value, and the --dry-run listing."""
+    from wheelsim_sweep import config
+    repo = Path(a.sweep).resolve().parents[1]
+    v, r = 0.1, 0.058
+    # the mapping: exact values, and the signed slip of (v, omega) is the target
+    known = {0.0: v / r, 0.5: 2 * v / r, 0.9: 10 * v / r, -0.5: 0.5 * v / r, -1.0: 0.0,
+             -0.2: 0.8 * v / r}
+    for s, want in known.items():
+        got = config.wheel_omega(s, v, r)
+        check(abs(got - want) <= 1e-12 * max(1.0, want), f"wheel_omega({s}): {got}, want {want}")
+    for s in (0.0, 0.23, 0.5, 0.75, 0.9, 0.999, -0.2, -0.5, -0.7, -1.0, -0.999999):
+        om = config.wheel_omega(s, v, r)
+        back = _signed_slip(v, om, r)
+        check(abs(back - s) <= 1e-12, f"slip {s}: omega {om} gives signed slip {back}")
+        check(om >= 0.0, f"slip {s}: omega {om} < 0")
+    check(config.wheel_omega(-1.0, v, r) == 0.0, "s = -1 is not a locked wheel (omega 0)")
+    for bad in ((1.0, v, r), (1.2, v, r), (-1.0001, v, r), (0.1, 0.0, r), (0.1, v, -1.0)):
+        try:
+            config.wheel_omega(*bad)
+            raise Fail(f"wheel_omega{bad} accepted")
+        except ValueError:
+            pass
+
+    # config.load: a flat sweep with the carriage speed imposed
+    _ascii_stl(work / "w.stl", 0.1)
+    base = work / "base.toml"
+    base_text = ('[wheel]\nmass = 1.0\ninertia = 0.01\n[rig]\nvertical_load = 24.0\n'
+                 '[motor]\nomega = 1.0\nramp_time = 0.1\n'
+                 '[carriage]\nmode = "imposed_speed"\nspeed = 0.1\n'
+                 '[run]\ndt = 1e-4\nduration = 0.5\n[terrain]\ntype = "flat"\n')
+    base.write_text(base_text)
+    slips = [0.0, 0.23, 0.5, 0.75, 0.9, -0.2, -0.5, -0.7, -1.0]
+
+    def load(top='slip_control = "wheel_speed"\n', wheels='[{ name = "w", mesh = "w.stl", '
+             'effective_radius = 0.058 }]', sl=slips, base_file="base.toml"):
+        (work / "sweep.toml").write_text(f'terrain = "flat"\nbase = "{base_file}"\n'
+                                         f'wheels = {wheels}\nslips = {sl}\n{top}')
+        return config.load(work / "sweep.toml", repo, work)
+
+    sw = load()
+    check(sw.slip_control == "wheel_speed", f"slip_control {sw.slip_control}")
+    check([p.slip for p in sw.points] == slips, "points not in config order")
+    for p in sw.points:
+        c, m, w = p.rig["carriage"], p.rig["motor"], p.rig["wheel"]
+        check(c == {"mode": "imposed_speed", "speed": 0.1},
+              f"slip {p.slip}: carriage {c} (the base's imposed speed, no carriage.slip)")
+        check(w["effective_radius"] == 0.058, f"slip {p.slip}: R_eff {w}")
+        check(m["omega"] == config.wheel_omega(p.slip, 0.1, 0.058) and m["ramp_time"] == 0.1,
+              f"slip {p.slip}: motor {m}")
+        check(abs(_signed_slip(0.1, m["omega"], 0.058) - p.slip) < 1e-12,
+              f"slip {p.slip}: omega {m['omega']} does not give it")
+        conv = "driving" if p.slip >= 0 else "skid"
+        check(f"motor.omega = {m['omega']!r} rad/s for slip {p.slip!r} ({conv} convention)"
+              in p.setting, f"setting {p.setting!r}")
+    check(sw.points[-1].rig["motor"]["omega"] == 0.0, "s = -1: omega not 0 (locked)")
+    # the default keeps today's behaviour: carriage.slip per point
+    (work / "base_slip.toml").write_text(
+        base_text.replace('mode = "imposed_speed"\nspeed = 0.1', 'mode = "imposed_slip"'))
+    sw = load(top="", sl=[0.1], base_file="base_slip.toml")
+    p = sw.points[0]
+    check(sw.slip_control == "imposed_slip" and p.rig["carriage"] == {"mode": "imposed_slip",
+                                                                       "slip": 0.1}
+          and p.rig["motor"]["omega"] == 1.0, f"default slip_control: {p.rig}")
+    # R_eff from the base's [wheel], else from the mesh (its outer radius, written into the point)
+    base.write_text(base_text.replace("[wheel]\n", "[wheel]\neffective_radius = 0.06\n"))
+    sw = load(wheels='["w.stl"]', sl=[0.5])
+    check(sw.points[0].rig["wheel"]["effective_radius"] == 0.06
+          and sw.points[0].rig["motor"]["omega"] == 0.1 / (0.5 * 0.06), "R_eff from the base")
+    base.write_text(base_text)
+    sw = load(wheels='["w.stl"]', sl=[0.5])
+    re_ = sw.points[0].rig["wheel"]["effective_radius"]
+    check(abs(re_ - 0.1) < 1e-9, f"R_eff from the mesh: {re_}, expected 0.1")
+
+    # errors: each names the key and the value and says what is expected
+    (work / "bin.stl").write_bytes(b"\0" * 84)  # binary STL: the outer radius cannot be read
+    errors = [
+        (dict(sl=[0.5, 1.0]), 'slips[1] must be in [-1, 1) with slip_control = "wheel_speed"'),
+        (dict(sl=[1.2]), "got 1.2"),
+        (dict(sl=[-1.5]), 'slips[0] must be in [-1, 1) with slip_control = "wheel_speed"'),
+        (dict(top='slip_control = "wheel"\n'),
+         "slip_control must be one of 'imposed_slip', 'wheel_speed'"),
+        (dict(top='slip_control = "wheel_speed"\n[override.carriage]\nmode = "imposed_slip"\n'),
+         'slip_control = "wheel_speed" needs carriage.mode = "imposed_speed" (the carriage speed '
+         'v imposed, the wheel speed set per point) in the base rig config or '
+         '[override.carriage], got carriage.mode = "imposed_slip"'),
+        (dict(top='slip_control = "wheel_speed"\n[override.carriage]\nspeed = 0.0\n'),
+         'carriage.speed must be > 0 m/s with slip_control = "wheel_speed"'),
+        (dict(top='slip_control = "wheel_speed"\n[override.carriage]\nspeed = -0.1\n'),
+         "got -0.1"),
+        (dict(wheels='["bin.stl"]'), "wheels: 'bin': slip_control = \"wheel_speed\" needs R_eff"),
+    ]
+    (work / "bin").mkdir(exist_ok=True)  # the override check needs a wheel-rig --list-keys:
+    schema = ('{"tables": ["wheel", "rig", "motor", "carriage", "run", "terrain", "output"], '
+              '"keys": [{"table": "carriage", "key": "mode"}, {"table": "carriage", '
+              '"key": "speed"}, {"table": "carriage", "key": "slip"}]}')
+    (work / "bin" / "wheel-rig").write_text(f"#!/bin/sh\necho '{schema}'\n")
+    (work / "bin" / "wheel-rig").chmod(0o755)
+    for kw, msg in errors:
+        try:
+            load(**kw)
+            raise Fail(f"accepted: {kw}")
+        except config.ConfigError as e:
+            print(f"  {kw} -> {e}")
+            check(msg in str(e), f"{kw}: {e!r} lacks {msg!r}")
+    for text, msg in (('[carriage]\nmode = "imposed_speed"\n', "needs carriage.speed"),
+                      ('[carriage]\nspeed = 0.1\n', "got no carriage.mode"),
+                      ('[carriage]\nmode = "imposed_speed"\nspeed = 0.1\n'
+                       '[motor]\ntorque = 1.0\n', "the base rig config has motor.torque")):
+        (work / "b2.toml").write_text(text)
+        try:
+            load(base_file="b2.toml")
+            raise Fail(f"accepted base {text!r}")
+        except config.ConfigError as e:
+            check(msg in str(e), f"base {text!r}: {e!r} lacks {msg!r}")
+    try:  # today's default with an imposed_speed base points to the option
+        load(top="")
+        raise Fail("imposed_speed base accepted without slip_control")
+    except config.ConfigError as e:
+        check('slip_control = "wheel_speed"' in str(e), str(e))
+
+    # --dry-run: each point lists what it sets; nothing written (a stand-in wheel-rig without
+    # --check: the configs are listed, not checked)
+    out = work / "out"
+    load(sl=[0.5, -1.0])
+    r = subprocess.run([a.sweep, str(work / "sweep.toml"), "--build-dir", str(work),
+                        "--out-dir", str(out), "--dry-run"], capture_output=True, text=True,
+                       timeout=30)
+    print(r.stdout + r.stderr)
+    check(r.returncode == 0, f"--dry-run exit {r.returncode}")
+    om = 0.1 / (0.5 * 0.058)
+    for want in (f"motor.omega = {om!r} rad/s for slip 0.5 (driving convention) at "
+                 "carriage.speed = 0.1 m/s, wheel.effective_radius = 0.058 m",
+                 "motor.omega = 0.0 rad/s for slip -1.0 (skid convention)",
+                 "--parameter sweep/slip=-1.0", "--parameter sweep/slip_control=wheel_speed",
+                 "w/flat/s-1.000"):
+        check(want in r.stdout, f"--dry-run output lacks {want!r}")
+    check(not out.exists(), "--dry-run wrote the output directory")
 
 
 def _rewrite(path, old, new):
