@@ -188,10 +188,10 @@ TEST(WheelMesh, CatalogueHasTheStudyWheels) {
   std::map<std::string, CatalogEntry> by_name;
   for (const auto &e : entries)
     by_name[e.name] = e;
-  ASSERT_EQ(entries.size(), 15u);
+  ASSERT_EQ(entries.size(), 16u);
   for (const char *n : {"wheel1", "wheel2", "wheel3", "wheel4", "wheel5", "wheel6", "wheel7",
                         "wheel8", "scm_size_1220", "scm_size_1420", "scm_size_1620", "smooth_1234",
-                        "test_small", "test_smooth_wide", "nakanishi_2020"}) {
+                        "test_small", "test_smooth_wide", "nakanishi_2020", "smooth_r58_w50"}) {
     EXPECT_EQ(by_name.count(n), 1u) << n;
   }
   const WheelSpec &w3 = by_name["wheel3"].spec;
@@ -210,4 +210,8 @@ TEST(WheelMesh, CatalogueHasTheStudyWheels) {
   EXPECT_DOUBLE_EQ(nak.lug_height_m, 0.010);
   EXPECT_DOUBLE_EQ(nak.lug_width_m, 0.005);
   EXPECT_EQ(nak.type, LugType::straight);
+  const WheelSpec &blind = by_name["smooth_r58_w50"].spec; // validation/blind_smooth_loose_sand
+  EXPECT_TRUE(blind.smooth);
+  EXPECT_DOUBLE_EQ(blind.diameter_m, 0.116);
+  EXPECT_DOUBLE_EQ(blind.width_m, 0.050);
 }
