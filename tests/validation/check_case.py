@@ -2,12 +2,16 @@
 """Runs a validation case's smoke version and checks its outputs.
 
     check_case.py RUN_SH OUT_DIR --slips S1[,S2...] [--slip-tolerance 0.005]
+                  [--outputs comparison.png,provenance.toml]
 
 Runs `RUN_SH --smoke --out-dir OUT_DIR` from an empty OUT_DIR, then checks: results.csv has one
 row per expected slip with the issue-11 columns, finite drawbar pull, torque, sinkage and SEM,
 the measured slip equal to the imposed one within the tolerance (the rig holds it), a positive
-normal load, wall time and particle count; comparison.png and provenance.toml exist. Exit 0 when
-all hold, 1 otherwise (each failure printed).
+normal load, wall time and particle count; the --outputs files (default comparison.png and
+provenance.toml; a blind case has a prediction plot instead of a comparison) exist. The slips are
+in the signed convention of results.csv's `slip` column (driving for s >= 0, skid for s < 0), so a
+skid point is checked in the skid convention. Exit 0 when all hold, 1 otherwise (each failure
+printed).
 """
 import argparse
 import csv
@@ -27,6 +31,8 @@ def main():
     ap.add_argument("out_dir")
     ap.add_argument("--slips", required=True)
     ap.add_argument("--slip-tolerance", type=float, default=0.005)
+    ap.add_argument("--outputs", default="comparison.png,provenance.toml",
+                    help="files OUT_DIR must hold afterwards (comma-separated)")
     a = ap.parse_args()
     out = Path(a.out_dir)
     if out.exists():
@@ -71,7 +77,7 @@ def main():
               f" N m, sinkage {1000 * float(row['sinkage_m']):.2f} mm, W "
               f"{float(row['normal_load_N']):.2f} N, {row['particles']} particles, "
               f"{float(row['wall_s']):.0f} s")
-    for name in ("comparison.png", "provenance.toml"):
+    for name in a.outputs.split(","):
         if not (out / name).is_file():
             failures.append(f"{out / name} missing")
     for f in failures:

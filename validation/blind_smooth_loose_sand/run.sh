@@ -1,0 +1,85 @@
+#!/usr/bin/env bash
+# Validation case 2 — blind prediction: smooth wheel on loose sand (README.md).
+#
+#   validation/blind_smooth_loose_sand/run.sh [--smoke] [--sensitivity] [--out-dir DIR] [--jobs N] [--force]
+#
+# Full case: prepares the ~150 000-sphere bin once, runs the 9 slips (signed convention, each set
+# by the wheel speed at 0.1 m/s) through wheel-sweep (resumable: a re-run skips finished points),
+# then writes into this folder results.csv, curves.csv, prediction.png and provenance.toml (git
+# hash, command, machine, wall time). Many hours on 2 cores (README "Cost"): run it in the
+# background, nohup ... &
+# --sensitivity: afterwards also the speed (0.05 m/s) and grain-size (0.75x spheres) sweeps at
+#          2 slips each: results_speed_0.05.csv, results_grain_0.75.csv and sensitivity.png here.
+# --smoke: the CI version (a tiny bin, slips 0.5 and -0.5, 0.05 s of test phase; minutes): same
+#          pipeline, outputs into --out-dir only (nothing in this folder changes).
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+root=$(cd "$here/../.." && pwd)
+build_dir=${WHEELSIM_BUILD_DIR:-$root/build}
+python=/usr/bin/python3
+smoke=0 sensitivity=0 out="" sweep_args=() args=("$@")
+while (($#)); do
+  case "$1" in
+    --smoke) smoke=1; shift ;;
+    --sensitivity) sensitivity=1; shift ;;
+    --out-dir) out=$2; shift 2 ;;
+    --jobs|-j) sweep_args+=(--jobs "$2"); shift 2 ;;
+    --force) sweep_args+=(--force); shift ;;
+    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
+    *) echo "run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+((smoke && sensitivity)) && { echo "run.sh: --smoke and --sensitivity exclude each other" >&2; exit 2; }
+if ((smoke)); then out=${out:-$root/runs/validation/blind_smooth_loose_sand_smoke}
+else out=${out:-$root/runs/validation/blind_smooth_loose_sand}; fi
+[[ -f $build_dir/meshes/smooth_r58_w50.stl ]] || {
+  echo "run.sh: $build_dir/meshes/smooth_r58_w50.stl missing: build first (scripts/build.sh)" >&2; exit 2; }
+
+start=$(date +%s)
+started_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
+status=0
+
+# sweep NAME CONFIG WINDOW_START WINDOW_END RESULTS: run one sweep into $out/NAME and write its
+# results table (and $out/NAME/curves.csv) (window in test-phase seconds: 0.05 m of travel after the approach to steady
+# sinkage, README "Averaging window"). A failed point is reported by wheel-sweep and left out.
+sweep() {
+  local name=$1 config=$2 w0=$3 w1=$4 results=$5
+  "$root/scripts/wheel-sweep" "$config" --out-dir "$out/$name" --build-dir "$build_dir" \
+    "${sweep_args[@]}" || status=$?
+  local runs
+  mapfile -t runs < <(find "$out/$name" -mindepth 4 -name run.h5 -not -path "*/beds/*" | sort)
+  ((${#runs[@]})) || { echo "run.sh: no finished run under $out/$name" >&2; exit 1; }
+  "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start "$w0" --window-end "$w1" \
+    --results "$results" --csv "$out/$name/curves.csv"
+}
+
+if ((smoke)); then
+  dest=$out
+  sweep main "$here/sweep_smoke.toml" 0.025 0.05 "$dest/results.csv"
+else
+  dest=$here
+  sweep main "$here/sweep.toml" 0.7 1.2 "$dest/results.csv"
+  cp "$out/main/curves.csv" "$dest/curves.csv"
+fi
+"$python" "$here/plot.py" --png "$dest/prediction.png" "$dest/results.csv"
+if ((sensitivity)); then
+  sweep speed_0.05 "$here/sweep_speed.toml" 1.4 2.4 "$dest/results_speed_0.05.csv"
+  sweep grain_0.75 "$here/sweep_grain.toml" 0.7 1.2 "$dest/results_grain_0.75.csv"
+  "$python" "$here/plot.py" --png "$dest/sensitivity.png" \
+    --title "sensitivity: speed and grain size (smooth wheel, loose sand 1330)" \
+    "0.1 m/s, d50 2.75 mm=$dest/results.csv" "0.05 m/s, d50 2.75 mm=$dest/results_speed_0.05.csv" \
+    "0.1 m/s, d50 2.06 mm=$dest/results_grain_0.75.csv"
+fi
+wall=$(( $(date +%s) - start ))
+cat > "$dest/provenance.toml" <<TOML
+# written by validation/blind_smooth_loose_sand/run.sh
+command = "validation/blind_smooth_loose_sand/run.sh${args[*]:+ }${args[*]}"
+git_commit = "$(git -C "$root" rev-parse HEAD 2>/dev/null || echo unknown)"
+git_changes = $( [[ -n $(git -C "$root" status --porcelain -- . ':!runs' 2>/dev/null) ]] && echo true || echo false )
+host = "$(hostname)"
+cores = $(nproc)
+started_utc = "$started_utc"
+wall_s = $wall   # this invocation (finished points skipped on a resume cost nothing here)
+runs_dir = "$out"
+TOML
+exit $status
