@@ -376,15 +376,31 @@ class Runner:
             bdir = restart.parent
             recipe_file = bdir / f"{restart.name}.recipe.json"
             recipe_text = json.dumps(soil.recipe, sort_keys=True, indent=2) + "\n"
+            # The files the bed is made from: a changed soil file or in.soilbin (same paths)
+            # makes the bed stale, as it makes a finished point re-run (inputs_hash).
+            inputs_file = bdir / f"{restart.name}.inputs.json"
+            inputs_text = json.dumps(
+                {"soilbin_sha256": self.file_hash(self.repo / "inputs" / "in.soilbin"),
+                 "soil_file": str(soil.dem_soil_file),
+                 "soil_file_sha256": self.file_hash(soil.dem_soil_file)},
+                sort_keys=True, indent=2) + "\n"
+            why = ""
             if restart.is_file() and Path(f"{restart}.vars").is_file():
                 if recipe_file.is_file() and recipe_file.read_text() != recipe_text:
                     raise RuntimeError(f"bed '{soil.label}': {restart} exists but was prepared "
                                        f"from another recipe ({recipe_file}); delete it or "
                                        "rename the soil")
-                self.say(f"bed {soil.label}: reusing {restart}")
-                continue
+                if not inputs_file.is_file():  # a bed from before the inputs were recorded
+                    self.say(f"bed {soil.label}: reusing {restart} (prepared before its input "
+                             "files' hashes were recorded: not checked against them)")
+                    continue
+                if inputs_file.read_text() == inputs_text:
+                    self.say(f"bed {soil.label}: reusing {restart}")
+                    continue
+                why = (" again: its soil file or inputs/in.soilbin changed since it was prepared "
+                       f"({inputs_file})")
             if self.dry_run:
-                self.say(f"bed {soil.label}: would prepare {restart} (in.soilbin, "
+                self.say(f"bed {soil.label}: would prepare {restart}{why} (in.soilbin, "
                          f"{self.sweep.bed_np} rank(s))")
                 continue
             bdir.mkdir(parents=True, exist_ok=True)
@@ -401,7 +417,7 @@ class Runner:
                 cmd += ["-var", k, str(v)]
             cmd += ["-var", "out_dir", str(bdir), "-var", "restart_file", str(part),
                     "-log", str(bdir / "log.soilbin")]
-            self.say(f"bed {soil.label}: preparing {restart} ({self.sweep.bed_np} rank(s); "
+            self.say(f"bed {soil.label}: preparing {restart}{why} ({self.sweep.bed_np} rank(s); "
                      f"log {bdir / 'soilbin.log'})")
             t0 = time.monotonic()
             rc = self._run_child(cmd, bdir / "soilbin.log", cwd=bdir)
@@ -410,6 +426,7 @@ class Runner:
                 raise RuntimeError(f"bed '{soil.label}': in.soilbin failed (exit {rc}): "
                                    f"{_last_error(log)} [log {log}]")
             _write_atomic(recipe_file, recipe_text)
+            _write_atomic(inputs_file, inputs_text)
             os.replace(f"{part}.vars", f"{restart}.vars")
             os.replace(part, restart)
             self.say(f"bed {soil.label}: ready in {estimate.fmt_time(time.monotonic() - t0)}")

@@ -437,7 +437,7 @@ def case_dem_soil_file(a, work):
     is prepared with it and named after soil_name, its .vars records the absolute path, the
     coupled point (tests/cosim/in.motion_compare, 150 steps, 1 rank) includes the same file and
     its run file records bed/soil and bed/soil_file; a changed soil file (same path) makes the
-    finished point re-run (--dry-run)."""
+    finished point re-run and the bed be prepared again (--dry-run)."""
     if shutil.which("mpirun") is None:
         raise Skip("mpirun not found (Debian openmpi-bin)")
     if not (Path(a.build_dir) / "bin" / "liggghts-wheel").exists():
@@ -486,6 +486,8 @@ liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
     r = subprocess.run(cmd + ["--dry-run"], capture_output=True, text=True, timeout=120)
     check("would run test_small my_sand s=0.2 (inputs changed since it finished)" in r.stdout,
           f"a changed soil file (same path) does not re-run the point:\n{r.stdout}")
+    check(f"bed my_sand: would prepare {bed} again: its soil file or inputs/in.soilbin changed"
+          in r.stdout, f"a changed soil file (same path) does not re-prepare the bed:\n{r.stdout}")
 
 
 def case_estimate_example(a, work):
