@@ -2,6 +2,7 @@
 #include "fix_wheel_cosim.h"
 
 #include "contact_law.h"
+#include "contact_model.h"
 #include "contact_slots.h"
 #include "coupled_motion.h"
 #include "coupler/protocol.h"
@@ -46,9 +47,6 @@ constexpr int kDefaultSlots = 3;
 /// the particles' Rayleigh time and of the Hertz collision time of a particle hitting the wheel.
 constexpr double kMaxRayleighFraction = 0.3;
 constexpr double kMaxHertzFraction = 0.1;
-/// EEPA (edinburgh) damps with a coefficient that does not shrink with the overlap: the explicit
-/// update is unstable once γn dt / m approaches 1 (seen in both LIGGGHTS and this fix).
-constexpr double kMaxEepaDampingRatio = 1.0;
 /// Candidate list: how far the wheel centre may move, in neighbour skins, before the list is
 /// rebuilt; and a relative allowance on the list's radius so that round-off in the distance test
 /// can never leave out a particle the full scan would test.
@@ -295,30 +293,20 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
     return value;
   };
 
-  using wheelsim::contact::CohesionModel;
-  using wheelsim::contact::NormalModel;
-  using wheelsim::contact::RollingModel;
-  using wheelsim::contact::Switch;
-  // The on/off keywords: LIGGGHTS' contact-model switches and check_timestep.
-  bool limit_force = false;
-  auto on_off_keyword = [&](const char *key) -> bool * {
-    if (std::strcmp(key, "tangential_damping") == 0)
-      return &s_->settings.tangentialDamping;
-    if (std::strcmp(key, "limitForce") == 0)
-      return &limit_force; // a tri-state in ContactSettings: mapped after parsing the value
-    if (std::strcmp(key, "fixKc") == 0)
-      return &s_->settings.fixKc;
-    if (std::strcmp(key, "tangential_reduce") == 0)
-      return &s_->settings.tangentialReduce;
-    if (std::strcmp(key, "torsionTorque") == 0)
-      return &s_->settings.torsionTorque;
-    if (std::strcmp(key, "check_timestep") == 0)
-      return &s_->check_timestep;
-    return nullptr;
+  // check_timestep is the fix's own on/off keyword; the contact-model keywords and switches
+  // come from the model table (liggghts_fix/contact/contact_model.h).
+  auto model_kind = [](const char *key, wheelsim::contact::ModelKind &kind) {
+    for (wheelsim::contact::ModelKind k : wheelsim::contact::kModelKinds)
+      if (std::strcmp(key, wheelsim::contact::kind_keyword(k)) == 0) {
+        kind = k;
+        return true;
+      }
+    return false;
   };
   int iarg = 7;
   while (iarg < narg) {
     const char *key = arg[iarg];
+    wheelsim::contact::ModelKind kind;
     if (std::strcmp(key, "scale") == 0) {
       need(iarg, 1, "a positive factor (mesh units to m)");
       s_->scale = number(iarg + 1, key, "a positive factor (mesh units to m)");
@@ -330,48 +318,22 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
       for (int k = 0; k < 3; ++k)
         s_->origin_m[k] = number(iarg + 1 + k, key, "a coordinate [m]");
       iarg += 4;
-    } else if (std::strcmp(key, "model") == 0) {
-      need(iarg, 1, "hertz or eepa");
-      if (std::strcmp(arg[iarg + 1], "hertz") == 0)
-        s_->settings.normal = NormalModel::Hertz;
-      else if (std::strcmp(arg[iarg + 1], "eepa") == 0 ||
-               std::strcmp(arg[iarg + 1], "edinburgh") == 0)
-        s_->settings.normal = NormalModel::Eepa;
-      else
-        bad_argument("keyword 'model' expects hertz or eepa, got '%s'", arg[iarg + 1]);
+    } else if (model_kind(key, kind)) {
+      const std::string names = wheelsim::contact::model_names(kind);
+      need(iarg, 1, ("one of " + names).c_str());
+      const wheelsim::contact::ModelEntry *model =
+          wheelsim::contact::find_model(kind, arg[iarg + 1]);
+      if (model == nullptr)
+        bad_argument("keyword '%s' expects one of %s, got '%s'", key, names.c_str(), arg[iarg + 1]);
+      wheelsim::contact::select_model(s_->settings, *model);
       iarg += 2;
-    } else if (std::strcmp(key, "cohesion") == 0) {
-      need(iarg, 1, "off or sjkr");
-      if (std::strcmp(arg[iarg + 1], "off") == 0)
-        s_->settings.cohesion = CohesionModel::Off;
-      else if (std::strcmp(arg[iarg + 1], "sjkr") == 0)
-        s_->settings.cohesion = CohesionModel::Sjkr;
-      else
-        bad_argument("keyword 'cohesion' expects off or sjkr, got '%s'", arg[iarg + 1]);
-      iarg += 2;
-    } else if (std::strcmp(key, "rolling_friction") == 0) {
-      need(iarg, 1, "off, epsd2 or cdt");
-      if (std::strcmp(arg[iarg + 1], "off") == 0)
-        s_->settings.rolling = RollingModel::Off;
-      else if (std::strcmp(arg[iarg + 1], "epsd2") == 0)
-        s_->settings.rolling = RollingModel::Epsd2;
-      else if (std::strcmp(arg[iarg + 1], "cdt") == 0)
-        s_->settings.rolling = RollingModel::Cdt;
-      else
-        bad_argument("keyword 'rolling_friction' expects off, epsd2 or cdt, got '%s'",
-                     arg[iarg + 1]);
-      iarg += 2;
-    } else if (std::strcmp(key, "tangential") == 0) {
-      // Accepted so that a deck can pass its pair style's model words (e.g. ${soil_model}).
-      need(iarg, 1, "history");
-      if (std::strcmp(arg[iarg + 1], "history") != 0)
-        bad_argument("keyword 'tangential' supports only 'history', got '%s'", arg[iarg + 1]);
-      iarg += 2;
-    } else if (bool *flag = on_off_keyword(key)) {
+    } else if (const wheelsim::contact::SwitchSpec *sw = wheelsim::contact::find_switch(key)) {
       need(iarg, 1, "on or off");
-      *flag = on_off(iarg);
-      if (std::strcmp(key, "limitForce") == 0)
-        s_->settings.limitForce = limit_force ? Switch::On : Switch::Off;
+      sw->set(s_->settings, on_off(iarg));
+      iarg += 2;
+    } else if (std::strcmp(key, "check_timestep") == 0) {
+      need(iarg, 1, "on or off");
+      s_->check_timestep = on_off(iarg);
       iarg += 2;
     } else if (std::strcmp(key, "motion") == 0) {
       need(iarg, 1, "prescribed vx vy vz wx wy wz");
@@ -450,11 +412,12 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
       nslots_ = static_cast<int>(n);
       iarg += 2;
     } else {
-      bad_argument(
-          "unknown keyword '%s'; expected one of scale, origin, model, tangential, "
-          "cohesion, rolling_friction, tangential_damping, limitForce, fixKc, tangential_reduce, "
-          "torsionTorque, motion, vtk, slots, candidates, check_timestep",
-          key);
+      std::string models;
+      for (wheelsim::contact::ModelKind k : wheelsim::contact::kModelKinds)
+        models += std::string(wheelsim::contact::kind_keyword(k)) + ", ";
+      bad_argument("unknown keyword '%s'; expected one of scale, origin, %s%s, motion, vtk, "
+                   "slots, candidates, check_timestep",
+                   key, models.c_str(), wheelsim::contact::switch_keywords().c_str());
     }
   }
 }
@@ -492,52 +455,37 @@ void FixWheelCosim::read_materials() {
                    name, name, kind, ntypes, wheel_type_);
     return static_cast<FixPropertyGlobal *>(fix);
   };
-  FixPropertyGlobal *E = find("youngsModulus", "peratomtype", ntypes, 0);
-  FixPropertyGlobal *nu = find("poissonsRatio", "peratomtype", ntypes, 0);
-  FixPropertyGlobal *e = find("coefficientRestitution", "peratomtypepair", ntypes, ntypes);
-  FixPropertyGlobal *mu = find("coefficientFriction", "peratomtypepair", ntypes, ntypes);
-  using wheelsim::contact::CohesionModel;
-  using wheelsim::contact::NormalModel;
-  using wheelsim::contact::RollingModel;
-  FixPropertyGlobal *mur = nullptr, *kcoh = nullptr, *k2 = nullptr, *kc = nullptr, *f0 = nullptr,
-                    *gamma = nullptr, *dex = nullptr, *cex = nullptr;
-  if (s_->settings.rolling != RollingModel::Off)
-    mur = find("coefficientRollingFriction", "peratomtypepair", ntypes, ntypes);
-  if (s_->settings.cohesion == CohesionModel::Sjkr)
-    kcoh = find("cohesionEnergyDensity", "peratomtypepair", ntypes, ntypes);
-  if (s_->settings.normal == NormalModel::Eepa) {
-    k2 = find("UnloadingStiffness", "peratomtypepair", ntypes, ntypes);
-    kc = find("coefficientAdhesionStiffness", "peratomtypepair", ntypes, ntypes);
-    f0 = find("pullOffForce", "peratomtypepair", ntypes, ntypes);
-    gamma = find("surfaceEnergy", "peratomtypepair", ntypes, ntypes);
-    dex = find("overlapExponent", "scalar", 0, 0);
-    cex = find("adhesionExponent", "scalar", 0, 0);
+  // The properties the selected contact models read (each model declares its own in
+  // liggghts_fix/contact/models/*.h), from the arrays of fix property/global.
+  namespace wc = wheelsim::contact;
+  const std::vector<const wc::PropertySpec *> properties = wc::required_properties(s_->settings);
+  std::vector<FixPropertyGlobal *> fixes;
+  for (const wc::PropertySpec *p : properties) {
+    const bool per_type = p->style == wc::PropertyStyle::PerType;
+    const bool scalar = p->style == wc::PropertyStyle::Scalar;
+    fixes.push_back(find(p->name, wc::style_keyword(p->style), scalar ? 0 : ntypes,
+                         per_type || scalar ? 0 : ntypes));
   }
 
   s_->material.assign(ntypes + 1, {});
-  for (int t = 1; t <= ntypes; ++t)
-    s_->material[t] = {E->compute_vector(t - 1), nu->compute_vector(t - 1)};
+  for (std::size_t k = 0; k < properties.size(); ++k)
+    if (properties[k]->material)
+      for (int t = 1; t <= ntypes; ++t)
+        s_->material[t].*(properties[k]->material) = fixes[k]->compute_vector(t - 1);
   s_->pair.assign(ntypes + 1, {});
   const int w = wheel_type_ - 1;
   for (int t = 1; t <= ntypes; ++t) {
-    wheelsim::contact::PairMaterial pm;
-    pm.coefficientRestitution = e->compute_array(t - 1, w);
-    pm.coefficientFriction = mu->compute_array(t - 1, w);
-    if (mur)
-      pm.coefficientRollingFriction = mur->compute_array(t - 1, w);
-    if (kcoh)
-      pm.cohesionEnergyDensity = kcoh->compute_array(t - 1, w);
-    if (k2) {
-      pm.UnloadingStiffness = k2->compute_array(t - 1, w);
-      pm.coefficientAdhesionStiffness = kc->compute_array(t - 1, w);
-      pm.pullOffForce = f0->compute_array(t - 1, w);
-      pm.surfaceEnergy = gamma->compute_array(t - 1, w);
-      pm.overlapExponent = dex->compute_scalar();
-      pm.adhesionExponent = cex->compute_scalar();
+    wc::PairMaterial pm;
+    for (std::size_t k = 0; k < properties.size(); ++k) {
+      const wc::PropertySpec &p = *properties[k];
+      if (p.style == wc::PropertyStyle::PerTypePair)
+        pm.*(p.pair) = fixes[k]->compute_array(t - 1, w);
+      else if (p.style == wc::PropertyStyle::Scalar)
+        pm.*(p.pair) = fixes[k]->compute_scalar();
     }
     try {
-      s_->pair[t] = wheelsim::contact::makePairConstants(s_->material[t], s_->material[wheel_type_],
-                                                         pm, s_->settings);
+      s_->pair[t] =
+          wc::makePairConstants(s_->material[t], s_->material[wheel_type_], pm, s_->settings);
     } catch (const std::exception &ex) {
       bad_argument("materials of particle type %d against the wheel's type %d: %s", t, wheel_type_,
                    ex.what());
@@ -587,18 +535,19 @@ void FixWheelCosim::check_timestep() {
     const double Yeff = s_->pair[t].Yeff;
     const double hertz =
         2.87 * std::pow(mass_all[t] * mass_all[t] / (rmin_all[t] * Yeff * Yeff * v_impact), 0.2);
-    if (s_->settings.normal == wheelsim::contact::NormalModel::Eepa) {
-      const double ratio =
-          wheelsim::contact::eepaNormalDamping(s_->pair[t], rmin_all[t], mass_all[t]) * dt /
-          mass_all[t];
-      if (ratio > wheelsim::kMaxEepaDampingRatio) {
-        char msg[512];
+    // The selected models' own limits (e.g. eepa's damping), then the fix's general one.
+    for (const wheelsim::contact::ModelEntry *model :
+         wheelsim::contact::selected_models(s_->settings)) {
+      if (model->spec->timestep == nullptr)
+        continue;
+      const double max_dt = model->spec->timestep(s_->pair[t], rmin_all[t], mass_all[t]);
+      if (dt > max_dt) {
+        char msg[768];
         snprintf(msg, sizeof(msg),
-                 "time step %g s is too large for the eepa damping of particle type %d (radius "
-                 "%g m): gamma_n dt / m = %.3g must be <= %.2g; use timestep <= %g or "
-                 "'check_timestep off'",
-                 dt, t, rmin_all[t], ratio, wheelsim::kMaxEepaDampingRatio,
-                 dt * wheelsim::kMaxEepaDampingRatio / ratio);
+                 "time step %g s is too large for '%s %s' with particle type %d (radius %g m, "
+                 "mass %g kg): %s; use timestep <= %g s or 'check_timestep off'",
+                 dt, wheelsim::contact::kind_keyword(model->kind), model->spec->name, t,
+                 rmin_all[t], mass_all[t], model->spec->timestepRule, max_dt);
         error->fix_error(FLERR, this, msg);
       }
     }

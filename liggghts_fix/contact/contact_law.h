@@ -6,14 +6,18 @@
 //
 // It reproduces LIGGGHTS 3.8's wall contact (`fix wall/gran ... mesh` with `pair_style gran`)
 //   model hertz | edinburgh,  tangential history,  cohesion off | sjkr,  rolling_friction off |
-//   epsd2
+//   epsd2 | cdt
 // term by term and in the same order (surface model -> normal -> cohesion -> tangential ->
 // rolling), so that the fix and LIGGGHTS give the same forces on identical states.
 // docs/contact-law.md lists every constant with its formula and the LIGGGHTS file it matches.
+// Each model is one header models/<name>.h (its descriptor and its kernel), listed in
+// model_list.h; contact_models.h is the descriptor table the fix parses and validates with.
 //
 // Units: SI throughout (LIGGGHTS `units si`, where force->nktv2p = 1).
 // Frames: every vector is in the world frame.
 #pragma once
+
+#include "model_list.h"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -22,24 +26,27 @@
 
 namespace wheelsim::contact {
 
-/// Normal force law (LIGGGHTS `model ...`).
-enum class NormalModel {
-  Hertz, ///< `model hertz`: Hertz–Mindlin with viscous damping from the restitution coefficient.
-  Eepa,  ///< `model edinburgh`: elasto-plastic adhesive (EEPA, Thakur et al. 2014).
-};
+// The model enums are generated from model_list.h (one enumerator per model there); each
+// model's keyword, properties and force kernel are in models/<name>.h (contact_model.h).
+#define WHEELSIM_CONTACT_ENUMERATOR(Enumerator, name) Enumerator,
 
-/// Cohesion added along the normal (LIGGGHTS `cohesion ...`).
-enum class CohesionModel {
-  Off,  ///< none
-  Sjkr, ///< `cohesion sjkr`: energy density times contact area.
-};
+/// Normal force law (LIGGGHTS `model ...`): Hertz (`model hertz`, Hertz–Mindlin with viscous
+/// damping from the restitution coefficient), Eepa (`model edinburgh`, elasto-plastic adhesive,
+/// Thakur et al. 2014).
+enum class NormalModel { WHEELSIM_NORMAL_MODELS(WHEELSIM_CONTACT_ENUMERATOR) };
 
-/// Rolling resistance (LIGGGHTS `rolling_friction ...`).
-enum class RollingModel {
-  Off,   ///< none
-  Epsd2, ///< `rolling_friction epsd2`: elastic-plastic spring, torque capped at μr R |Fn|.
-  Cdt,   ///< `rolling_friction cdt`: constant torque μr kn δ (R − δ/2) against the spin.
-};
+/// Tangential force law (LIGGGHTS `tangential ...`): History (`tangential history`).
+enum class TangentialModel { WHEELSIM_TANGENTIAL_MODELS(WHEELSIM_CONTACT_ENUMERATOR) };
+
+/// Cohesion added along the normal (LIGGGHTS `cohesion ...`): Off, Sjkr (`cohesion sjkr`,
+/// energy density times contact area).
+enum class CohesionModel { WHEELSIM_COHESION_MODELS(WHEELSIM_CONTACT_ENUMERATOR) };
+
+/// Rolling resistance (LIGGGHTS `rolling_friction ...`): Off, Epsd2 (elastic-plastic spring,
+/// torque capped at μr R |Fn|), Cdt (constant torque μr kn δ (R − δ/2) against the spin).
+enum class RollingModel { WHEELSIM_ROLLING_MODELS(WHEELSIM_CONTACT_ENUMERATOR) };
+
+#undef WHEELSIM_CONTACT_ENUMERATOR
 
 /// An on/off model setting whose LIGGGHTS default depends on the normal model.
 enum class Switch { ModelDefault, On, Off };
@@ -51,11 +58,13 @@ struct Material {
 };
 
 /// Properties of the particle-type/wheel-type pair (LIGGGHTS `peratomtypepair` and `scalar`
-/// properties, named as in the deck).
+/// properties, named as in the deck). Which model reads which, with its unit, meaning and valid
+/// range, is declared by the models (models/*.h, `spec.properties`); a model that needs a
+/// property no other model reads adds its field here.
 struct PairMaterial {
   double coefficientRestitution = 0.5;     ///< e [-], 0.05 < e <= 1 (LIGGGHTS' sanity range)
   double coefficientFriction = 0.5;        ///< μ [-], sliding friction, >= 0
-  double coefficientRollingFriction = 0.0; ///< μr [-], epsd2 only, >= 0
+  double coefficientRollingFriction = 0.0; ///< μr [-], epsd2 and cdt, >= 0
   double cohesionEnergyDensity = 0.0;      ///< k_coh [J/m³ = Pa], sjkr only, >= 0
   // --- model edinburgh (EEPA) ---
   double UnloadingStiffness = 1.0;           ///< k2/k1 [-]: unloading / loading stiffness, > 1
@@ -69,6 +78,7 @@ struct PairMaterial {
 /// Model choice and LIGGGHTS' `contact_model ... <setting> on|off` switches.
 struct ContactSettings {
   NormalModel normal = NormalModel::Hertz;
+  TangentialModel tangential = TangentialModel::History;
   CohesionModel cohesion = CohesionModel::Off;
   RollingModel rolling = RollingModel::Off;
   /// `tangential_damping` (default on for both normal models).
@@ -88,24 +98,17 @@ struct ContactSettings {
 /// Effective pair constants, computed once per material pair by makePairConstants().
 struct PairConstants {
   ContactSettings settings;
+  PairMaterial pair;       ///< the pair properties as given (checked against their ranges)
   double Yeff = 0.0;       ///< 1/((1-ν1²)/E1 + (1-ν2²)/E2) [Pa]
   double Geff = 0.0;       ///< 1/(2(2-ν1)(1+ν1)/E1 + 2(2-ν2)(1+ν2)/E2) [Pa]
   double logE = 0.0;       ///< ln e [-] (LIGGGHTS CoeffRestLog)
   double betaeff = 0.0;    ///< ln e / sqrt(ln²e + π²) [-] (LIGGGHTS betaeff), <= 0
-  double mu = 0.0;         ///< μ [-]
-  double muRoll = 0.0;     ///< μr [-]
-  double kCoh = 0.0;       ///< k_coh [Pa]
-  double kn2k1 = 1.0;      ///< k2/k1 [-]
-  double kn2kc = 0.0;      ///< kc/k1 [-]
-  double f0 = 0.0;         ///< pull-off force [N]
-  double gammaSurf = 0.0;  ///< surface energy [J/m²]
-  double dex = 1.5;        ///< overlap exponent [-]
-  double cex = 1.5;        ///< adhesion exponent [-]
   bool limitForce = false; ///< the resolved `limitForce` switch
 };
 
 /// Reduces the two materials and the pair properties to the constants used per contact.
-/// Throws std::invalid_argument naming the offending property, its value and the valid range.
+/// Checks the properties the selected models read (contact_models.h: each property's range)
+/// and throws std::invalid_argument naming the offending property, its value and the valid range.
 PairConstants makePairConstants(const Material &particle, const Material &wheel,
                                 const PairMaterial &pair, const ContactSettings &settings);
 
