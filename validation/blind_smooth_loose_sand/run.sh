@@ -10,7 +10,7 @@
 # background, nohup ... &
 # --sensitivity: afterwards also the speed (0.05 m/s) and grain-size (0.75x spheres) sweeps at
 #          2 slips each: results_speed_0.05.csv, results_grain_0.75.csv and sensitivity.png here.
-# --smoke: the CI version (a tiny bin, slips 0.5 and -0.5, 0.05 s of test phase; minutes): same
+# --smoke: the CI version (a tiny bin, slip -0.5, 0.05 s of test phase; minutes): same
 #          pipeline, outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
