@@ -44,13 +44,13 @@ double height_for_load(const geometry::TriangleMesh &mesh, double R, double delt
   scm::ScmSettings s;
   s.grid_spacing_m = delta;
   scm::ScmTerrain t(lete_sand(), s, mesh);
-  scm::BodyState b;
-  b.p_WBo_W = Eigen::Vector3d(0, 0, R + 1e-3);
-  b.v_WBo_W = Eigen::Vector3d(0, 0, -0.05);
+  WheelPose b;
+  b.p_WB_W = Eigen::Vector3d(0, 0, R + 1e-3);
+  b.v_WB_W = Eigen::Vector3d(0, 0, -0.05);
   for (int k = 0; k < 40000; ++k) {
-    if (t.advance(b, kDt).force_N.z() >= kLoad_N)
-      return b.p_WBo_W.z();
-    b.p_WBo_W.z() += b.v_WBo_W.z() * kDt;
+    if (t.advance(b, kDt).wrench.f_B_W.z() >= kLoad_N)
+      return b.p_WB_W.z();
+    b.p_WB_W.z() += b.v_WB_W.z() * kDt;
   }
   throw std::runtime_error("load never reached while lowering");
 }
@@ -67,15 +67,15 @@ Result roll(const geometry::TriangleMesh &mesh, double R, double delta, double z
   s.grid_spacing_m = delta;
   scm::ScmTerrain t(lete_sand(), s, mesh);
   const double v = kOmega * R * (1.0 - kSlip);
-  scm::BodyState b;
-  b.v_WBo_W = Eigen::Vector3d(v, 0, 0);
+  WheelPose b;
+  b.v_WB_W = Eigen::Vector3d(v, 0, 0);
   b.w_WB_W = Eigen::Vector3d(0, kOmega, 0);
   const int run_in = static_cast<int>(0.25 / kDt), steps = static_cast<int>(seconds / kDt);
   Result r;
   double wall = 0.0;
   for (int k = 0; k < run_in + steps; ++k) {
-    b.p_WBo_W = Eigen::Vector3d(v * kDt * k, 0, z_centre);
-    b.R_WB = Eigen::Quaterniond(Eigen::AngleAxisd(kOmega * kDt * k, Eigen::Vector3d::UnitY()));
+    b.p_WB_W = Eigen::Vector3d(v * kDt * k, 0, z_centre);
+    b.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(kOmega * kDt * k, Eigen::Vector3d::UnitY()));
     const auto t0 = std::chrono::steady_clock::now();
     const scm::ScmContact c = t.advance(b, kDt);
     const auto t1 = std::chrono::steady_clock::now();
@@ -87,8 +87,8 @@ Result roll(const geometry::TriangleMesh &mesh, double R, double delta, double z
     r.law += tm.node_law_ms;
     r.patches += tm.patches_ms;
     r.bulldozing += tm.bulldozing_ms;
-    r.fz += c.force_N.z();
-    r.fx += c.force_N.x();
+    r.fz += c.wrench.f_B_W.z();
+    r.fx += c.wrench.f_B_W.x();
     r.nodes += c.contact_nodes;
     r.triangles += tm.triangles_rasterised;
   }

@@ -32,7 +32,9 @@
 // frame (its origin is the wheel centre C, its axes are the mesh axes), q_WB = orientation of B in
 // W as a unit quaternion (w, x, y, z), p_WC_W = position of C in W, v_WC_W = velocity of C in W,
 // w_WB_W = angular velocity of B in W, f_C_W / t_C_W = contact force on the wheel / contact torque
-// about C, expressed in W. Units: SI throughout (m, s, kg, N, N·m, rad).
+// about C, expressed in W. Units: SI throughout (m, s, kg, N, N·m, rad). In C++ the two sides
+// hold these as wheelsim::WheelPose / WheelWrench (wheelsim/pose.h) and convert them only through
+// to_message / from_message of coupler/pose_messages.h.
 #pragma once
 
 #include <array>

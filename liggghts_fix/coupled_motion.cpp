@@ -1,6 +1,7 @@
 #include "coupled_motion.h"
 
 #include "coupler/coupling.h"
+#include "coupler/pose_messages.h"
 #include "coupler/protocol.h"
 #include "coupler/transport.h"
 
@@ -11,31 +12,6 @@
 
 namespace wheelsim {
 namespace {
-
-coupler::WheelState to_wire(const WheelState &s) {
-  coupler::WheelState w;
-  for (int k = 0; k < 3; ++k) {
-    w.p_WC_W[k] = s.position_m[k];
-    w.v_WC_W[k] = s.velocity_m_s[k];
-    w.w_WB_W[k] = s.angular_velocity_rad_s[k];
-  }
-  w.q_WB = {s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z()};
-  return w;
-}
-
-WheelState from_wire(const coupler::WheelState &w) {
-  WheelState s;
-  s.position_m = Eigen::Vector3d(w.p_WC_W[0], w.p_WC_W[1], w.p_WC_W[2]);
-  s.orientation = Eigen::Quaterniond(w.q_WB[0], w.q_WB[1], w.q_WB[2], w.q_WB[3]);
-  // The rig sends unit quaternions (checked to 1e-6 by the protocol). Renormalise only if it is
-  // visibly off: renormalising a unit quaternion changes its last bits, and the coupled run is
-  // tested to reproduce the prescribed one exactly.
-  if (std::abs(s.orientation.squaredNorm() - 1.0) > 1e-12)
-    s.orientation.normalize();
-  s.velocity_m_s = Eigen::Vector3d(w.v_WC_W[0], w.v_WC_W[1], w.v_WC_W[2]);
-  s.angular_velocity_rad_s = Eigen::Vector3d(w.w_WB_W[0], w.w_WB_W[1], w.w_WB_W[2]);
-  return s;
-}
 
 std::chrono::milliseconds millis(double seconds) {
   return std::chrono::milliseconds(static_cast<long long>(std::ceil(seconds * 1000.0)));
@@ -57,31 +33,15 @@ std::string CoupledMotion::describe() const {
   return out.str();
 }
 
-WheelState CoupledMotion::broadcast(const WheelState &state) const {
-  double buf[13] = {state.position_m.x(),
-                    state.position_m.y(),
-                    state.position_m.z(),
-                    state.orientation.w(),
-                    state.orientation.x(),
-                    state.orientation.y(),
-                    state.orientation.z(),
-                    state.velocity_m_s.x(),
-                    state.velocity_m_s.y(),
-                    state.velocity_m_s.z(),
-                    state.angular_velocity_rad_s.x(),
-                    state.angular_velocity_rad_s.y(),
-                    state.angular_velocity_rad_s.z()};
-  MPI_Bcast(buf, 13, MPI_DOUBLE, 0, world_);
-  WheelState s;
-  s.position_m = Eigen::Vector3d(buf[0], buf[1], buf[2]);
-  s.orientation = Eigen::Quaterniond(buf[3], buf[4], buf[5], buf[6]);
-  s.velocity_m_s = Eigen::Vector3d(buf[7], buf[8], buf[9]);
-  s.angular_velocity_rad_s = Eigen::Vector3d(buf[10], buf[11], buf[12]);
-  return s;
+WheelPose CoupledMotion::broadcast(const WheelPose &pose) const {
+  coupler::WheelState wire = coupler::to_message(pose);
+  static_assert(sizeof wire == 13 * sizeof(double), "the wire state is 13 doubles");
+  MPI_Bcast(&wire, 13, MPI_DOUBLE, 0, world_);
+  return coupler::from_message(wire);
 }
 
-WheelState CoupledMotion::connect(const WheelState &initial, std::int64_t start_step, double dt_s) {
-  WheelState state = initial;
+WheelPose CoupledMotion::connect(const WheelPose &initial, std::int64_t start_step, double dt_s) {
+  WheelPose state = initial;
   if (rank_ == 0) {
     coupler::Timeouts timeouts;
     timeouts.handshake = millis(settings_.handshake_timeout_s);
@@ -92,11 +52,11 @@ WheelState CoupledMotion::connect(const WheelState &initial, std::int64_t start_
     hello.exchange_every = static_cast<std::uint32_t>(settings_.exchange_every);
     hello.start_step = start_step;
     hello.dt_s = dt_s;
-    const coupler::WheelState wire = to_wire(initial);
+    const coupler::WheelState wire = coupler::to_message(initial);
     hello.p_WR_W = wire.p_WC_W;
     hello.p_WC_W = wire.p_WC_W;
     hello.q_WB = wire.q_WB;
-    state = from_wire(client_->connect(hello).state);
+    state = coupler::from_message(client_->connect(hello).state);
   }
   state = broadcast(state);
   connected_ = true;
@@ -109,32 +69,25 @@ bool CoupledMotion::is_exchange_step(std::int64_t step) const {
   return step >= start_step_ && (step - start_step_) % settings_.exchange_every == 0;
 }
 
-void CoupledMotion::wrench_computed(std::int64_t step, double time_s, const WheelWrench &wrench) {
+void CoupledMotion::wrench_computed(std::int64_t step, double time_s, const WheelWrench &wrench,
+                                    long contacts) {
   if (!connected_ || rig_finished_ || step <= last_sent_step_ || !is_exchange_step(step))
     return;
   last_sent_step_ = step;
   if (rank_ != 0)
     return;
-  coupler::Wrench w;
-  w.step = step;
-  w.time_s = time_s;
-  for (int k = 0; k < 3; ++k) {
-    w.f_C_W[k] = wrench.force_N[k];
-    w.t_C_W[k] = wrench.torque_Nm[k];
-  }
-  w.n_contacts = wrench.contacts;
-  client_->send_wrench(w);
+  client_->send_wrench(coupler::to_message(wrench, step, time_s, contacts));
 }
 
-WheelState CoupledMotion::next_state(const WheelState &now, std::int64_t next_step, double dt_s) {
-  const WheelState held = advance_pose(now, now.velocity_m_s, now.angular_velocity_rad_s, dt_s);
+WheelPose CoupledMotion::next_state(const WheelPose &now, std::int64_t next_step, double dt_s) {
+  const WheelPose held = integrate_pose(now, dt_s); // the twist of `now` held
   if (rig_finished_ || !is_exchange_step(next_step))
     return held; // zero-order hold
-  WheelState state = now;
+  WheelPose state = now;
   int finished = 0;
   if (rank_ == 0) {
     try {
-      state = from_wire(client_->receive_pose(next_step).state);
+      state = coupler::from_message(client_->receive_pose(next_step).state);
     } catch (const coupler::PeerClosedError &e) {
       if (e.reason() != coupler::CloseReason::Finished)
         throw;

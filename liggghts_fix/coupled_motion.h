@@ -38,21 +38,23 @@ public:
   ~CoupledMotion() override; // sends Close{finished} if the session is open
 
   std::string describe() const override;
-  /// Handshake (rank 0 talks, all ranks get the result): returns the rig's state for
+  /// Handshake (rank 0 talks, all ranks get the result): returns the rig's pose and twist for
   /// `start_step`. `initial` is the fix's pose (origin), sent as the client's proposal.
-  WheelState connect(const WheelState &initial, std::int64_t start_step, double dt_s);
+  WheelPose connect(const WheelPose &initial, std::int64_t start_step, double dt_s);
   bool connected() const { return connected_; }
   /// True once the rig ended the session with Close{finished} (its test phase is over): the
   /// wheel then keeps its last twist (zero-order hold) until the deck's run ends.
   bool rig_finished() const { return rig_finished_; }
-  void wrench_computed(std::int64_t step, double time_s, const WheelWrench &wrench) override;
-  WheelState next_state(const WheelState &now, std::int64_t next_step, double dt_s) override;
+  void wrench_computed(std::int64_t step, double time_s, const WheelWrench &wrench,
+                       long contacts) override;
+  WheelPose next_state(const WheelPose &now, std::int64_t next_step, double dt_s) override;
   /// Ends the session with Close{finished} (rank 0; no-op if not connected).
   void close();
 
 private:
   bool is_exchange_step(std::int64_t step) const;
-  WheelState broadcast(const WheelState &state) const;
+  /// Rank 0's pose on every rank (as its wire state: coupler::to_message / from_message).
+  WheelPose broadcast(const WheelPose &pose) const;
 
   Settings settings_;
   MPI_Comm world_;

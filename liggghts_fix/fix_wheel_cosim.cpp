@@ -81,7 +81,7 @@ struct CandidateList {
 /// One contact pass over the particles: the wheel frame of the step and the wheel's wrench,
 /// summed over this rank's particles.
 struct ContactPass {
-  const WheelState &state;
+  const WheelPose &state;
   Eigen::Matrix3d R;  ///< wheel frame -> world
   Eigen::Matrix3d Rt; ///< world -> wheel frame
   double bounding_radius_m;
@@ -92,9 +92,9 @@ struct ContactPass {
   Eigen::Vector3d wheel_torque_Nm = Eigen::Vector3d::Zero();
   double ncontacts = 0.0;
 
-  ContactPass(const WheelState &s, double bounding_m, double dt, bool update, bool vtk)
-      : state(s), R(s.orientation.toRotationMatrix()), Rt(R.transpose()),
-        bounding_radius_m(bounding_m), dt_s(dt), update_history(update), accumulate_vtk(vtk) {}
+  ContactPass(const WheelPose &s, double bounding_m, double dt, bool update, bool vtk)
+      : state(s), R(s.q_WB.toRotationMatrix()), Rt(R.transpose()), bounding_radius_m(bounding_m),
+        dt_s(dt), update_history(update), accumulate_vtk(vtk) {}
 };
 
 struct WheelCosimState {
@@ -108,7 +108,7 @@ struct WheelCosimState {
   std::vector<contact::PairConstants> pair; // by particle type (index = type)
   std::vector<contact::Material> material;  // by type
 
-  WheelState state;
+  WheelPose state;
   std::int64_t state_step = -1; // the step `state` belongs to
   std::unique_ptr<WheelMotion> motion;
   PrescribedMotion *prescribed = nullptr; // the motion, if prescribed
@@ -183,7 +183,7 @@ FixWheelCosim::FixWheelCosim(LAMMPS *lmp, int narg, char **arg)
     s_->triangle_area_m2.push_back(0.5 * (mesh.vertices_m[t[1]] - mesh.vertices_m[t[0]])
                                              .cross(mesh.vertices_m[t[2]] - mesh.vertices_m[t[0]])
                                              .norm());
-  s_->state.position_m = s_->origin_m;
+  s_->state.p_WB_W = s_->origin_m;
 
   // The motion source. Components are constants or equal-style variables (resolved in init()).
   std::array<wheelsim::PrescribedMotion::Component, 3> v, w;
@@ -517,10 +517,9 @@ void FixWheelCosim::check_timestep() {
   double vmax_all = 0.0;
   MPI_Allreduce(&vmax, &vmax_all, 1, MPI_DOUBLE, MPI_MAX, world);
   // The wheel's twist: prescribed values now, or the last known state when coupled.
-  const Eigen::Vector3d vw =
-      s_->prescribed ? s_->prescribed->velocity_m_s() : s_->state.velocity_m_s;
+  const Eigen::Vector3d vw = s_->prescribed ? s_->prescribed->velocity_m_s() : s_->state.v_WB_W;
   const Eigen::Vector3d ww =
-      s_->prescribed ? s_->prescribed->angular_velocity_rad_s() : s_->state.angular_velocity_rad_s;
+      s_->prescribed ? s_->prescribed->angular_velocity_rad_s() : s_->state.w_WB_W;
   const double v_impact =
       std::max(vmax_all + vw.norm() + ww.norm() * s_->index->bounding_radius_m(),
                1e-3); // a resting bed still needs a finite impact speed for the Hertz estimate
@@ -571,8 +570,8 @@ void FixWheelCosim::check_timestep() {
 
 void FixWheelCosim::setup(int /*vflag*/) {
   if (s_->prescribed) {
-    s_->state.velocity_m_s = s_->prescribed->velocity_m_s();
-    s_->state.angular_velocity_rad_s = s_->prescribed->angular_velocity_rad_s();
+    s_->state.v_WB_W = s_->prescribed->velocity_m_s();
+    s_->state.w_WB_W = s_->prescribed->angular_velocity_rad_s();
   } else if (!s_->coupled->connected() && !s_->coupled->rig_finished()) {
     try {
       s_->state = s_->coupled->connect(s_->state, update->ntimestep, update->dt);
@@ -689,11 +688,11 @@ void FixWheelCosim::end_of_step() {
 
 void FixWheelCosim::report_wrench() {
   wheelsim::WheelWrench wrench;
-  wrench.force_N = Eigen::Vector3d(vector_[0], vector_[1], vector_[2]);
-  wrench.torque_Nm = Eigen::Vector3d(vector_[3], vector_[4], vector_[5]);
-  wrench.contacts = static_cast<long>(vector_[6]);
+  wrench.f_B_W = Eigen::Vector3d(vector_[0], vector_[1], vector_[2]);
+  wrench.t_B_W = Eigen::Vector3d(vector_[3], vector_[4], vector_[5]);
   try {
-    s_->motion->wrench_computed(update->ntimestep, update->get_cur_time(), wrench);
+    s_->motion->wrench_computed(update->ntimestep, update->get_cur_time(), wrench,
+                                static_cast<long>(vector_[6]));
   } catch (const std::exception &e) {
     coupling_failed(e);
   }
@@ -737,7 +736,7 @@ void FixWheelCosim::compute_contacts(bool update_history) {
   if (pass.accumulate_vtk)
     ++s_->vtk_window_steps;
 
-  const Eigen::Vector3d &centre = s_->state.position_m;
+  const Eigen::Vector3d &centre = s_->state.p_WB_W;
   double local[7] = {pass.wheel_force_N.x(),
                      pass.wheel_force_N.y(),
                      pass.wheel_force_N.z(),
@@ -759,8 +758,8 @@ void FixWheelCosim::contact_particle(int i, wheelsim::ContactPass &pass) {
   double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega,
          **torque = atom->torque;
   const double r = atom->radius[i];
-  const wheelsim::WheelState &state = pass.state;
-  const Vector3d &centre = state.position_m;
+  const wheelsim::WheelPose &state = pass.state;
+  const Vector3d &centre = state.p_WB_W;
 
   contact_force_[i][0] = contact_force_[i][1] = contact_force_[i][2] = 0.0;
   if (!(atom->mask[i] & groupbit))
@@ -848,7 +847,7 @@ bool FixWheelCosim::candidates_exact() const {
 
 bool FixWheelCosim::candidates_stale() const {
   const wheelsim::CandidateList &list = s_->candidates;
-  const double travel2_m2 = (s_->state.position_m - list.centre_m).squaredNorm();
+  const double travel2_m2 = (s_->state.p_WB_W - list.centre_m).squaredNorm();
   return neighbor->ncalls != list.neighbor_builds || atom->nlocal != list.nlocal ||
          travel2_m2 > list.wheel_travel_m * list.wheel_travel_m;
 }
@@ -864,7 +863,7 @@ void FixWheelCosim::build_candidates() {
   const double particle_travel_m =
       at_neighbor_build ? 0.5 * skin_m : (atom->radvary_flag ? 2.0 : 1.0) * skin_m;
   list.wheel_travel_m = wheelsim::kWheelTravelPerSkin * skin_m;
-  list.centre_m = s_->state.position_m;
+  list.centre_m = s_->state.p_WB_W;
   const double reach_m = s_->index->bounding_radius_m() + particle_travel_m + list.wheel_travel_m;
 
   double **x = atom->x;
@@ -1009,21 +1008,11 @@ int FixWheelCosim::maxsize_restart() { return history_columns_ + 1; }
 ------------------------------------------------------------------------- */
 
 void FixWheelCosim::write_restart(FILE *fp) {
-  const wheelsim::WheelState &st = s_->state;
+  const wheelsim::WheelPose &st = s_->state;
   double list[14] = {1.0, // format version
-                     st.position_m.x(),
-                     st.position_m.y(),
-                     st.position_m.z(),
-                     st.orientation.w(),
-                     st.orientation.x(),
-                     st.orientation.y(),
-                     st.orientation.z(),
-                     st.velocity_m_s.x(),
-                     st.velocity_m_s.y(),
-                     st.velocity_m_s.z(),
-                     st.angular_velocity_rad_s.x(),
-                     st.angular_velocity_rad_s.y(),
-                     st.angular_velocity_rad_s.z()};
+                     st.p_WB_W.x(), st.p_WB_W.y(), st.p_WB_W.z(), st.q_WB.w(),   st.q_WB.x(),
+                     st.q_WB.y(),   st.q_WB.z(),   st.v_WB_W.x(), st.v_WB_W.y(), st.v_WB_W.z(),
+                     st.w_WB_W.x(), st.w_WB_W.y(), st.w_WB_W.z()};
   if (comm->me == 0) {
     const int size = sizeof(list);
     fwrite(&size, sizeof(int), 1, fp);
@@ -1035,11 +1024,11 @@ void FixWheelCosim::restart(char *buf) {
   const double *list = reinterpret_cast<const double *>(buf);
   if (list[0] != 1.0)
     bad_argument("restart data of fix wheel/cosim has format %g, expected 1", list[0]);
-  wheelsim::WheelState &st = s_->state;
-  st.position_m = Eigen::Vector3d(list[1], list[2], list[3]);
-  st.orientation = Eigen::Quaterniond(list[4], list[5], list[6], list[7]).normalized();
-  st.velocity_m_s = Eigen::Vector3d(list[8], list[9], list[10]);
-  st.angular_velocity_rad_s = Eigen::Vector3d(list[11], list[12], list[13]);
+  wheelsim::WheelPose &st = s_->state;
+  st.p_WB_W = Eigen::Vector3d(list[1], list[2], list[3]);
+  st.q_WB = Eigen::Quaterniond(list[4], list[5], list[6], list[7]).normalized();
+  st.v_WB_W = Eigen::Vector3d(list[8], list[9], list[10]);
+  st.w_WB_W = Eigen::Vector3d(list[11], list[12], list[13]);
   s_->state_step = -1;  // setup() marks the pose as that of the restart step
   first_setup_ = false; // particles touching a wheel restored mid-run are not an error
   if (comm->me == 0) {

@@ -18,10 +18,12 @@ Eigen::Vector3d PrescribedMotion::angular_velocity_rad_s() const {
   return {angular_velocity_[0](), angular_velocity_[1](), angular_velocity_[2]()};
 }
 
-WheelState PrescribedMotion::next_state(const WheelState &now, std::int64_t next_step,
-                                        double dt_s) {
+WheelPose PrescribedMotion::next_state(const WheelPose &now, std::int64_t next_step, double dt_s) {
   (void)next_step;
-  return advance_pose(now, velocity_m_s(), angular_velocity_rad_s(), dt_s);
+  WheelPose moving = now;
+  moving.v_WB_W = velocity_m_s();
+  moving.w_WB_W = angular_velocity_rad_s();
+  return integrate_pose(moving, dt_s);
 }
 
 } // namespace wheelsim

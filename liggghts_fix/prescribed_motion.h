@@ -21,8 +21,9 @@ public:
                    std::array<Component, 3> angular_velocity_rad_s, std::string description);
 
   std::string describe() const override { return description_; }
-  /// Evaluates the twist at the new step, then moves the pose over the step with it.
-  WheelState next_state(const WheelState &now, std::int64_t next_step, double dt_s) override;
+  /// Evaluates the twist at the new step, then moves the pose over the step with it
+  /// (integrate_pose).
+  WheelPose next_state(const WheelPose &now, std::int64_t next_step, double dt_s) override;
 
   /// The twist the components give now [m/s, rad/s].
   Eigen::Vector3d velocity_m_s() const;

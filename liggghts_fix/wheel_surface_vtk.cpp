@@ -11,17 +11,17 @@
 namespace wheelsim {
 
 bool write_wheel_surface_vtk(const std::string &path, const geometry::TriangleMesh &mesh,
-                             const WheelState &state, const std::vector<double> &pressure_Pa,
+                             const WheelPose &state, const std::vector<double> &pressure_Pa,
                              const std::vector<double> &contact_count, long step, double time_s) {
   FILE *out = std::fopen(path.c_str(), "w");
   if (out == nullptr)
     return false;
-  const Eigen::Matrix3d R = state.orientation.toRotationMatrix();
+  const Eigen::Matrix3d R = state.q_WB.toRotationMatrix();
   std::fprintf(out, "# vtk DataFile Version 3.0\n");
   std::fprintf(out, "wheelsim wheel surface, step %ld, time %.9g s\n", step, time_s);
   std::fprintf(out, "ASCII\nDATASET POLYDATA\nPOINTS %zu double\n", mesh.vertices_m.size());
   for (const Eigen::Vector3d &v : mesh.vertices_m) {
-    const Eigen::Vector3d w = state.position_m + R * v;
+    const Eigen::Vector3d w = state.p_WB_W + R * v;
     std::fprintf(out, "%.9g %.9g %.9g\n", w.x(), w.y(), w.z());
   }
   const std::size_t nt = mesh.triangles.size();

@@ -3,8 +3,8 @@
 #ifndef WHEELSIM_WHEEL_SURFACE_VTK_H
 #define WHEELSIM_WHEEL_SURFACE_VTK_H
 
-#include "wheel_motion.h"
 #include "wheelsim/geometry/triangle_mesh.h"
+#include "wheelsim/pose.h"
 
 #include <string>
 #include <vector>
@@ -15,7 +15,7 @@ namespace wheelsim {
 /// data `contact_pressure` [Pa] (one value per triangle) and `contact_count` (contacts counted
 /// per triangle over the averaging window). Returns false if the file cannot be written.
 bool write_wheel_surface_vtk(const std::string &path, const geometry::TriangleMesh &mesh,
-                             const WheelState &state, const std::vector<double> &pressure_Pa,
+                             const WheelPose &state, const std::vector<double> &pressure_Pa,
                              const std::vector<double> &contact_count, long step, double time_s);
 
 /// One file of a ParaView Data collection: the step it belongs to, its simulation time [s] and

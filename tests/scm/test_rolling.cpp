@@ -17,24 +17,24 @@ constexpr double kR = 0.5, kWidth = 0.3;
 // Rolls the wheel (centre height R − sinkage) from x0 over `length` at v = 0.5 m/s, 20 % slip.
 void roll(ScmTerrain &t, double x0, double length, double sinkage, double dt = 1e-3) {
   const double v = 0.5, omega = v / (kR * (1.0 - 0.2));
-  BodyState b;
-  b.v_WBo_W = Eigen::Vector3d(v, 0, 0);
+  WheelPose b;
+  b.v_WB_W = Eigen::Vector3d(v, 0, 0);
   b.w_WB_W = Eigen::Vector3d(0, omega, 0); // +y axle: rolling forward
   const int steps = static_cast<int>(std::lround(length / (v * dt)));
   for (int k = 0; k <= steps; ++k) {
-    b.p_WBo_W = Eigen::Vector3d(x0 + v * dt * k, 0.0123, kR - sinkage);
-    b.R_WB = Eigen::Quaterniond(Eigen::AngleAxisd(omega * dt * k, Eigen::Vector3d::UnitY()));
+    b.p_WB_W = Eigen::Vector3d(x0 + v * dt * k, 0.0123, kR - sinkage);
+    b.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(omega * dt * k, Eigen::Vector3d::UnitY()));
     t.advance(b, dt);
   }
   // Lift out slowly (0.1 mm per step, no motion otherwise) so the soil under the wheel recovers
   // its elastic sinkage (up to 0.1 mm per node) before contact ends, then clear the wheel.
-  b.v_WBo_W.setZero();
+  b.v_WB_W.setZero();
   b.w_WB_W.setZero();
   for (int k = 0; k < 60; ++k) {
-    b.p_WBo_W.z() += 1e-4;
+    b.p_WB_W.z() += 1e-4;
     t.advance(b, dt);
   }
-  b.p_WBo_W.z() += 1.0;
+  b.p_WB_W.z() += 1.0;
   t.advance(b, dt);
 }
 

@@ -57,18 +57,18 @@ double scm_standing_sinkage(const SoilParameters &soil, double W, NormalDirectio
   s.bulldozing.enabled = false; // the analytic anchor has no bulldozing
   ScmTerrain t(soil, s, test::make_cylinder(kR, kWidth, 720, 1));
   const double dt = 1e-3, vz = -0.02;
-  BodyState b;
-  b.p_WBo_W = Eigen::Vector3d(s.grid_spacing_m / 3.0, s.grid_spacing_m / 2.0, kR + 1e-3);
-  b.v_WBo_W = Eigen::Vector3d(0, 0, vz);
+  WheelPose b;
+  b.p_WB_W = Eigen::Vector3d(s.grid_spacing_m / 3.0, s.grid_spacing_m / 2.0, kR + 1e-3);
+  b.v_WB_W = Eigen::Vector3d(0, 0, vz);
   double f_prev = 0.0, sink_prev = -1e-3;
   for (int step = 0; step < 100000; ++step) {
-    const double sink = kR - b.p_WBo_W.z();
-    const double f = t.advance(b, dt).force_N.z();
+    const double sink = kR - b.p_WB_W.z();
+    const double f = t.advance(b, dt).wrench.f_B_W.z();
     if (f >= W)
       return sink_prev + (W - f_prev) / (f - f_prev) * (sink - sink_prev);
     f_prev = f;
     sink_prev = sink;
-    b.p_WBo_W.z() += vz * dt;
+    b.p_WB_W.z() += vz * dt;
   }
   ADD_FAILURE() << "load never reached";
   return 0.0;

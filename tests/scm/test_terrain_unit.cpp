@@ -23,10 +23,10 @@ ScmSettings no_bulldozing(double delta) {
   return s;
 }
 
-BodyState at(const Eigen::Vector3d &p, double pitch_rad = 0.0) {
-  BodyState b;
-  b.p_WBo_W = p;
-  b.R_WB = Eigen::Quaterniond(Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()));
+WheelPose at(const Eigen::Vector3d &p, double pitch_rad = 0.0) {
+  WheelPose b;
+  b.p_WB_W = p;
+  b.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()));
   return b;
 }
 
@@ -97,11 +97,11 @@ TEST(Intersection, FlatPlateMatchesBekkerWithPatchWidth) {
   const double side = 19 * delta, b = 2.0 * side * side / (4.0 * side);
   const double sigma = (soil.Bekker_Kc / b + soil.Bekker_Kphi) * std::pow(z, soil.Bekker_n);
   const double expected = 400 * delta * delta * sigma;
-  EXPECT_NEAR(f.force_N.z(), expected, 1e-9 * expected);
-  EXPECT_NEAR(f.force_N.x(), 0.0, 1e-9 * expected);
+  EXPECT_NEAR(f.wrench.f_B_W.z(), expected, 1e-9 * expected);
+  EXPECT_NEAR(f.wrench.f_B_W.x(), 0.0, 1e-9 * expected);
   // Moment about Bo: node centroid (0.01, 0.01) − Bo (0.001, 0.003), at z − Bo_z = −0.03 − 0.07.
-  EXPECT_NEAR(f.torque_Nm.x(), 0.007 * expected, 1e-9 * expected);
-  EXPECT_NEAR(f.torque_Nm.y(), -0.009 * expected, 1e-9 * expected);
+  EXPECT_NEAR(f.wrench.t_B_W.x(), 0.007 * expected, 1e-9 * expected);
+  EXPECT_NEAR(f.wrench.t_B_W.y(), -0.009 * expected, 1e-9 * expected);
   // Pressure map and plastic sinkage.
   const FieldMap p = t.sample(Field::pressure, 0.0, 0.0, 0.0, 0.0);
   ASSERT_EQ(p.values.size(), 1u);
@@ -117,16 +117,16 @@ TEST(MultiPass, PlasticSinkageAndYieldStay) {
   soil.damping_R = 0.0;
   ScmTerrain t(soil, no_bulldozing(delta), test::make_box(0.4, 0.4, 0.2));
   const Eigen::Vector3d c(0.001, 0.003, 0.07);
-  const double f1 = t.advance(at(c), 1e-3).force_N.z();
+  const double f1 = t.advance(at(c), 1e-3).wrench.f_B_W.z();
   const double zp1 = t.sample(Field::plastic_sinkage, 0, 0, 0, 0).values[0];
   EXPECT_EQ(t.advance(at(c + Eigen::Vector3d(0, 0, 0.5)), 1e-3).contact_nodes, 0);
   EXPECT_EQ(t.sample(Field::pressure, 0, 0, 0, 0).values[0], 0.0) << "σ is 0 off contact";
   // Just above the plastic level: no contact.
   EXPECT_EQ(t.advance(at(c + Eigen::Vector3d(0, 0, 0.03 - zp1 + 1e-6)), 1e-3).contact_nodes, 0);
-  const double f2 = t.advance(at(c), 1e-3).force_N.z();
+  const double f2 = t.advance(at(c), 1e-3).wrench.f_B_W.z();
   EXPECT_NEAR(f2, f1, 1e-9 * f1) << "elastic reload to the yield pressure";
   EXPECT_NEAR(t.sample(Field::plastic_sinkage, 0, 0, 0, 0).values[0], zp1, 1e-15);
-  const double f3 = t.advance(at(c - Eigen::Vector3d(0, 0, 0.01)), 1e-3).force_N.z();
+  const double f3 = t.advance(at(c - Eigen::Vector3d(0, 0, 0.01)), 1e-3).wrench.f_B_W.z();
   const double side = 19 * delta, b = side / 2.0;
   const double sigma = (soil.Bekker_Kc / b + soil.Bekker_Kphi) * std::pow(0.04, soil.Bekker_n);
   EXPECT_NEAR(f3, 400 * delta * delta * sigma, 1e-9 * f3);
@@ -137,7 +137,7 @@ TEST(Intersection, WheelAboveSoilTouchesNothingAndStoresNothing) {
   ScmTerrain t(test::lete_sand(), ScmSettings{}, test::make_cylinder(0.5, 0.3, 60));
   const ScmContact f = t.advance(at(Eigen::Vector3d(0, 0, 0.5001)), 1e-3);
   EXPECT_EQ(f.contact_nodes, 0);
-  EXPECT_EQ(f.force_N.norm(), 0.0);
+  EXPECT_EQ(f.wrench.f_B_W.norm(), 0.0);
   EXPECT_EQ(t.stored_nodes(), 0u);
   EXPECT_EQ(t.sample(Field::height).values.size(), 0u);
   EXPECT_EQ(t.volume_change_m3(), 0.0);
@@ -195,7 +195,7 @@ TEST(Validation, BadSettingsNameTheSettingAndRange) {
   expect_invalid(soil_with([](SoilParameters &s) { s.elastic_K = -1; }), "elastic_K");
   expect_invalid(soil_with([](SoilParameters &s) { s.Mohr_friction = 2.0; }), "Mohr_friction");
   ScmTerrain t(soil, ScmSettings{}, mesh);
-  expect_invalid([&] { t.advance(BodyState{}, 0.0); }, "scm time step dt must be > 0 s, got 0");
+  expect_invalid([&] { t.advance(WheelPose{}, 0.0); }, "scm time step dt must be > 0 s, got 0");
 }
 
 TEST(Fields, NamesAndUnits) {

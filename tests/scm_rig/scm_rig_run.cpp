@@ -76,8 +76,8 @@ ScmRunResult run_scm_rig(const ScmRunSpec &spec, std::shared_ptr<rig::ScmGround>
     torque.v.push_back(o.driving_torque_Nm);
     slip.v.push_back(o.slip);
     if (std::isnan(x_first))
-      x_first = o.wheel.p_WBo_W.x();
-    x_last = o.wheel.p_WBo_W.x();
+      x_first = o.wheel.p_WB_W.x();
+    x_last = o.wheel.p_WB_W.x();
   });
   r.sinkage_m = sinkage.mean();
   r.sinkage_std_m = sinkage.std();

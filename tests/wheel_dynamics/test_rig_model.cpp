@@ -42,7 +42,7 @@ TEST(RigModel, FreeFallMatchesAnalytic) {
   const double zc0 = (Mz * q0.z_m + Mm * q0.mass_z_m) / (Mz + Mm);
   const int n = 10000;
   for (int i = 0; i < n; ++i)
-    rig.step(ContactWrench{}, dt);
+    rig.step(WheelWrench{}, dt);
   const double t = n * dt;
   const auto &q = rig.coordinates();
   const double zc = (Mz * q.z_m + Mm * q.mass_z_m) / (Mz + Mm);
@@ -54,10 +54,10 @@ TEST(RigModel, FreeFallMatchesAnalytic) {
   EXPECT_NEAR(q.x_m, 0.5 * t, 1e-12);
   EXPECT_NEAR(q.theta_rad, 2.0 * t, 1e-12);
   EXPECT_DOUBLE_EQ(rig.velocities().omega_rad_s, 2.0);
-  const WheelState s = rig.wheel_state();
-  EXPECT_NEAR(s.R_WB.norm(), 1.0, 1e-15);
+  const WheelPose s = rig.wheel_state();
+  EXPECT_NEAR(s.q_WB.norm(), 1.0, 1e-15);
   // Positive θ about +y: the wheel's forward point (+x) turns downwards (-z).
-  const Eigen::Vector3d fwd = s.R_WB * Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d fwd = s.q_WB * Eigen::Vector3d::UnitX();
   EXPECT_NEAR(fwd.x(), std::cos(2.0 * t), 1e-12);
   EXPECT_NEAR(fwd.z(), -std::sin(2.0 * t), 1e-12);
 }
@@ -86,7 +86,7 @@ void check_natural_frequency(double k, double m) {
   double prev = rig.coordinates().mass_z_m - eq;
   while (rig.time_s() < 20.5 * T) {
     const double t0 = rig.time_s();
-    rig.step(ContactWrench{}, dt);
+    rig.step(WheelWrench{}, dt);
     const double cur = rig.coordinates().mass_z_m - eq;
     if (prev < 0 && cur >= 0)
       crossings.push_back(t0 + dt * (-prev) / (cur - prev));
@@ -198,7 +198,7 @@ TEST(RigModel, DampingDissipatesEnergy) {
   rig.set_drives(d);
   const double E0 = rig.energy().total_J();
   for (int i = 0; i < 50000; ++i)
-    rig.step(ContactWrench{}, 1e-4);
+    rig.step(WheelWrench{}, 1e-4);
   // ζ = c / (2 sqrt(k m)) = 0.115: after 5 s (2.8 periods) the amplitude is e^{-ζ ω t} = 0.14.
   const double E_osc0 = 0.5 * p.spring_k_N_m * 0.01 * 0.01;
   const double lost = E0 - rig.energy().total_J();
@@ -216,9 +216,9 @@ TEST(RigModel, ImposedVelocitiesAndReactions) {
   d.carriage_value = 0.8 * 0.6; // slip 0.2 at R 0.6
   d.spindle = Drive::imposed_velocity;
   rig.set_drives(d);
-  ContactWrench w;
-  w.force_N = Eigen::Vector3d(100.0, 7.0, 0.0);
-  w.torque_Nm = Eigen::Vector3d(3.0, -60.0, 5.0);
+  WheelWrench w;
+  w.f_B_W = Eigen::Vector3d(100.0, 7.0, 0.0);
+  w.t_B_W = Eigen::Vector3d(3.0, -60.0, 5.0);
   rig.step(w, 1e-3);
   EXPECT_DOUBLE_EQ(rig.velocities().omega_rad_s, 1.0);
   EXPECT_DOUBLE_EQ(rig.velocities().x_m_s, 0.48);
@@ -240,10 +240,10 @@ TEST(RigModel, TimeIsStepCountTimesDtNotASumOfSteps) {
   // 2.0 s fired one step late. Time is t0 + n dt, exactly as the step count says.
   Rig rig(reference_rig(), RigCoordinates{}, RigVelocities{}, 0.25);
   for (int i = 0; i < 4000; ++i)
-    rig.step(ContactWrench{}, 5e-4);
+    rig.step(WheelWrench{}, 5e-4);
   EXPECT_EQ(rig.time_s(), 0.25 + 4000 * 5e-4);
   for (int i = 0; i < 3; ++i) // a new time step continues from where the old one ended
-    rig.step(ContactWrench{}, 1e-3);
+    rig.step(WheelWrench{}, 1e-3);
   EXPECT_EQ(rig.time_s(), (0.25 + 4000 * 5e-4) + 3 * 1e-3);
 }
 

@@ -87,7 +87,7 @@ TEST(RigSimulation, PhasesReleaseWithoutImpactAndSettle) {
   double peak = 0;
   for (const auto &o : r.out)
     if (o.phase == Phase::release || o.phase == Phase::settle)
-      peak = std::max(peak, o.contact.force_N.z());
+      peak = std::max(peak, o.contact.f_B_W.z());
   EXPECT_LT(peak, 1.02 * kLoad);
   EXPECT_GT(peak, 0.98 * kLoad);
   // Static sinkage on the penalty ground: W / k_n.
@@ -234,7 +234,7 @@ TEST(RigSimulation, RampedLoadGivesMonotoneDrawbarRampAndSlipCurve) {
   int checked = 0;
   for (const auto &o : r.out)
     if (o.phase == Phase::test && o.drawbar_pull_N > 0.1 * kMu * kLoad && o.step % 5000 == 0) {
-      const double Fx = o.contact.force_N.x(), N = o.contact.force_N.z();
+      const double Fx = o.contact.f_B_W.x(), N = o.contact.f_B_W.z();
       const double s_law = 0.1 * std::atanh(Fx / (kMu * N)) / (kOmega * kR);
       EXPECT_NEAR(o.slip, s_law, 0.005 * s_law) << "load " << o.drawbar_pull_N;
       EXPECT_NEAR(Fx, o.drawbar_pull_N, 0.05 * o.drawbar_pull_N);
@@ -252,7 +252,7 @@ TEST(RigSimulation, TorqueMotorAndAdvanceAfterEndThrow) {
   sim.run(g, [&](const RigOutputs &o) { last = o; });
   EXPECT_NEAR(last.driving_torque_Nm, 6000.0, 1e-9);
   EXPECT_NEAR(last.slip, 0.1, 1e-9); // the carriage follows the emerging ω
-  EXPECT_THROW(sim.advance(ContactWrench{}), std::logic_error);
+  EXPECT_THROW(sim.advance(WheelWrench{}), std::logic_error);
 }
 
 TEST(RigSimulation, ReleaseTimeoutIsAnError) {
@@ -261,7 +261,7 @@ TEST(RigSimulation, ReleaseTimeoutIsAnError) {
   RigSimulation sim(parse_rig_config(text, "t.toml"));
   try {
     while (!sim.finished())
-      sim.advance(ContactWrench{}); // no terrain: never carried
+      sim.advance(WheelWrench{}); // no terrain: never carried
     FAIL() << "no error";
   } catch (const std::runtime_error &e) {
     EXPECT_NE(std::string(e.what()).find("run.release_timeout"), std::string::npos) << e.what();

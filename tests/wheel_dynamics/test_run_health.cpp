@@ -53,7 +53,7 @@ std::vector<HealthFinding> run_checked(RigSimulation &sim, Terrain terrain,
   health.set_contact_stiffness(stiffness_N_m);
   try {
     while (!sim.finished()) {
-      const ContactWrench w = terrain(sim.wheel_state(), sim.time_s());
+      const WheelWrench w = terrain(sim.wheel_state(), sim.time_s());
       health.before_step(w);
       health.after_step(sim.advance(w), 1.0);
     }
@@ -102,17 +102,17 @@ TEST(RunHealth, AHealthyFlatGroundRunHasNoFinding) {
   RigSimulation sim(parse_rig_config(config(), "t.toml"));
   FlatGround ground = make_flat_ground(sim.config(), sim.wheel());
   const auto findings =
-      run_checked(sim, [&](const WheelState &s, double t) { return ground.contact(s, t); });
+      run_checked(sim, [&](const WheelPose &s, double t) { return ground.contact(s, t); });
   EXPECT_TRUE(findings.empty()) << findings.front().code << ": " << findings.front().message;
 }
 
 TEST(RunHealth, NonFiniteContactForceStopsNamingTheQuantityAndStep) {
   RigSimulation sim(parse_rig_config(config(), "t.toml"));
   FlatGround ground = make_flat_ground(sim.config(), sim.wheel());
-  const auto findings = run_checked(sim, [&](const WheelState &s, double t) {
-    ContactWrench w = ground.contact(s, t);
+  const auto findings = run_checked(sim, [&](const WheelPose &s, double t) {
+    WheelWrench w = ground.contact(s, t);
     if (sim.step() == 1234)
-      w.force_N.z() = std::nan("");
+      w.f_B_W.z() = std::nan("");
     return w;
   });
   ASSERT_EQ(codes(findings), std::vector<std::string>{"nonfinite_state/error"});
@@ -126,8 +126,8 @@ TEST(RunHealth, AWheelThatFallsThroughTheGroundStopsAtOneRadiusOfSinkage) {
   // The ground vanishes 0.1 s into the test phase: the wheel falls; stopped when sinkage > R.
   RigSimulation sim(parse_rig_config(config(), "t.toml"));
   FlatGround ground = make_flat_ground(sim.config(), sim.wheel());
-  const auto findings = run_checked(sim, [&](const WheelState &s, double t) {
-    return sim.phase() == Phase::test && t > sim.test_start_s() + 0.1 ? ContactWrench{}
+  const auto findings = run_checked(sim, [&](const WheelPose &s, double t) {
+    return sim.phase() == Phase::test && t > sim.test_start_s() + 0.1 ? WheelWrench{}
                                                                       : ground.contact(s, t);
   });
   ASSERT_FALSE(findings.empty());
@@ -159,7 +159,7 @@ TEST(RunHealth, ContactStiffTooForTheTimeStepIsFlagged) {
     RigSimulation sim(parse_rig_config(config(), "t.toml"));
     FlatGround ground = make_flat_ground(sim.config(), sim.wheel());
     const auto findings = run_checked(
-        sim, [&](const WheelState &s, double t) { return ground.contact(s, t); }, k);
+        sim, [&](const WheelPose &s, double t) { return ground.contact(s, t); }, k);
     EXPECT_EQ(codes(findings), std::vector<std::string>{expected}) << "k = " << k;
   }
 }
@@ -173,7 +173,7 @@ TEST(RunHealth, EfficiencyAboveOneMinusSlipIsFlagged) {
   p.surface_height_m = sim.config().terrain.surface_height_m + 0.1 * sim.wheel().effective_radius_m;
   FlatGround ground(p);
   const auto findings =
-      run_checked(sim, [&](const WheelState &s, double t) { return ground.contact(s, t); });
+      run_checked(sim, [&](const WheelPose &s, double t) { return ground.contact(s, t); });
   ASSERT_EQ(codes(findings), std::vector<std::string>{"efficiency_bound/warning"});
   EXPECT_NE(findings[0].message.find("above the bound 1 - s = 0.8"), std::string::npos)
       << findings[0].message;
@@ -183,9 +183,9 @@ TEST(RunHealth, WheelOutOfContactInTheTestPhaseIsFlagged) {
   // Every 4th step of the test phase the ground gives nothing (25 % out of contact: warning).
   RigSimulation sim(parse_rig_config(config(), "t.toml"));
   FlatGround ground = make_flat_ground(sim.config(), sim.wheel());
-  const auto findings = run_checked(sim, [&](const WheelState &s, double t) {
-    const ContactWrench w = ground.contact(s, t);
-    return sim.phase() == Phase::test && sim.step() % 4 == 0 ? ContactWrench{} : w;
+  const auto findings = run_checked(sim, [&](const WheelPose &s, double t) {
+    const WheelWrench w = ground.contact(s, t);
+    return sim.phase() == Phase::test && sim.step() % 4 == 0 ? WheelWrench{} : w;
   });
   const auto c = codes(findings);
   EXPECT_NE(std::find(c.begin(), c.end(), "lost_contact/warning"), c.end()) << c.size();
@@ -201,7 +201,7 @@ template <class F> std::vector<HealthFinding> feed(const std::string &carriage, 
     o.time_s = i * 2e-4;
     o.phase = Phase::test;
     o.vertical_load_N = 15.0;
-    o.contact.force_N.z() = 15.0;
+    o.contact.f_B_W.z() = 15.0;
     o.slip = 0.2;
     f(i, o);
     health.after_step(o, 1.0);

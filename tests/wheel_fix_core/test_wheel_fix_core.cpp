@@ -1,5 +1,6 @@
-// Unit tests of fix wheel/cosim's plain C++ parts: pose integration, prescribed motion, contact
-// history slots, the wheel-surface VTK writer and its ParaView collection.
+// Unit tests of fix wheel/cosim's plain C++ parts: pose integration (as the fix uses it; the
+// function itself is tested in tests/pose), prescribed motion, contact history slots, the
+// wheel-surface VTK writer and its ParaView collection.
 #include "contact_slots.h"
 #include "prescribed_motion.h"
 #include "wheel_motion.h"
@@ -18,35 +19,37 @@ using namespace wheelsim;
 
 TEST(AdvancePose, ConstantTwistMatchesTheClosedForm) {
   // n steps of constant ω about +y equal one rotation by ω t (what fix move/mesh rotate does).
-  WheelState s;
-  s.position_m = Vector3d(1, 2, 3);
+  WheelPose s;
+  s.p_WB_W = Vector3d(1, 2, 3);
   const Vector3d v(0.1, 0, -0.02), w(0, 2.0, 0);
+  s.v_WB_W = v;
+  s.w_WB_W = w;
   const double dt = 1e-4;
   const int n = 10000;
   for (int i = 0; i < n; ++i)
-    s = advance_pose(s, v, w, dt);
+    s = integrate_pose(s, dt);
   const double t = n * dt;
   // 1e4 additions at coordinates ~3 m: round-off ~ n * eps * 3 m ~ 1e-11 m
-  EXPECT_NEAR((s.position_m - (Vector3d(1, 2, 3) + v * t)).norm(), 0.0, 1e-10);
+  EXPECT_NEAR((s.p_WB_W - (Vector3d(1, 2, 3) + v * t)).norm(), 0.0, 1e-10);
   const Eigen::Quaterniond expected(Eigen::AngleAxisd(2.0 * t, Vector3d::UnitY()));
-  EXPECT_NEAR(s.orientation.angularDistance(expected), 0.0, 1e-10);
+  EXPECT_NEAR(s.q_WB.angularDistance(expected), 0.0, 1e-10);
   // A wheel point at the top moves forward (+x) for ω along +y.
   const Vector3d top(0, 0, 0.5);
-  EXPECT_GT(s.velocity_at(s.position_m + top).x(), v.x());
+  EXPECT_GT(s.velocity_at(s.p_WB_W + top).x(), v.x());
 }
 
 TEST(PrescribedMotion, EvaluatesItsComponentsEveryStep) {
   double speed = 0.0;
   PrescribedMotion m({[&] { return speed; }, [] { return 0.0; }, [] { return 0.0; }},
                      {[] { return 0.0; }, [] { return 1.0; }, [] { return 0.0; }}, "test");
-  WheelState s;
+  WheelPose s;
   speed = 1.0;
   s = m.next_state(s, 1, 0.5);
   speed = 3.0;
   s = m.next_state(s, 2, 0.5);
-  EXPECT_DOUBLE_EQ(s.position_m.x(), 0.5 + 1.5);
-  EXPECT_DOUBLE_EQ(s.velocity_m_s.x(), 3.0);
-  EXPECT_DOUBLE_EQ(s.angular_velocity_rad_s.y(), 1.0);
+  EXPECT_DOUBLE_EQ(s.p_WB_W.x(), 0.5 + 1.5);
+  EXPECT_DOUBLE_EQ(s.v_WB_W.x(), 3.0);
+  EXPECT_DOUBLE_EQ(s.w_WB_W.y(), 1.0);
 }
 
 namespace {
@@ -120,9 +123,9 @@ TEST(WheelSurfaceVtk, WritesThePosedMeshAndCellData) {
   geometry::TriangleMesh mesh;
   mesh.vertices_m = {Vector3d(0, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0), Vector3d(0, 0, 1)};
   mesh.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-  WheelState s;
-  s.position_m = Vector3d(10, 0, 0);
-  s.orientation = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitZ());
+  WheelPose s;
+  s.p_WB_W = Vector3d(10, 0, 0);
+  s.q_WB = Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitZ());
   const std::string path = ::testing::TempDir() + "wheel_surface_test.vtk";
   ASSERT_TRUE(write_wheel_surface_vtk(path, mesh, s, {1, 2, 3, 4}, {0, 1, 0, 2}, 42, 0.5));
   std::ifstream in(path);

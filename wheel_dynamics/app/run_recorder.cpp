@@ -48,12 +48,12 @@ RunRecorder::~RunRecorder() = default;
 void RunRecorder::record(std::int64_t step, const RigOutputs &o, double contacts) {
   const double t = o.time_s;
   const auto &w = o.wheel;
-  const double p[3] = {w.p_WBo_W.x(), w.p_WBo_W.y(), w.p_WBo_W.z()};
-  const double q[4] = {w.R_WB.w(), w.R_WB.x(), w.R_WB.y(), w.R_WB.z()};
-  const double v[3] = {w.v_WBo_W.x(), w.v_WBo_W.y(), w.v_WBo_W.z()};
+  const double p[3] = {w.p_WB_W.x(), w.p_WB_W.y(), w.p_WB_W.z()};
+  const double q[4] = {w.q_WB.w(), w.q_WB.x(), w.q_WB.y(), w.q_WB.z()};
+  const double v[3] = {w.v_WB_W.x(), w.v_WB_W.y(), w.v_WB_W.z()};
   const double om[3] = {w.w_WB_W.x(), w.w_WB_W.y(), w.w_WB_W.z()};
-  const double f[3] = {o.contact.force_N.x(), o.contact.force_N.y(), o.contact.force_N.z()};
-  const double tq[3] = {o.contact.torque_Nm.x(), o.contact.torque_Nm.y(), o.contact.torque_Nm.z()};
+  const double f[3] = {o.contact.f_B_W.x(), o.contact.f_B_W.y(), o.contact.f_B_W.z()};
+  const double tq[3] = {o.contact.t_B_W.x(), o.contact.t_B_W.y(), o.contact.t_B_W.z()};
   s_->position->append(step, t, p);
   s_->orientation->append(step, t, q);
   s_->velocity->append(step, t, v);

@@ -18,6 +18,7 @@
 #include "terrain_snapshots.h"
 
 #include "coupler/coupling.h"
+#include "coupler/pose_messages.h"
 #include "coupler/transport.h"
 #include "wheelsim/cli.h"
 #include "wheelsim/rig/config_schema.h"
@@ -50,20 +51,6 @@ std::chrono::milliseconds millis(double seconds) {
   return std::chrono::milliseconds(static_cast<long long>(seconds * 1000.0));
 }
 
-/// Rig state (rig frame) -> wire state (LIGGGHTS world frame = rig frame + offset).
-coupler::WheelState to_wire(const rig::WheelState &s, const Eigen::Vector3d &offset) {
-  coupler::WheelState w;
-  const Eigen::Vector3d p = s.p_WBo_W + offset;
-  for (int k = 0; k < 3; ++k) {
-    w.p_WC_W[k] = p[k];
-    w.v_WC_W[k] = s.v_WBo_W[k];
-    w.w_WB_W[k] = s.w_WB_W[k];
-  }
-  const Eigen::Quaterniond q = s.R_WB.normalized();
-  w.q_WB = {q.w(), q.x(), q.y(), q.z()};
-  return w;
-}
-
 /// Advances the rig one step at a time with the run's health checks (docs/run-health.md) and
 /// records every output.every-th step, with `step_offset` added to the rig's step.
 struct Sink {
@@ -74,7 +61,7 @@ struct Sink {
   long long every;
   std::int64_t &step_offset; ///< LIGGGHTS' start step in a DEM run, else 0
   /// One step with the terrain's wrench at the current state and its contact count.
-  const rig::RigOutputs &advance(const rig::ContactWrench &wrench, double contacts) {
+  const rig::RigOutputs &advance(const WheelWrench &wrench, double contacts) {
     health.before_step(wrench);
     const rig::RigOutputs &o = sim.advance(wrench);
     health.after_step(o, contacts);
@@ -116,7 +103,7 @@ void run_in_process(const rig::TerrainKind &kind, Sink &sink, runfile::RunFile &
   if (ground->height_grid())
     snapshots.emplace(config.terrain.scm, file);
   while (!sim.finished()) {
-    const rig::ContactWrench wrench = ground->contact(sim.wheel_state(), sim.time_s());
+    const WheelWrench wrench = ground->contact(sim.wheel_state(), sim.time_s());
     const rig::RigOutputs &o = sink.advance(wrench, ground->contact_count());
     if (snapshots)
       snapshots->after_step(*ground->height_grid(), o.step, o.time_s);
@@ -132,7 +119,7 @@ public:
   /// Called once with LIGGGHTS' Hello; returns the wheel state (world frame) for its start step.
   virtual coupler::WheelState start(const coupler::Hello &hello) = 0;
   /// Advances one step with the wrench of the current step; returns the new state.
-  virtual coupler::WheelState advance(const rig::ContactWrench &wrench, double contacts) = 0;
+  virtual coupler::WheelState advance(const WheelWrench &wrench, double contacts) = 0;
   virtual bool finished() const = 0;
   virtual std::string where() const = 0; ///< "t = ... s (phase)" for messages
 };
@@ -142,13 +129,14 @@ class RigDriver : public DemDriver {
 public:
   RigDriver(rig::RigSimulation &sim, Sink &sink) : sim_(sim), sink_(sink) {}
   coupler::WheelState start(const coupler::Hello &hello) override {
-    offset_ = Eigen::Vector3d(hello.p_WC_W[0], hello.p_WC_W[1], 0.0);
+    const WheelPose initial = coupler::from_message(hello);
+    offset_ = Eigen::Vector3d(initial.p_WB_W.x(), initial.p_WB_W.y(), 0.0);
     sink_.step_offset = hello.start_step;
-    return to_wire(sim_.wheel_state(), offset_);
+    return message();
   }
-  coupler::WheelState advance(const rig::ContactWrench &wrench, double contacts) override {
+  coupler::WheelState advance(const WheelWrench &wrench, double contacts) override {
     sink_.advance(wrench, contacts);
-    return to_wire(sim_.wheel_state(), offset_);
+    return message();
   }
   bool finished() const override { return sim_.finished(); }
   std::string where() const override {
@@ -158,65 +146,65 @@ public:
   }
 
 private:
+  /// The rig's state in LIGGGHTS' world frame (rig frame + offset), as a wire message.
+  coupler::WheelState message() const {
+    WheelPose pose = sim_.wheel_state();
+    pose.p_WB_W += offset_;
+    pose.q_WB.normalize();
+    return coupler::to_message(pose);
+  }
+
   rig::RigSimulation &sim_;
   Sink &sink_;
   Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();
 };
 
-/// --kinematic: the wheel follows a fixed twist from LIGGGHTS' initial pose, integrated as fix
-/// wheel/cosim's `motion prescribed` does (p += v dt; q <- exp(w dt) q), so a coupled run can be
-/// compared with a prescribed one. Records the pose and the contact wrench only.
+/// --kinematic: the wheel follows a fixed twist from LIGGGHTS' initial pose, integrated by
+/// integrate_pose as fix wheel/cosim's `motion prescribed` is (p += v dt; q <- exp(w dt) q), so a
+/// coupled run can be compared with a prescribed one. Records the pose and the contact wrench only.
 class KinematicDriver : public DemDriver {
 public:
   KinematicDriver(const Eigen::Vector3d &v, const Eigen::Vector3d &w, double dt,
                   runfile::RunFile &file)
-      : v_(v), w_(w), dt_(dt), position_(&file.observable("wheel/position", "m", 3)),
+      : dt_(dt), position_(&file.observable("wheel/position", "m", 3)),
         orientation_(&file.observable("wheel/orientation", "1", 4)),
         force_(&file.observable("contact/force", "N", 3)),
         torque_(&file.observable("contact/torque", "N m", 3)),
-        count_(&file.observable("contact/count", "1", 1)) {}
-  coupler::WheelState start(const coupler::Hello &hello) override {
-    p_ = Eigen::Vector3d(hello.p_WC_W[0], hello.p_WC_W[1], hello.p_WC_W[2]);
-    q_ = Eigen::Quaterniond(hello.q_WB[0], hello.q_WB[1], hello.q_WB[2], hello.q_WB[3]);
-    step_ = hello.start_step;
-    return wire();
+        count_(&file.observable("contact/count", "1", 1)) {
+    pose_.v_WB_W = v;
+    pose_.w_WB_W = w;
   }
-  coupler::WheelState advance(const rig::ContactWrench &wrench, double contacts) override {
+  coupler::WheelState start(const coupler::Hello &hello) override {
+    const WheelPose initial = coupler::from_message(hello);
+    pose_.p_WB_W = initial.p_WB_W;
+    pose_.q_WB = initial.q_WB;
+    step_ = hello.start_step;
+    return coupler::to_message(pose_);
+  }
+  coupler::WheelState advance(const WheelWrench &wrench, double contacts) override {
     const double t = step_ * dt_;
-    const double p[3] = {p_.x(), p_.y(), p_.z()}, q[4] = {q_.w(), q_.x(), q_.y(), q_.z()};
-    const double f[3] = {wrench.force_N.x(), wrench.force_N.y(), wrench.force_N.z()};
-    const double tq[3] = {wrench.torque_Nm.x(), wrench.torque_Nm.y(), wrench.torque_Nm.z()};
+    const Eigen::Vector3d &p_WB_W = pose_.p_WB_W;
+    const Eigen::Quaterniond &q_WB = pose_.q_WB;
+    const double p[3] = {p_WB_W.x(), p_WB_W.y(), p_WB_W.z()},
+                 q[4] = {q_WB.w(), q_WB.x(), q_WB.y(), q_WB.z()};
+    const double f[3] = {wrench.f_B_W.x(), wrench.f_B_W.y(), wrench.f_B_W.z()};
+    const double tq[3] = {wrench.t_B_W.x(), wrench.t_B_W.y(), wrench.t_B_W.z()};
     position_->append(step_, t, p);
     orientation_->append(step_, t, q);
     force_->append(step_, t, f);
     torque_->append(step_, t, tq);
     count_->append(step_, t, contacts);
-    p_ += v_ * dt_;
-    const double angle = w_.norm() * dt_;
-    if (angle > 0.0)
-      q_ = (Eigen::Quaterniond(Eigen::AngleAxisd(angle, w_.normalized())) * q_).normalized();
+    pose_ = integrate_pose(pose_, dt_);
     ++step_;
-    return wire();
+    return coupler::to_message(pose_);
   }
   bool finished() const override { return false; } // until LIGGGHTS closes
   std::string where() const override { return "step " + std::to_string(step_); }
 
 private:
-  coupler::WheelState wire() const {
-    coupler::WheelState s;
-    for (int k = 0; k < 3; ++k) {
-      s.p_WC_W[k] = p_[k];
-      s.v_WC_W[k] = v_[k];
-      s.w_WB_W[k] = w_[k];
-    }
-    s.q_WB = {q_.w(), q_.x(), q_.y(), q_.z()};
-    return s;
-  }
-  Eigen::Vector3d v_, w_;
   double dt_;
   runfile::TimeSeries *position_, *orientation_, *force_, *torque_, *count_;
-  Eigen::Vector3d p_ = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond q_ = Eigen::Quaterniond::Identity();
+  WheelPose pose_; ///< LIGGGHTS' world frame; the twist is the fixed one
   std::int64_t step_ = 0;
 };
 
@@ -257,9 +245,7 @@ void run_dem(const rig::RigConfig &config, DemDriver &driver, runfile::RunFile &
                                "): " + close->message());
     }
     const coupler::Wrench &w = std::get<coupler::Wrench>(message);
-    rig::ContactWrench wrench;
-    wrench.force_N = Eigen::Vector3d(w.f_C_W[0], w.f_C_W[1], w.f_C_W[2]);
-    wrench.torque_Nm = Eigen::Vector3d(w.t_C_W[0], w.t_C_W[1], w.t_C_W[2]);
+    const WheelWrench wrench = coupler::from_message(w);
     coupler::Pose pose;
     pose.step = w.step + every;
     for (int k = 0; k < every && !driver.finished(); ++k)

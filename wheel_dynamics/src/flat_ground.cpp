@@ -29,21 +29,21 @@ FlatGround::FlatGround(const FlatGroundParameters &p) : p_(p) {
         p.slip_velocity_scale_m_s);
 }
 
-ContactWrench FlatGround::contact(const WheelState &s, double time_s) {
+WheelWrench FlatGround::contact(const WheelPose &s, double time_s) {
   const double dt = has_last_time_ ? time_s - last_time_s_ : 0.0;
   last_time_s_ = time_s;
   has_last_time_ = true;
 
-  ContactWrench w;
+  WheelWrench w;
   const double R = p_.radius_m;
-  const double penetration = p_.surface_height_m - (s.p_WBo_W.z() - R);
+  const double penetration = p_.surface_height_m - (s.p_WB_W.z() - R);
   if (penetration <= 0.0) {
     slip_displacement_m_.setZero();
     return w;
   }
-  const double N = std::max(0.0, p_.stiffness_N_m * penetration - p_.damping_N_s_m * s.v_WBo_W.z());
+  const double N = std::max(0.0, p_.stiffness_N_m * penetration - p_.damping_N_s_m * s.v_WB_W.z());
   const Eigen::Vector3d r(0.0, 0.0, -R); // centre -> lowest point, world
-  const Eigen::Vector3d v_contact = s.v_WBo_W + s.w_WB_W.cross(r);
+  const Eigen::Vector3d v_contact = s.v_WB_W + s.w_WB_W.cross(r);
   const Eigen::Vector2d v_slip(v_contact.x(), v_contact.y());
   const double cap = p_.friction * N;
 
@@ -61,8 +61,8 @@ ContactWrench FlatGround::contact(const WheelState &s, double time_s) {
     if (speed > 0.0)
       Ft = -cap * std::tanh(speed / p_.slip_velocity_scale_m_s) * v_slip / speed;
   }
-  w.force_N = Eigen::Vector3d(Ft.x(), Ft.y(), N);
-  w.torque_Nm = r.cross(w.force_N);
+  w.f_B_W = Eigen::Vector3d(Ft.x(), Ft.y(), N);
+  w.t_B_W = r.cross(w.f_B_W);
   return w;
 }
 

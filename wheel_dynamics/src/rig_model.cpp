@@ -63,11 +63,11 @@ double Rig::spring_force_on_mass_N() const {
   return -p_.spring_k_N_m * spring_extension_m() - p_.spring_c_N_s_m * (u_.mass_z_m_s - u_.z_m_s);
 }
 
-void Rig::step(const ContactWrench &w, double dt) {
+void Rig::step(const WheelWrench &w, double dt) {
   check(dt > 0 && std::isfinite(dt), "dt", "> 0 s and finite", dt);
   for (int i = 0; i < 3; ++i) {
-    check_finite(w.force_N[i], "contact force component");
-    check_finite(w.torque_Nm[i], "contact torque component");
+    check_finite(w.f_B_W[i], "contact force component");
+    check_finite(w.t_B_W[i], "contact torque component");
   }
   const double g = p_.gravity_m_s2;
   const double Mx = longitudinal_mass_kg(), Mz = spindle_dof_mass_kg(), Mm = p_.suspended_mass_kg;
@@ -75,15 +75,15 @@ void Rig::step(const ContactWrench &w, double dt) {
 
   // Generalized forces at state n, without the drives.
   const double spring_on_mass = spring_force_on_mass_N();
-  const double fx = w.force_N.x();
-  const double fz = w.force_N.z() - Mz * g - spring_on_mass;
+  const double fx = w.f_B_W.x();
+  const double fz = w.f_B_W.z() - Mz * g - spring_on_mass;
   const double fm = -Mm * g + spring_on_mass;
-  const double ft = w.torque_Nm.y();
+  const double ft = w.t_B_W.y();
 
   RigReactions r;
-  r.held_force_y_N = w.force_N.y();
-  r.held_torque_x_Nm = w.torque_Nm.x();
-  r.held_torque_z_Nm = w.torque_Nm.z();
+  r.held_force_y_N = w.f_B_W.y();
+  r.held_torque_x_Nm = w.t_B_W.x();
+  r.held_torque_z_Nm = w.t_B_W.z();
 
   // Wheel first: the carriage may follow the new ω.
   RigVelocities u = u_;
@@ -131,11 +131,11 @@ void Rig::step(const ContactWrench &w, double dt) {
   time_s_ = segment_time0_s_ + static_cast<double>(steps_ - segment_step0_) * dt;
 }
 
-WheelState Rig::wheel_state() const {
-  WheelState s;
-  s.p_WBo_W = Eigen::Vector3d(q_.x_m, 0.0, q_.z_m);
-  s.R_WB = Eigen::Quaterniond(Eigen::AngleAxisd(q_.theta_rad, Eigen::Vector3d::UnitY()));
-  s.v_WBo_W = Eigen::Vector3d(u_.x_m_s, 0.0, u_.z_m_s);
+WheelPose Rig::wheel_state() const {
+  WheelPose s;
+  s.p_WB_W = Eigen::Vector3d(q_.x_m, 0.0, q_.z_m);
+  s.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(q_.theta_rad, Eigen::Vector3d::UnitY()));
+  s.v_WB_W = Eigen::Vector3d(u_.x_m_s, 0.0, u_.z_m_s);
   s.w_WB_W = Eigen::Vector3d(0.0, u_.omega_rad_s, 0.0);
   return s;
 }

@@ -201,7 +201,7 @@ void RigSimulation::configure_drives(double t_next) {
   rig_.set_drives(d);
 }
 
-const RigOutputs &RigSimulation::advance(const ContactWrench &w) {
+const RigOutputs &RigSimulation::advance(const WheelWrench &w) {
   if (phase_ == Phase::finished)
     throw std::logic_error("RigSimulation::advance: the run is finished (test phase of " +
                            fmt(config_.run.duration_s) + " s done)");
@@ -258,7 +258,7 @@ const RigOutputs &RigSimulation::advance(const ContactWrench &w) {
           "release: the terrain did not carry the load within run.release_timeout = " +
           fmt(config_.run.release_timeout_s) + " s (wheel lowered by " +
           fmt(in_phase * config_.run.release_speed_m_s) +
-          " m, contact force z = " + fmt(w.force_N.z()) + " N of " + fmt(rig_.vertical_load_N()) +
+          " m, contact force z = " + fmt(w.f_B_W.z()) + " N of " + fmt(rig_.vertical_load_N()) +
           " N); check terrain.surface_height and the terrain, or raise run.release_timeout");
     }
     break;

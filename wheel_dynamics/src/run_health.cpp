@@ -91,14 +91,14 @@ void RunHealth::set_grid(double spacing_m, double elastic_K_Pa_m) {
 
 void RunHealth::set_contact_stiffness(double stiffness_N_m) { stiffness_N_m_ = stiffness_N_m; }
 
-void RunHealth::before_step(const ContactWrench &w) {
+void RunHealth::before_step(const WheelWrench &w) {
   double bad = 0.0;
-  const char *name = first_nonfinite({{"contact force x", w.force_N.x()},
-                                      {"contact force y", w.force_N.y()},
-                                      {"contact force z", w.force_N.z()},
-                                      {"contact torque x", w.torque_Nm.x()},
-                                      {"contact torque y", w.torque_Nm.y()},
-                                      {"contact torque z", w.torque_Nm.z()}},
+  const char *name = first_nonfinite({{"contact force x", w.f_B_W.x()},
+                                      {"contact force y", w.f_B_W.y()},
+                                      {"contact force z", w.f_B_W.z()},
+                                      {"contact torque x", w.t_B_W.x()},
+                                      {"contact torque y", w.t_B_W.y()},
+                                      {"contact torque z", w.t_B_W.z()}},
                                      &bad);
   if (name != nullptr)
     stop("nonfinite_state",
@@ -111,12 +111,12 @@ void RunHealth::before_step(const ContactWrench &w) {
 void RunHealth::after_step(const RigOutputs &o, double contacts) {
   last_step_ = o.step;
   last_time_s_ = o.time_s;
-  const WheelState s = sim_.wheel_state(); // state n+1
+  const WheelPose s = sim_.wheel_state(); // state n+1
   double bad = 0.0;
-  const char *name = first_nonfinite({{"wheel position x", s.p_WBo_W.x()},
-                                      {"wheel position z", s.p_WBo_W.z()},
-                                      {"wheel velocity x", s.v_WBo_W.x()},
-                                      {"wheel velocity z", s.v_WBo_W.z()},
+  const char *name = first_nonfinite({{"wheel position x", s.p_WB_W.x()},
+                                      {"wheel position z", s.p_WB_W.z()},
+                                      {"wheel velocity x", s.v_WB_W.x()},
+                                      {"wheel velocity z", s.v_WB_W.z()},
                                       {"wheel angular velocity y", s.w_WB_W.y()},
                                       {"driving torque", o.driving_torque_Nm},
                                       {"drawbar pull", o.drawbar_pull_N}},
@@ -167,7 +167,7 @@ void RunHealth::after_step(const RigOutputs &o, double contacts) {
     return;
   ++test_steps_;
   load_N_ = o.vertical_load_N;
-  if (o.contact.force_N.z() < limits_.contact_load_fraction * o.vertical_load_N)
+  if (o.contact.f_B_W.z() < limits_.contact_load_fraction * o.vertical_load_N)
     ++out_of_contact_steps_;
   const double target = imposed_slip(sim_.config(), sim_.wheel().effective_radius_m);
   if (std::isfinite(target))

@@ -70,17 +70,9 @@ ScmGround::ScmGround(const RigConfig &config, const WheelProperties &wheel)
       }()),
       dt_s_(config.run.dt_s) {}
 
-ContactWrench ScmGround::contact(const WheelState &state, double /*time_s*/) {
-  scm::BodyState body;
-  body.p_WBo_W = state.p_WBo_W;
-  body.R_WB = state.R_WB;
-  body.v_WBo_W = state.v_WBo_W;
-  body.w_WB_W = state.w_WB_W;
-  last_ = terrain_.advance(body, dt_s_);
-  ContactWrench w;
-  w.force_N = last_.force_N;
-  w.torque_Nm = last_.torque_Nm;
-  return w;
+WheelWrench ScmGround::contact(const WheelPose &state, double /*time_s*/) {
+  last_ = terrain_.advance(state, dt_s_);
+  return last_.wrench;
 }
 
 } // namespace wheelsim::rig

@@ -115,7 +115,7 @@ struct ScmTerrain::Impl {
     return x >= d[0] && x <= d[1] && y >= d[2] && y <= d[3];
   }
 
-  ScmContact advance(const BodyState &state, double dt);
+  ScmContact advance(const WheelPose &state, double dt);
   double value(const NodeState &n, Field f) const;
 
   SoilParameters soil;
@@ -135,7 +135,7 @@ struct ScmTerrain::Impl {
   ScmStepTimings timings;
 };
 
-ScmContact ScmTerrain::Impl::advance(const BodyState &state, double dt) {
+ScmContact ScmTerrain::Impl::advance(const WheelPose &state, double dt) {
   using clock = std::chrono::steady_clock;
   auto ms = [](clock::time_point a, clock::time_point b) {
     return std::chrono::duration<double, std::milli>(b - a).count();
@@ -149,8 +149,8 @@ ScmContact ScmTerrain::Impl::advance(const BodyState &state, double dt) {
   last_contact.clear();
 
   const double delta = settings.grid_spacing_m;
-  const Eigen::Matrix3d R = state.R_WB.normalized().toRotationMatrix();
-  const Eigen::Vector3d &p_Bo = state.p_WBo_W;
+  const Eigen::Matrix3d R = state.q_WB.normalized().toRotationMatrix();
+  const Eigen::Vector3d &p_Bo = state.p_WB_W;
   raster.rasterise(R, p_Bo, max_level, delta, bulldozing.rings + 2, grid, window);
   timings = ScmStepTimings{};
   timings.triangles_rasterised = raster.triangles_rasterised();
@@ -187,14 +187,14 @@ ScmContact ScmTerrain::Impl::advance(const BodyState &state, double dt) {
     NodeState &n = window.node(c, grid);
     const Eigen::Vector3d p(window.i_of(c) * delta, window.j_of(c) * delta, window.hit_z[c]);
     const Eigen::Vector3d r = p - p_Bo;
-    const Eigen::Vector3d v = state.v_WBo_W + state.w_WB_W.cross(r);
+    const Eigen::Vector3d v = state.v_WB_W + state.w_WB_W.cross(r);
     const Eigen::Vector3d normal =
         vertical ? up : Eigen::Vector3d(-raster.normal_W(window.hit_tri[c]));
     const NodeLawResult res =
         apply_node_law(n, law, window.hit_z[c], patches[window.patch[c]].inv_b, normal, v, dt);
     const Eigen::Vector3d F = area * (res.sigma * normal + res.tau * res.t_dir);
-    out.force_N += F;
-    out.torque_Nm += r.cross(F);
+    out.wrench.f_B_W += F;
+    out.wrench.t_B_W += r.cross(F);
     plastic_flow[c] = res.plastic_flow_m;
     max_level = std::max(max_level, n.level_initial - n.sinkage_plastic);
     last_contact.push_back(&n);
@@ -264,7 +264,7 @@ ScmTerrain::~ScmTerrain() = default;
 ScmTerrain::ScmTerrain(ScmTerrain &&) noexcept = default;
 ScmTerrain &ScmTerrain::operator=(ScmTerrain &&) noexcept = default;
 
-ScmContact ScmTerrain::advance(const BodyState &state, double dt_s) {
+ScmContact ScmTerrain::advance(const WheelPose &state, double dt_s) {
   return impl_->advance(state, dt_s);
 }
 

@@ -34,7 +34,7 @@ class FlatGround : public Terrain {
 public:
   /// Throws std::invalid_argument naming the offending parameter.
   explicit FlatGround(const FlatGroundParameters &parameters);
-  ContactWrench contact(const WheelState &state, double time_s) override;
+  WheelWrench contact(const WheelPose &state, double time_s) override;
   const FlatGroundParameters &parameters() const { return p_; }
 
 private:

@@ -110,10 +110,10 @@ public:
 
   /// Advances state n -> n+1 by `dt` [s] (> 0, finite) with the contact wrench at state n. The
   /// time is t0 + n dt while dt stays the same (no accumulated rounding).
-  void step(const ContactWrench &wrench_at_current_state, double dt);
+  void step(const WheelWrench &wrench_at_current_state, double dt);
 
   /// The wheel body's state (pose, twist) at the current step, world frame.
-  WheelState wheel_state() const;
+  WheelPose wheel_state() const;
 
   const RigCoordinates &coordinates() const { return q_; }
   const RigVelocities &velocities() const { return u_; }

@@ -4,7 +4,7 @@
 //
 //   RigSimulation sim(config);                 // or (config, wheel properties)
 //   while (!sim.finished()) {
-//     const ContactWrench w = terrain.contact(sim.wheel_state(), sim.time_s());  // or remote
+//     const WheelWrench w = terrain.contact(sim.wheel_state(), sim.time_s());  // or remote
 //     const RigOutputs &out = sim.advance(w);  // outputs of step n; state is now n+1
 //     ...record out...
 //   }
@@ -53,8 +53,8 @@ struct RigOutputs {
   long long step = 0;
   double time_s = 0.0;
   Phase phase = Phase::release;
-  WheelState wheel;                     ///< pose and twist at this step (state n)
-  ContactWrench contact;                ///< contact wrench at state n (about the centre, W)
+  WheelPose wheel;                      ///< pose and twist at this step (state n)
+  WheelWrench contact;                  ///< contact wrench at state n (about the centre, W)
   double carriage_x_m = 0.0;            ///< carriage position [m]
   double forward_velocity_m_s = 0.0;    ///< carriage = wheel-centre speed along x, v [m/s]
   double omega_rad_s = 0.0;             ///< wheel angular speed about +y, ω [rad/s]
@@ -85,7 +85,7 @@ public:
   RigSimulation(const RigConfig &config, const WheelProperties &wheel);
 
   /// State n: what the terrain needs.
-  WheelState wheel_state() const { return rig_.wheel_state(); }
+  WheelPose wheel_state() const { return rig_.wheel_state(); }
   double time_s() const { return rig_.time_s(); }
   long long step() const { return rig_.step_count(); }
   Phase phase() const { return phase_; }
@@ -94,7 +94,7 @@ public:
   /// Applies the phase and mode logic, records the outputs of step n (state n, the wrench at n,
   /// the drives' forces during n -> n+1) and advances the rig to n+1. Throws std::runtime_error
   /// if the release does not complete within run.release_timeout, std::logic_error if finished.
-  const RigOutputs &advance(const ContactWrench &wrench_at_current_state);
+  const RigOutputs &advance(const WheelWrench &wrench_at_current_state);
 
   /// Runs to the end with an in-process terrain, calling `on_step` (if set) after each step.
   template <class OnStep> void run(Terrain &terrain, OnStep on_step) {

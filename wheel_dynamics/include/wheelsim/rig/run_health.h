@@ -77,7 +77,7 @@ public:
   void set_contact_stiffness(double stiffness_N_m);
 
   /// Before RigSimulation::advance: the wrench must be finite (throws RunHealthError).
-  void before_step(const ContactWrench &wrench);
+  void before_step(const WheelWrench &wrench);
   /// After advance: the outputs of step n (with `contacts` of that step) and the new state.
   /// Throws RunHealthError on a non-finite state or a buried wheel.
   void after_step(const RigOutputs &out, double contacts);

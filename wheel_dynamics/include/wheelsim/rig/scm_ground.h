@@ -18,7 +18,7 @@ public:
   ScmGround(const RigConfig &config, const WheelProperties &wheel);
 
   /// Steps the soil with the rig's time step (run.dt): call once per rig step, in order.
-  ContactWrench contact(const WheelState &state, double time_s) override;
+  WheelWrench contact(const WheelPose &state, double time_s) override;
 
   const scm::ScmTerrain &terrain() const { return terrain_; }
   double contact_count() const override { return last_.contact_nodes; }

@@ -5,9 +5,11 @@
 // those of Project Chrono's SCMTerrain (listed in docs/scm-algorithm.md). Reference: docs/scm.md.
 //
 // Frames: world W (x forward, y left, z up; the undisturbed surface is z = surface_height_m),
-// wheel body B = the mesh frame (origin Bo at the wheel centre, axle +y).
+// wheel body B = the mesh frame (origin Bo at the wheel centre, axle +y). The wheel's pose and the
+// contact wrench are the shared types of wheelsim/pose.h (WheelPose, WheelWrench).
 #pragma once
 
+#include "wheelsim/pose.h"
 #include "wheelsim/scm/soil.h"
 
 #include <Eigen/Core>
@@ -51,20 +53,11 @@ struct ScmSettings {
   std::optional<Eigen::Vector4d> domain_m;
 };
 
-/// Pose and twist of the wheel body at one step (world frame).
-struct BodyState {
-  Eigen::Vector3d p_WBo_W = Eigen::Vector3d::Zero(); ///< wheel centre [m]
-  Eigen::Quaterniond R_WB = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d v_WBo_W = Eigen::Vector3d::Zero(); ///< velocity of Bo [m/s]
-  Eigen::Vector3d w_WB_W = Eigen::Vector3d::Zero();  ///< angular velocity [rad/s]
-};
-
 /// Result of one step.
 struct ScmContact {
-  Eigen::Vector3d force_N = Eigen::Vector3d::Zero();   ///< soil force on the wheel, W [N]
-  Eigen::Vector3d torque_Nm = Eigen::Vector3d::Zero(); ///< about Bo, W [N m]
-  int contact_nodes = 0;                               ///< nodes in contact this step
-  int patches = 0;                                     ///< connected contact patches
+  WheelWrench wrench;    ///< soil force on the wheel and its torque about Bo, W [N, N m]
+  int contact_nodes = 0; ///< nodes in contact this step
+  int patches = 0;       ///< connected contact patches
 };
 
 /// Wall time [ms] of the parts of the last advance() (benchmarks), and the work they did.
@@ -108,7 +101,7 @@ public:
 
   /// Contact at `state`, and the soil's update over the step dt_s (shear displacement, plastic
   /// flow, bulldozing). Call once per step, in order.
-  ScmContact advance(const BodyState &state, double dt_s);
+  ScmContact advance(const WheelPose &state, double dt_s);
 
   /// Grid window [m] that holds every node ever touched (empty map if none).
   FieldMap sample(Field field) const;
