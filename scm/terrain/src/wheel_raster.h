@@ -25,11 +25,11 @@ class WheelRasteriser {
 public:
   explicit WheelRasteriser(const geometry::TriangleMesh &mesh_B, int sectors = 256, int bands = 8);
 
-  /// Rasterises the wheel at pose (R_WB, p_WBo_W) onto a new window of `window` (nodes at
+  /// Rasterises the wheel at pose (R_WB, p_WB_W) onto a new window of `window` (nodes at
   /// spacing delta_m), keeping only triangles that reach below z_cut_m. The window covers the
   /// xy footprint of the kept triangles plus `margin` nodes on each side (empty if none).
   /// Afterwards normal_W(hit_tri[c]) is the outward unit normal (W) of the triangle at cell c.
-  void rasterise(const Eigen::Matrix3d &R_WB, const Eigen::Vector3d &p_WBo_W, double z_cut_m,
+  void rasterise(const Eigen::Matrix3d &R_WB, const Eigen::Vector3d &p_WB_W, double z_cut_m,
                  double delta_m, int margin, const TileGrid &grid, StepWindow &window);
 
   const Eigen::Vector3d &normal_W(int step_triangle) const { return step_normal_W_[step_triangle]; }
