@@ -15,6 +15,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
+source "$root/validation/common/provenance.sh"
 build_dir=${WHEELSIM_BUILD_DIR:-$root/build}
 python=/usr/bin/python3
 smoke=0 sensitivity=0 out="" sweep_args=() args=("$@")
@@ -70,16 +71,7 @@ if ((sensitivity)); then
     "0.1 m/s, d50 2.75 mm=$dest/results.csv" "0.05 m/s, d50 2.75 mm=$dest/results_speed_0.05.csv" \
     "0.1 m/s, d50 2.06 mm=$dest/results_grain_0.75.csv"
 fi
-wall=$(( $(date +%s) - start ))
-cat > "$dest/provenance.toml" <<TOML
-# written by validation/blind_smooth_loose_sand/run.sh
-command = "validation/blind_smooth_loose_sand/run.sh${args[*]:+ }${args[*]}"
-git_commit = "$(git -C "$root" rev-parse HEAD 2>/dev/null || echo unknown)"
-git_changes = $( [[ -n $(git -C "$root" status --porcelain -- . ':!runs' 2>/dev/null) ]] && echo true || echo false )
-host = "$(hostname)"
-cores = $(nproc)
-started_utc = "$started_utc"
-wall_s = $wall   # this invocation (finished points skipped on a resume cost nothing here)
-runs_dir = "$out"
-TOML
+write_provenance "$dest/provenance.toml" validation/blind_smooth_loose_sand \
+  "validation/blind_smooth_loose_sand/run.sh${args[*]:+ }${args[*]}" \
+  "$started_utc" "$start" "$out"
 exit $status

@@ -12,6 +12,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
+source "$root/validation/common/provenance.sh"
 build_dir=${WHEELSIM_BUILD_DIR:-$root/build}
 python=/usr/bin/python3
 smoke=0 out="" sweep_args=()
@@ -45,16 +46,7 @@ else window=(--window-start 1.0 --window-end 2.4); dest=$here; fi
   --csv "$dest/curves.csv"
 "$python" "$here/compare.py" "$dest/results.csv" "$here/reference.csv" --r-eff 0.11 \
   --png "$dest/comparison.png" --md "$dest/comparison.md"
-wall=$(( $(date +%s) - start ))
-cat > "$dest/provenance.toml" <<TOML
-# written by validation/nakanishi_2020/run.sh
-command = "validation/nakanishi_2020/run.sh${smoke:+ }$( ((smoke)) && echo --smoke )"
-git_commit = "$(git -C "$root" rev-parse HEAD 2>/dev/null || echo unknown)"
-git_changes = $( [[ -n $(git -C "$root" status --porcelain -- . ':!runs' 2>/dev/null) ]] && echo true || echo false )
-host = "$(hostname)"
-cores = $(nproc)
-started_utc = "$started_utc"
-wall_s = $wall   # this invocation (finished points skipped on a resume cost nothing here)
-runs_dir = "$out"
-TOML
+write_provenance "$dest/provenance.toml" validation/nakanishi_2020 \
+  "validation/nakanishi_2020/run.sh$( ((smoke)) && echo " --smoke" )" \
+  "$started_utc" "$start" "$out"
 exit $status
