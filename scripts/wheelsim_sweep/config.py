@@ -34,7 +34,7 @@ SOILBIN_VARS = ("bin_length", "bin_width", "fill_height", "fill_solid_fraction",
                 "seed", "ke_threshold", "check_time", "max_settle_time", "compaction",
                 "plate_pressure", "plate_speed", "plate_time", "drop_height", "drop_stroke",
                 "drop_count", "drop_rest", "thermo_every", "steel_E", "steel_nu", "wall_mu",
-                "wheel_mu", "wall_kcoh", "wheel_kcoh_ratio")
+                "wheel_mu", "wall_kcoh", "wheel_kcoh_ratio", "pour_mu")
 MESH_SUFFIXES = (".stl", ".obj", ".ply")
 LABEL_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
 
