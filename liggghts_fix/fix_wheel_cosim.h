@@ -3,13 +3,13 @@
    fix ID group-ID wheel/cosim mesh FILE type T [keyword value ...]
 
    Every particle of the group that touches the wheel mesh gets a contact force from wheelsim's
-   contact law (liggghts_fix/contact: LIGGGHTS' hertz or edinburgh with history tangential,
-   optional sjkr cohesion and epsd2 rolling friction), found against a spatial index of the mesh
-   built once in the wheel frame; each step only the particles on a candidate list (those that
-   can reach the wheel before LIGGGHTS' next neighbour-list build or before the wheel has moved a
-   skin) are looked at (keyword candidates). The wheel moves by a motion source (prescribed
-   here; the coupled rig in the coupling issue). Full syntax, outputs and restart behaviour:
-   docs/fix-wheel-cosim.md.
+   contact law (liggghts_fix/contact: the models of contact/model_list.h, e.g. hertz or eepa
+   with history tangential, sjkr cohesion, epsd2 or cdt rolling friction), found against a
+   spatial index of the mesh built once in the wheel frame; each step only the particles on a
+   candidate list (those that can reach the wheel before LIGGGHTS' next neighbour-list build or
+   before the wheel has moved a skin) are looked at (keyword candidates). The wheel moves by a
+   motion source (prescribed, or coupled to wheel-rig over ZeroMQ). Full syntax, outputs and restart
+   behaviour: docs/fix-wheel-cosim.md.
 
    Global vector (11): 1-3 contact force on the wheel [N], 4-6 contact torque on the wheel about
    its centre [N m], 7 number of particle-wheel contacts, 8-10 wheel centre [m], 11 = 1 once a

@@ -17,7 +17,7 @@ namespace wheelsim {
 /// A source of wheel motion. The fix calls, on every rank, in this order each step:
 ///   wrench_computed(step n, wrench at n)   from end_of_step, after the wrench (and the number
 ///                                          of particle contacts) is reduced over the ranks;
-///   next_state(state at n, n + 1, dt)      from initial_integrate of step n + 1.
+///   next_state(state at n, n + 1, dt)      from post_force of step n + 1, before its contacts.
 /// A coupled source sends the wrench in the first call and receives the pose in the second, so
 /// the partner computes while LIGGGHTS integrates the particles.
 class WheelMotion {
