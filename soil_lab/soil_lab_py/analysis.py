@@ -332,9 +332,21 @@ def write_scm(r: Results, path, name=None):
         "scm.elastic_stiffness": scm_file.dem_source(
             dem, "plate sinkage, unloading slope", ke, f"plate b = {b_large:.3g} m"),
     }
+    mc = r.mc_peak
+    if mc.cohesion_Pa < 0.0:
+        # An intercept below zero is no cohesion: c = 0 and phi of the least-squares line through
+        # the origin (not the free fit's phi, which the negative intercept steepened).
+        mc = fits.fit_mohr_coulomb([s["sigma_Pa"] for s in r.shears],
+                                   [s["peak"].tau_peak_Pa for s in r.shears],
+                                   clip_negative_cohesion=True)
+        sources["mohr_coulomb"] = scm_file.dem_source(
+            dem, "direct shear box, peak strength", mc,
+            f"normal stresses {sigmas} kPa; the free fit's intercept was "
+            f"{r.mc_peak.cohesion_Pa:.4g} Pa (< 0: no cohesion), so c = 0 and phi from the line "
+            f"through the origin (free fit: phi {r.mc_peak.friction_deg:.4g} deg)")
     return scm_file.write_scm_soil(
         path, name or f"{dem} (fitted from DEM)",
         f"SCM parameters fitted to the DEM soil '{dem}' ({r.soil.get('file', '?')}) by the "
         f"virtual soil lab ({r.soil.get('preset', '?')} preset)",
-        r.bekker.n, r.bekker.kc, r.bekker.kphi, max(r.mc_peak.cohesion_Pa, 0.0),
-        r.mc_peak.friction_deg, r.janosi_K_m, ke.Ke_Pa_m, sources)
+        r.bekker.n, r.bekker.kc, r.bekker.kphi, mc.cohesion_Pa, mc.friction_deg, r.janosi_K_m,
+        ke.Ke_Pa_m, sources)

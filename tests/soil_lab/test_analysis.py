@@ -1,14 +1,18 @@
 """soil-lab's analysis of a lab directory (soil_lab_py.analysis) on synthetic plate runs:
-the unloading stiffness is taken from the turning point on, whatever the loading's noise."""
+the unloading stiffness is taken from the turning point on, whatever the loading's noise; the
+SCM file of a soil whose Mohr-Coulomb intercept is negative gets c = 0 and phi through the
+origin, and says so."""
 
 import json
 import tempfile
+import tomllib
 import unittest
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 
-from soil_lab_py import analysis
+from soil_lab_py import analysis, fits
 
 KE_Pa_m = 2.0e7  # the synthetic soil's unloading stiffness
 
@@ -62,6 +66,24 @@ class Analysis(unittest.TestCase):
         r = analysis.analyse(d)
         self.assertIn(0.02, r.unload_errors)
         self.assertIn(0.032, r.unload)
+
+    def test_negative_cohesion_gives_c0_and_phi_through_the_origin(self):
+        r = self.lab(False)
+        sigma = np.array([5e3, 1e4, 2e4])
+        tau = -300.0 + sigma * np.tan(np.radians(32.0))  # a non-cohesive soil's scatter
+        r.shears = [{"sigma_Pa": s, "peak": SimpleNamespace(tau_peak_Pa=t),
+                     "janosi": SimpleNamespace(K_m=1e-3)} for s, t in zip(sigma, tau)]
+        r.mc_peak = fits.fit_mohr_coulomb(sigma, tau)
+        self.assertAlmostEqual(r.mc_peak.friction_deg, 32.0, places=6)
+        out = Path(tempfile.mkdtemp()) / "scm.toml"
+        analysis.write_scm(r, out)
+        data = tomllib.loads(out.read_text())
+        phi_origin = np.degrees(np.arctan((sigma @ tau) / (sigma @ sigma)))
+        self.assertEqual(data["mohr_coulomb"]["cohesion"], 0.0)
+        self.assertAlmostEqual(data["mohr_coulomb"]["friction_angle"], phi_origin, places=9)
+        self.assertLess(phi_origin, 32.0)
+        src = data["source"]["mohr_coulomb"]["cohesion"]
+        self.assertIn("intercept was -300 Pa (< 0: no cohesion), so c = 0", src)
 
 
 if __name__ == "__main__":
