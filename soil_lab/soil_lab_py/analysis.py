@@ -116,7 +116,8 @@ def read_repose(run, done, dmax):
         try:  # the heap's axis: the profile's highest point
             found.append(repose.repose_angle(px, ph, axis_m=float(px[np.argmax(ph)])))
         except FitInputError as e:
-            return [], [], f"no angle of repose: {e} ({len(rows)} particles left on a {B:.3g} m base)"
+            return [], [], (f"no angle of repose: {e} ({len(rows)} particles left on a "
+                            f"{B:.3g} m base)")
         profiles.append((px, ph))
     return found, profiles, None
 
