@@ -97,8 +97,13 @@ def _run(a):
     soil = lab.soil_info(soil_file)
     p = plan.make_plan(soil, tests, a.preset, stresses, bed_vars, widths, a.plate_bin,
                        a.speed_check)
+    # The soil file as the checkout names it (inputs/soils/x.in), so results do not carry the
+    # path of the machine that ran them; a file outside the checkout keeps its absolute path.
+    soil_path = Path(soil.file).resolve()
+    shown_file = (str(soil_path.relative_to(REPO.resolve()))
+                  if soil_path.is_relative_to(REPO.resolve()) else str(soil_path))
     (out / "soil.toml").write_text(tomli_w.dumps({
-        "name": soil.name, "file": soil.file, "preset": a.preset, "tests": list(p.tests),
+        "name": soil.name, "file": shown_file, "preset": a.preset, "tests": list(p.tests),
         "dmin_m": soil.dmin_m, "dmax_m": soil.dmax_m, "dref_m": soil.dref_m,
         "density_kg_m3": soil.density_kg_m3, "multisphere": soil.multisphere, "dt_s": soil.dt_s,
         "youngs_Pa": soil.youngs_Pa,

@@ -4,7 +4,8 @@ The file has the format of inputs/scm_soils/*.toml (docs/scm-soils.md, loader
 scm/soil/src/soil_file.cpp): name, description, [bekker] n kc kphi, [mohr_coulomb] cohesion
 friction_angle, [janosi] shear_modulus, optionally [scm] elastic_stiffness, and a
 [source.<table>] string for every value saying where it comes from. Values outside the loader's
-ranges raise SoilValueError before anything is written.
+ranges raise SoilValueError before anything is written. Values are written to
+SIGNIFICANT_DIGITS significant digits.
 """
 
 import json
@@ -58,6 +59,12 @@ def dem_source(dem_soil, test, fit=None, detail=None):
     return text
 
 
+#: Digits a value is written with: a fit's residual leaves no more than these meaningful, and a
+#: shorter decimal survives the 15-digit soil writers of scm/soil (soil file -> Chrono JSON ->
+#: soil file) unchanged, where a 17-digit one would not.
+SIGNIFICANT_DIGITS = 6
+
+
 def _number(key, value, unit, range_text, ok):
     in_unit = f" in {unit}" if unit else ""
     if isinstance(value, (bool, str, bytes)):
@@ -68,6 +75,9 @@ def _number(key, value, unit, range_text, ok):
         raise SoilValueError(f"{key} must be a number{in_unit}, got {value!r}") from None
     if not math.isfinite(v):
         raise SoilValueError(f"{key} must be a finite number{in_unit}, got {v!r}")
+    # A fitted value carries no more than SIGNIFICANT_DIGITS digits; rounded before the range
+    # check, so the value checked is the value written.
+    v = float(f"{v:.{SIGNIFICANT_DIGITS}g}")
     if not ok(v):
         raise SoilValueError(f"{key} must be {range_text}{' ' + unit if unit else ''}, got {v!r}")
     return v

@@ -92,6 +92,21 @@ class WriteTest(unittest.TestCase):
         self.assertEqual(doc["bekker"], {"n": 1.0, "kc": 0.0, "kphi": 800000.0})
         self.assertIsInstance(doc["bekker"]["kc"], float)
 
+    def test_fitted_values_are_written_to_six_significant_digits(self):
+        # A fit's 17 digits are rounded: 6 are written (and the value checked is the one written).
+        self.write(n=0.7235747329522896, kphi=144358.6220689771, friction_deg=31.189745480858136,
+                   janosi_K_m=0.0009041611221224426, elastic_K_Pa_m=10676583.44517838,
+                   sources=dict(SOURCES, scm="plate unloading"))
+        doc = self.load()
+        self.assertEqual(doc["bekker"]["n"], 0.723575)
+        self.assertEqual(doc["bekker"]["kphi"], 144359.0)
+        self.assertEqual(doc["mohr_coulomb"]["friction_angle"], 31.1897)
+        self.assertEqual(doc["janosi"]["shear_modulus"], 0.000904161)
+        self.assertEqual(doc["scm"]["elastic_stiffness"], 10676600.0)
+        with self.assertRaisesRegex(SoilValueError, r"friction_angle must be in \[0, 90\) deg, "
+                                                    r"got 90\.0$"):
+            self.write(friction_deg=89.9999999)
+
     def test_out_of_range_values_are_errors_before_writing(self):
         cases = [
             (dict(n=2.5), r"^bekker\.n must be in \(0, 2\], got 2\.5$"),
