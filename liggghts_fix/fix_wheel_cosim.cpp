@@ -907,6 +907,13 @@ void FixWheelCosim::clear_history_outside_candidates() {
 
 double FixWheelCosim::compute_vector(int i) { return vector_[i]; }
 
+void FixWheelCosim::wheel_centre(double centre_m[3]) const {
+  for (int k = 0; k < 3; ++k)
+    centre_m[k] = s_->state.p_WB_W[k];
+}
+
+double FixWheelCosim::bounding_radius() const { return s_->index->bounding_radius_m(); }
+
 /* ---------------------------------------------------------------------- */
 
 void FixWheelCosim::write_vtk() {

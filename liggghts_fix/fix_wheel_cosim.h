@@ -61,6 +61,11 @@ public:
   int min_type() override { return wheel_type_; }
   int max_type() override { return wheel_type_; }
 
+  // For other styles that follow the wheel (fix wheel/active): the wheel centre [m] (world frame)
+  // of the last computed step, and the radius [m] of the mesh's bounding sphere about it.
+  void wheel_centre(double centre_m[3]) const;
+  double bounding_radius() const;
+
   // per-atom contact history (follows atoms between ranks and into restart files)
   double memory_usage() override;
   void grow_arrays(int nmax) override;
