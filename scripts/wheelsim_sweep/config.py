@@ -34,7 +34,11 @@ SOILBIN_VARS = ("bin_length", "bin_width", "fill_height", "fill_solid_fraction",
                 "seed", "ke_threshold", "check_time", "max_settle_time", "compaction",
                 "plate_pressure", "plate_speed", "plate_time", "drop_height", "drop_stroke",
                 "drop_count", "drop_rest", "thermo_every", "steel_E", "steel_nu", "wall_mu",
-                "wheel_mu", "wall_kcoh", "wheel_kcoh_ratio", "pour_mu")
+                "wheel_mu", "wall_kcoh", "wheel_kcoh_ratio", "pour_mu", "tile_length",
+                "tile_relax_time", "tile_end_zone", "tile_relax_max")
+# Tiled beds (docs/soil-bins.md "Tiled beds"): how a bed is prepared, not what it is; a bed whose
+# recorded recipe differs from the config's in these keys only is prepared again (runner.py).
+TILE_VARS = ("tile_length", "tile_relax_time", "tile_end_zone", "tile_relax_max")
 MESH_SUFFIXES = (".stl", ".obj", ".ply")
 LABEL_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
 
@@ -410,6 +414,7 @@ def _soils(ctx, entries, terrain, repo):
                 for k, v in recipe.items():
                     if isinstance(v, bool) or not isinstance(v, (int, float, str)):
                         raise ctx.err(f"{key}.{k} must be a number or a string, got {v!r}")
+                _check_tile_keys(ctx, recipe, key)
                 restart = ctx.path_of(e["restart"], f"{key}.restart") if "restart" in e else None
                 if "soil" in e or "soil_file" in e:
                     soil_in, dem_name, k, soil_entry = _dem_recipe_soil(ctx, e, key, repo)
@@ -436,6 +441,37 @@ def _soils(ctx, entries, terrain, repo):
             else:
                 raise ctx.err(f"{key} must be a bed restart path or a bin recipe table, got {e!r}")
     return out
+
+
+def _check_tile_keys(ctx, recipe, key):
+    """A recipe's tiled-bed keys (in.soilbin's tile_check.in repeats the checks that need the
+    soil): tile_length a number > 0 m, the relaxation keys numbers >= 0 (tile_relax_max > 0),
+    only with tile_length, and no compaction with it."""
+    for k, lo, strict, unit, what in (
+            ("tile_length", 0.0, True, "m", "the length of the block settled periodic in x and "
+             "tiled along the bin; leave the key out to settle the whole bin"),
+            ("tile_relax_time", 0.0, False, "s", "the relaxation at the end walls before the "
+             "settling criterion is checked"),
+            ("tile_end_zone", 0.0, False, "d_max", "how far from the end walls grains move in "
+             "the first relaxation; 0: all grains"),
+            ("tile_relax_max", 0.0, True, "s", "the bound of each relaxation stage")):
+        if k not in recipe:
+            continue
+        v = recipe[k]
+        ok = isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and \
+            (v > lo if strict else v >= lo)
+        if not ok:
+            raise ctx.err(f"{key}.{k} must be a number {'>' if strict else '>='} {lo:g} {unit} "
+                          f"({what}), got {v!r}")
+    if "tile_length" not in recipe:
+        extra = [k for k in TILE_VARS if k in recipe]
+        if extra:
+            raise ctx.err(f"{key}: {', '.join(extra)} only apply to a tiled bed: add tile_length")
+        return
+    comp = recipe.get("compaction", "none")
+    if comp != "none":
+        raise ctx.err(f"{key}.tile_length needs compaction = \"none\" (got {comp!r}): a compacted "
+                      "bed is settled whole (leave tile_length out)")
 
 
 def _slips(ctx, entries, slip_control="imposed_slip"):

@@ -161,7 +161,7 @@ def phases(rig, radius=None):
 
 # ---- soils and beds -----------------------------------------------------------------------------
 _VAR_NAME_RE = re.compile(r"^\s*variable\s+(soil_[dw]\d+)\s+equal\s", re.M)
-_SCALARS = ("soil_name", "soil_dt", "soil_density", "soil_dref", "soil_multisphere")
+_SCALARS = ("soil_name", "soil_dt", "soil_density", "soil_dref", "soil_dmax", "soil_multisphere")
 
 
 def soil_vars(liggghts, soil_file, inputs_dir):
@@ -273,6 +273,8 @@ class BedInfo:
     soil_name: str = ""
     prep_steps: int = 0  # beds to prepare: an upper bound
     prep_parts: dict = field(default_factory=dict)  # [s] insertion, settle, compaction
+    # tiled beds: the fraction of the bed's particles each part runs with (a part not named: 1)
+    prep_weights: dict = field(default_factory=dict)
 
 
 class SoilQuery:
@@ -338,8 +340,25 @@ def bed_info(soil, restart, query, soilbin):
                    sv["soil_dt"], "soil_dt (soil file)", False, soil_name=sv["soil_name"])
     info.prep_parts = bed_prep_times(r, defaults, sv)
     dt = sv["soil_dt"]
-    info.prep_steps = 1 + sum(math.ceil(t / dt - 1e-9) for t in info.prep_parts.values())
+    if "tile_length" in r:
+        info.prep_weights = tile_weights(r, defaults, sv)
+    # (tiled: particle-weighted steps, so that particles x steps is the preparation's work)
+    info.prep_steps = 1 + math.ceil(sum(math.ceil(t / dt - 1e-9) * info.prep_weights.get(k, 1.0)
+                                        for k, t in info.prep_parts.items()) - 1e-9)
     return info
+
+
+def tile_weights(recipe, defaults, sv):
+    """A tiled bed's parts (bed_prep_times) as fractions of the bed's particles: the block
+    1/n (n = ceil(bin_length / tile_length) blocks), the end zones 2 tile_end_zone d_max /
+    bin_length (at most 1), the whole bed 1."""
+    def num(k):
+        return _recipe_num(recipe, defaults, k)
+    length = num("bin_length")
+    n = max(math.ceil(length / num("tile_length") - 1e-6), 1)
+    zone = num("tile_end_zone") * sv.get("soil_dmax", sv.get("soil_dref", 0.0))
+    return {"block settle": 1.0 / n, "end-zone relax": min(1.0, 2.0 * zone / length),
+            "relax": 1.0}
 
 
 def bed_prep_times(recipe, defaults, sv):
@@ -350,6 +369,17 @@ def bed_prep_times(recipe, defaults, sv):
         return _recipe_num(recipe, defaults, k)
     check = num("check_time")
     settle_max = math.ceil(num("max_settle_time") / check - 1e-9) * check
+    if "tile_length" in recipe:
+        # tiled (inputs/soilbin/tile.in): the block settles (up to max_settle_time), then the
+        # end zones relax for tile_relax_time and up to tile_relax_max more, then the whole bed
+        # up to tile_relax_max (without end zones: one stage of tile_relax_time + the bound)
+        relax_max = math.ceil(num("tile_relax_max") / check - 1e-9) * check
+        relax_min = math.ceil(num("tile_relax_time") / sv["soil_dt"] - 1e-9) * sv["soil_dt"]
+        zone = num("tile_end_zone") * sv.get("soil_dmax", sv.get("soil_dref", 0.0))
+        if zone > 0 and 2.0 * zone < num("bin_length"):
+            return {"block settle": settle_max, "end-zone relax": relax_min + relax_max,
+                    "relax": relax_max}
+        return {"block settle": settle_max, "relax": relax_min + relax_max}
     parts = {"settle": settle_max}
     comp = str(recipe.get("compaction", defaults.get("compaction", "none")))
     if comp == "plate":
@@ -510,12 +540,16 @@ def report(est, sweep_name):
             f"{ph['ramp']:.4g} + test {ph['test']:.4g}; steps {fmt_int(e.steps)}; wall "
             f"{fmt_time(e.wall)} ({e.wall:.0f} s)")
     for b in est.beds:
-        parts = " + ".join(f"{k} {v:.4g}" for k, v in b.info.prep_parts.items())
+        w = b.info.prep_weights
+        parts = " + ".join(f"{k} {v:.4g}" + (f" x {w[k]:.3g} of the particles" if k in w and
+                                              w[k] != 1.0 else "")
+                           for k, v in b.info.prep_parts.items())
         lines.append(
             f"estimate: bed {b.info.label} (to prepare, {est.bed_np} rank(s)): particles "
             f"{fmt_int(b.info.particles)} ({b.info.particles_source}); dt {b.dt:.6g} s "
             f"({b.info.dt_source}); simulated <= {sum(b.info.prep_parts.values()):.4g} s "
-            f"({parts}); steps <= {fmt_int(b.steps)}; wall <= {fmt_time(b.wall)} "
+            f"({parts}); {'particle-weighted steps' if w else 'steps'} <= {fmt_int(b.steps)}; "
+            f"wall <= {fmt_time(b.wall)} "
             f"({b.wall:.0f} s)")
     todo = est.todo
     psteps = sum(e.particles * e.steps for e in todo)

@@ -22,6 +22,7 @@ from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
 from pathlib import Path
 
 from . import estimate, health, toml_out, watchdog
+from .config import TILE_VARS
 
 RUN_FILE = "run.h5"
 PART_FILE = "run.part.h5"
@@ -38,13 +39,39 @@ def _write_atomic(path, text):
     os.replace(tmp, path)
 
 
+# the deck files a tiled bed is made with besides in.soilbin (docs/soil-bins.md "Tiled beds")
+TILE_DECKS = ("tile.in", "tile_check.in")
+
+
+def _prep_keys_changed(recipe_file, recipe):
+    """When a bed's recorded recipe (recipe_file, JSON) differs from `recipe` in the preparation
+    keys of a tiled bed only (config.TILE_VARS): 'key old -> new, ...'; None when any other key
+    differs or the record cannot be read."""
+    try:
+        old = json.loads(Path(recipe_file).read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(old, dict):
+        return None
+    keys = sorted(k for k in set(old) | set(recipe) if old.get(k) != recipe.get(k))
+    if not keys or any(k not in TILE_VARS for k in keys):
+        return None
+    return ", ".join(f"{k} {old.get(k, 'unset')} -> {recipe.get(k, 'unset')}" for k in keys)
+
+
 def _last_error(log):
     try:
         lines = Path(log).read_text(errors="replace").splitlines()
     except OSError:
         return ""
-    for line in reversed(lines):
+    for i in range(len(lines) - 1, -1, -1):
+        line = lines[i]
         if "error" in line.lower() or "failed" in line.lower():
+            # the decks' own checks print "ERROR: <what and why>", then stop on an unknown
+            # command named after the problem: the line before says more
+            if line.startswith("ERROR: Unknown command") and i > 0 \
+                    and lines[i - 1].startswith("ERROR: "):
+                return lines[i - 1].strip()
             return line.strip()
     return lines[-1].strip() if lines else ""
 
@@ -228,12 +255,21 @@ class Runner:
                 ident.update(bed_recipe=p.soil.recipe,
                              soilbin_sha256=self.file_hash(self.repo / "inputs" / "in.soilbin"),
                              bed_soil_sha256=self.file_hash(p.soil.dem_soil_file))
+                ident.update(self.tile_hashes(p.soil))
             else:
                 ident.update(bed_sha256=self.file_hash(bed),
                              bed_vars_sha256=self.file_hash(f"{bed}.vars"))
                 if p.soil.dem_soil_file is not None:  # (beds from before soil_file: by name)
                     ident.update(bed_soil_sha256=self.file_hash(p.soil.dem_soil_file))
         return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
+
+    def tile_hashes(self, soil):
+        """A tiled recipe's (tile_length set) extra deck files: {name_sha256: sha256}; {} for a
+        bed settled whole (so the records of existing beds stay as they were)."""
+        if soil.recipe is None or "tile_length" not in soil.recipe:
+            return {}
+        d = self.repo / "inputs" / "soilbin"
+        return {f"{f.replace('.', '_')}_sha256": self.file_hash(d / f) for f in TILE_DECKS}
 
     def finished(self, p):
         """(True, "") when the point is finished with the same inputs, else (False, why)."""
@@ -382,23 +418,31 @@ class Runner:
             inputs_text = json.dumps(
                 {"soilbin_sha256": self.file_hash(self.repo / "inputs" / "in.soilbin"),
                  "soil_file": str(soil.dem_soil_file),
-                 "soil_file_sha256": self.file_hash(soil.dem_soil_file)},
+                 "soil_file_sha256": self.file_hash(soil.dem_soil_file),
+                 **self.tile_hashes(soil)},
                 sort_keys=True, indent=2) + "\n"
             why = ""
             if restart.is_file() and Path(f"{restart}.vars").is_file():
+                changed = None
                 if recipe_file.is_file() and recipe_file.read_text() != recipe_text:
-                    raise RuntimeError(f"bed '{soil.label}': {restart} exists but was prepared "
-                                       f"from another recipe ({recipe_file}); delete it or "
-                                       "rename the soil")
-                if not inputs_file.is_file():  # a bed from before the inputs were recorded
+                    changed = _prep_keys_changed(recipe_file, soil.recipe)
+                    if changed is None:
+                        raise RuntimeError(f"bed '{soil.label}': {restart} exists but was "
+                                           f"prepared from another recipe ({recipe_file}); "
+                                           "delete it or rename the soil")
+                if changed:  # the same bed, another preparation (tiled or whole): make it again
+                    why = f" again: its preparation keys changed ({changed})"
+                elif not inputs_file.is_file():  # a bed from before the inputs were recorded
                     self.say(f"bed {soil.label}: reusing {restart} (prepared before its input "
                              "files' hashes were recorded: not checked against them)")
                     continue
-                if inputs_file.read_text() == inputs_text:
+                elif inputs_file.read_text() == inputs_text:
                     self.say(f"bed {soil.label}: reusing {restart}")
                     continue
-                why = (" again: its soil file or inputs/in.soilbin changed since it was prepared "
-                       f"({inputs_file})")
+                else:
+                    tiled = " (or inputs/soilbin/tile*.in)" if self.tile_hashes(soil) else ""
+                    why = (" again: its soil file or inputs/in.soilbin changed since it was "
+                           f"prepared{tiled} ({inputs_file})")
             if self.dry_run:
                 self.say(f"bed {soil.label}: would prepare {restart}{why} (in.soilbin, "
                          f"{self.sweep.bed_np} rank(s))")

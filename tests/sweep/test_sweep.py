@@ -4,7 +4,7 @@
   test_sweep.py CASE --sweep scripts/wheel-sweep --build-dir BUILD --work DIR
 
 CASE: matrix, resume_marker, resume_sigterm, bad_config, examples_dry_run, scm_smoke, kill_flat,
-kill_dem, dem_soil_file, wheel_speed_flat, ... (see each function and tests/sweep/CMakeLists.txt).
+kill_dem, dem_soil_file, dem_tiled_bed, wheel_speed_flat, ... (see each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (wheel-rig or the wheel meshes not built).
 """
 
@@ -488,6 +488,81 @@ liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
           f"a changed soil file (same path) does not re-run the point:\n{r.stdout}")
     check(f"bed my_sand: would prepare {bed} again: its soil file or inputs/in.soilbin changed"
           in r.stdout, f"a changed soil file (same path) does not re-prepare the bed:\n{r.stdout}")
+
+
+def case_dem_tiled_bed(a, work):
+    """A tiled DEM bin recipe (tile_length; docs/soil-bins.md "Tiled beds"): ci, 0.12 x 0.08 m
+    in 3 blocks of 0.04 m (short settling and relaxation bounds: the test is about the driver).
+    wheel-sweep prepares it (the bed log says tiles = 3, its .vars records tile_length 0.04),
+    one coupled point (150 steps, 1 rank) runs on it; a re-run skips the point, --force re-runs
+    it on the same bed (reused, untouched); a changed tile_length (0.06: 2 blocks) re-prepares the bed, says which key changed,
+    and re-runs the point; a changed non-tile key is still an error."""
+    if shutil.which("mpirun") is None:
+        raise Skip("mpirun not found (Debian openmpi-bin)")
+    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").exists():
+        raise Skip("liggghts-wheel not built")
+    repo = Path(a.sweep).resolve().parents[1]
+    cfg = work / "sweep.toml"
+
+    def write(tile, fill=0.03):
+        cfg.write_text(f"""terrain = "dem"
+base = "{repo}/inputs/rigs/ci_small_wheel.toml"
+wheels = ["test_small"]
+soils = [{{ soil = "ci", bin_length = 0.12, bin_width = 0.08, fill_height = {fill}, \
+check_time = 0.002, max_settle_time = 0.006, tile_length = {tile}, tile_relax_time = 0.002, \
+tile_relax_max = 0.004 }}]
+slips = [0.2]
+[dem]
+np = 1
+bed_np = 1
+deck = "{repo}/tests/cosim/in.motion_compare"
+liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
+""")
+    out = work / "out"
+    cmd = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--out-dir", str(out), "--jobs", "1"]
+    bed = out / "beds" / "ci" / "soilbin_ci.restart"
+    pdir = out / "test_small" / "ci" / "s0.200"
+
+    def run(*extra):
+        r = subprocess.run(cmd + list(extra), capture_output=True, text=True, timeout=300)
+        print(f"$ wheel-sweep {' '.join(extra)} -> exit {r.returncode}\n{r.stdout[-3000:]}"
+              f"{r.stderr[-2000:]}")
+        return r
+
+    def check_bed(tile, tiles):
+        bvars = Path(f"{bed}.vars").read_text()
+        check(f"variable tile_length index {tile}\n" in bvars,
+              f"the bed's .vars does not record tile_length {tile}:\n{bvars}")
+        log = (bed.parent / "soilbin.log").read_text()
+        check(f"soilbin: tiles = {tiles}\n" in log, f"the bed log does not say tiles = {tiles}")
+        done = json.loads((pdir / "done.json").read_text())
+        check(done["exit_status"] == 0, f"the point failed: {done} (log {pdir / 'run.log'})")
+
+    write(0.04)
+    r = run()
+    check(r.returncode == 0 and f"bed ci: preparing {bed}" in r.stdout, "the bed was not prepared")
+    check_bed("0.04", 3)
+    r = run()
+    check(r.returncode == 0 and "skipping 1 finished point(s)" in r.stdout,
+          "the finished point was not skipped")
+    mtime = bed.stat().st_mtime_ns
+    r = run("--force")
+    check(r.returncode == 0 and f"bed ci: reusing {bed}" in r.stdout
+          and bed.stat().st_mtime_ns == mtime, "the bed was not reused (--force)")
+    write(0.06)
+    r = run("--dry-run")
+    check(f"bed ci: would prepare {bed} again: its preparation keys changed (tile_length 0.04 -> "
+          "0.06)" in r.stdout, "a changed tile_length does not re-prepare the bed (--dry-run)")
+    check("would run test_small ci s=0.2 (inputs changed since it finished)" in r.stdout,
+          "a changed tile_length does not re-run the point")
+    r = run()
+    check(r.returncode == 0 and f"bed ci: preparing {bed} again: its preparation keys changed"
+          in r.stdout, "the bed was not prepared again")
+    check_bed("0.06", 2)
+    write(0.06, fill=0.035)
+    r = run("--dry-run")
+    check(r.returncode != 0 and "was prepared from another recipe" in r.stdout + r.stderr,
+          "a changed fill_height (not a preparation key) was not an error")
 
 
 def case_estimate_example(a, work):

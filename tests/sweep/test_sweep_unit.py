@@ -3,7 +3,8 @@
 
   test_sweep_unit.py CASE --sweep scripts/wheel-sweep --work DIR
 
-CASE: toml_roundtrip, cli, soil_names, estimate_arithmetic, rate_cache, budget, slip_control (see
+CASE: toml_roundtrip, cli, soil_names, tiled_recipe, estimate_arithmetic, rate_cache, budget,
+slip_control (see
 each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (a prerequisite missing).
 """
@@ -167,6 +168,79 @@ def case_soil_names(a, work):
         raise Fail("two soils named 'dry sand' were accepted")
     except config.ConfigError as e:
         check("soils[0] and soils[1] have the same soil name 'dry sand'" in str(e), str(e))
+
+
+def case_tiled_recipe(a, work):
+    """Tiled-bed recipe keys (docs/soil-bins.md "Tiled beds"): tile_length = 0.25 is accepted
+    and kept in the recipe; bad values (0, negative, a string, true), the relaxation keys without
+    tile_length, and tile_length with a compaction are config errors naming the key and what is
+    expected. A recorded recipe that differs in the tile keys only is a re-preparation
+    (runner._prep_keys_changed says which), in any other key not. The estimate of a tiled bed
+    weights each part by its particles (exact arithmetic)."""
+    from types import SimpleNamespace as NS
+    from wheelsim_sweep import config, estimate as E, runner
+    repo = Path(a.sweep).resolve().parents[1]
+    mesh = work / "w.stl"
+    mesh.write_text("solid w\nendsolid w\n")
+    (work / "base.toml").write_text("[run]\ndt = 1e-4\n")
+
+    def load(entry):
+        (work / "sweep.toml").write_text(f'terrain = "dem"\nbase = "base.toml"\n'
+                                         f'wheels = ["w.stl"]\nslips = [0.1]\nsoils = [{entry}]\n')
+        return config.load(work / "sweep.toml", repo, work)
+
+    sw = load('{ soil = "ci", bin_length = 1.0, tile_length = 0.25, tile_end_zone = 4 }')
+    check(sw.soils[0].recipe == {"soil": "ci", "bin_length": 1.0, "tile_length": 0.25,
+                                 "tile_end_zone": 4}, f"recipe {sw.soils[0].recipe}")
+    for entry, msg in (
+            ('{ soil = "ci", tile_length = 0 }', "soils[0].tile_length must be a number > 0 m"),
+            ('{ soil = "ci", tile_length = -0.25 }', "soils[0].tile_length must be a number > 0 m"),
+            ('{ soil = "ci", tile_length = "0.25" }', "soils[0].tile_length must be a number > 0"),
+            ('{ soil = "ci", tile_length = true }', "soils[0].tile_length must be a number"),
+            ('{ soil = "ci", tile_length = 0.25, tile_relax_max = 0 }',
+             "soils[0].tile_relax_max must be a number > 0 s"),
+            ('{ soil = "ci", tile_length = 0.25, tile_end_zone = -1 }',
+             "soils[0].tile_end_zone must be a number >= 0 d_max"),
+            ('{ soil = "ci", tile_relax_time = 0.1 }',
+             "soils[0]: tile_relax_time only apply to a tiled bed: add tile_length"),
+            ('{ soil = "ci", tile_length = 0.25, compaction = "plate" }',
+             "soils[0].tile_length needs compaction = \"none\" (got 'plate')"),
+            ('{ soil = "ci", tile_lenght = 0.25 }', "did you mean 'tile_length'")):
+        try:
+            load(entry)
+            raise Fail(f"accepted: {entry}")
+        except config.ConfigError as e:
+            check(msg in str(e), f"{entry}: {e}")
+    rec = work / "bed.recipe.json"
+    rec.write_text('{"soil": "ci", "bin_length": 1.0, "tile_length": 0.25}')
+    got = runner._prep_keys_changed(rec, {"soil": "ci", "bin_length": 1.0, "tile_length": 0.2})
+    check(got == "tile_length 0.25 -> 0.2", f"changed tile_length: {got!r}")
+    got = runner._prep_keys_changed(rec, {"soil": "ci", "bin_length": 1.0})
+    check(got == "tile_length 0.25 -> unset", f"tile_length removed: {got!r}")
+    got = runner._prep_keys_changed(rec, {"soil": "ci", "bin_length": 2.0, "tile_length": 0.2})
+    check(got is None, f"bin_length changed too: {got!r} (expected None: another bed)")
+    # estimate: 1.0 m bin of 4 blocks (0.25 m), d_max 0.02 m, end zones 6 d_max = 0.12 m
+    # (weight 0.24), check 0.02 s, max_settle 3 s, relax 0.1 s + bound 0.5 s, dt 1e-4 s:
+    # steps 30 000 x 0.25 + 6000 x 0.24 + 5000 x 1 = 13 940, + 1 insertion step
+    soilbin = repo / "inputs" / "in.soilbin"
+    sv = {"soil_name": "x", "soil_dt": 1e-4, "soil_density": 2500.0, "soil_dref": 0.012,
+          "soil_dmax": 0.02, "soil_d1": 0.012, "soil_w1": 1.0}
+    soil = NS(label="x", dem_soil_file=None,
+              recipe={"soil": "x", "bin_length": 1.0, "bin_width": 0.5, "fill_height": 0.2,
+                      "tile_length": 0.25})
+    bi = E.bed_info(soil, work / "none" / "x.restart", lambda f: sv, soilbin)
+    check(bi.prep_parts.keys() == {"block settle", "end-zone relax", "relax"},
+          f"parts {bi.prep_parts}")
+    _close(bi.prep_parts["block settle"], 3.0, "block settle", 1e-9)
+    _close(bi.prep_parts["end-zone relax"], 0.6, "end-zone relax", 1e-9)
+    _close(bi.prep_parts["relax"], 0.5, "relax", 1e-9)
+    _close(bi.prep_weights["block settle"], 0.25, "block weight")
+    _close(bi.prep_weights["end-zone relax"], 0.24, "end-zone weight")
+    check(bi.prep_steps == 13941, f"particle-weighted steps {bi.prep_steps}, expected 13 941")
+    whole = NS(label="x", dem_soil_file=None,
+               recipe={k: v for k, v in soil.recipe.items() if k != "tile_length"})
+    bw = E.bed_info(whole, work / "none" / "x.restart", lambda f: sv, soilbin)
+    check(bw.prep_steps == 30001 and not bw.prep_weights, f"whole bed steps {bw.prep_steps}")
 
 
 # ---- the DEM cost estimate (scripts/wheelsim_sweep/estimate.py, rate.py) ------------------------
