@@ -92,6 +92,7 @@ FixWheelActive::FixWheelActive(LAMMPS *lmp, int narg, char **arg)
   size_vector = 4;
   global_freq = 1;
   extvector = 0;
+  restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
   force_reneighbor = 1;
@@ -233,8 +234,8 @@ void FixWheelActive::resolve_distances() {
     snprintf(line, sizeof(line),
              "fix wheel/active %s: wheel %s (bounding radius %.4g m); particles of group %s "
              "farther than %.4g m from its centre are frozen (distance %.4g m%s + radius), "
-             "active again within %.4g m; update when LIGGGHTS rebuilds its neighbour lists or "
-             "the wheel moved %.4g m; pairs of frozen particles: %s\n",
+             "active again within %.4g m; updated each time the wheel centre has moved %.4g m; "
+             "pairs of frozen particles: %s\n",
              id, wheel_id_.c_str(), bounding_radius_, group->names[igroup],
              bounding_radius_ + distance_ + hysteresis_, distance_,
              distance_arg_ > 0.0 ? "" : " (default: 0.5 R + 2 x sinkage allowance)",
@@ -248,13 +249,27 @@ void FixWheelActive::resolve_distances() {
 }
 
 /* ----------------------------------------------------------------------
-   The active set: updated on neighbour-list rebuilds only, so that the list always matches the
-   masks (ghost masks are sent by comm->borders, after pre_exchange).
+   The active set: updated on neighbour-list rebuilds only (the ones this fix forces), so that
+   the list always matches the masks (ghost masks are sent by comm->borders, after
+   pre_exchange); the kept histories are synchronised on every rebuild.
 ------------------------------------------------------------------------- */
 
-void FixWheelActive::setup_pre_exchange() { update_active_set(); }
+void FixWheelActive::setup_pre_exchange() {
+  // Only the first set-up of the fix decides the active set; later set-ups (the next run, a
+  // run after read_restart, write_restart) keep it, so that a continued or restarted run
+  // freezes and reactivates exactly when the uninterrupted one does. If the wheel moved since
+  // the last update, setup() forces a rebuild (and so an update) at the first step.
+  if (!have_update_)
+    update_active_set();
+}
 
-void FixWheelActive::pre_exchange() { update_active_set(); }
+void FixWheelActive::pre_exchange() {
+  // Only on the rebuilds this fix forced (the wheel moved 'travel' since the last update): the
+  // update steps then depend on the wheel's path alone, not on when LIGGGHTS happens to rebuild
+  // its lists (which a restart changes), so a restarted run freezes particles at the same steps.
+  if (update->ntimestep == next_reneighbor)
+    update_active_set();
+}
 
 void FixWheelActive::setup_pre_neighbor() { after_exchange(); }
 
@@ -408,6 +423,29 @@ void FixWheelActive::post_run() {
 }
 
 double FixWheelActive::compute_vector(int i) { return vector_[i]; }
+
+/* ----------------------------------------------------------------------
+   Global restart state: the wheel centre of the last update of the active set
+------------------------------------------------------------------------- */
+
+void FixWheelActive::write_restart(FILE *fp) {
+  double list[5] = {1.0, // format version
+                    have_update_ ? 1.0 : 0.0, update_centre_[0], update_centre_[1],
+                    update_centre_[2]};
+  if (comm->me == 0) {
+    const int size = sizeof(list);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), 5, fp);
+  }
+}
+
+void FixWheelActive::restart(char *buf) {
+  const double *list = reinterpret_cast<const double *>(buf);
+  if (list[0] != 1.0)
+    bad_argument("restart data of fix wheel/active has format %g, expected 1", list[0]);
+  have_update_ = list[1] != 0.0;
+  std::copy(list + 2, list + 5, update_centre_);
+}
 
 /* ----------------------------------------------------------------------
    Per-atom storage: the kept contact histories

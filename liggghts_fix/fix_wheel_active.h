@@ -63,6 +63,10 @@ public:
 
   double compute_vector(int i) override;
 
+  // global state (the wheel centre of the last update) in restart files
+  void write_restart(FILE *fp) override;
+  void restart(char *buf) override;
+
   // per-atom kept contact histories (follow atoms between ranks and into restart files)
   double memory_usage() override;
   void grow_arrays(int nmax) override;

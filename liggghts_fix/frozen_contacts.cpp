@@ -35,6 +35,12 @@ namespace wheelsim {
 bool FrozenContacts::bind(FixContactHistory *history) {
   history_ = history;
   dnum_ = history ? history->get_dnum() : 0;
+  if (history_ == nullptr || dnum_ == 0) { // nothing to keep (history drop, or none at all)
+    for (std::vector<double> &k : kept_)
+      k.clear();
+    width_ = 0;
+    return true;
+  }
   const int width = 1 + dnum_;
   bool consistent = true;
   for (const std::vector<double> &k : kept_)
@@ -43,9 +49,6 @@ bool FrozenContacts::bind(FixContactHistory *history) {
   if (!consistent)
     return false;
   width_ = width;
-  if (history_ == nullptr || dnum_ == 0)
-    for (std::vector<double> &k : kept_)
-      k.clear();
   return true;
 }
 

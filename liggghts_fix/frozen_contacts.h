@@ -33,9 +33,10 @@ class FrozenContacts {
 public:
   explicit FrozenContacts(LAMMPS_NS::LAMMPS *lmp) : lmp_(lmp) {}
 
-  /// Binds to the run's fix contacthistory (nullptr: the pair style keeps no history; then
-  /// nothing is kept). Returns false if kept entries have another width than 1 + its dnum (the
-  /// contact model changed since they were written).
+  /// Binds to the run's fix contacthistory (nullptr: the pair style keeps no history, or the
+  /// histories are not to be kept; then every kept entry is dropped). Returns false if kept
+  /// entries have another width than 1 + its dnum (the contact model changed since they were
+  /// written).
   bool bind(LAMMPS_NS::FixContactHistory *history);
   int entry_width() const { return width_; }
 
