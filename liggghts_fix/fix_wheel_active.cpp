@@ -199,6 +199,11 @@ void FixWheelActive::init() {
     bad_argument("keyword 'wheel' expects the ID of a fix wheel/cosim, got '%s'%s",
                  wheel_id_.c_str(), fix ? " (a fix of another style)" : " (no fix with that ID)");
   wheel_ = static_cast<FixWheelCosim *>(fix);
+  for (int k = 0; k < modify->nfix; ++k)
+    if (modify->fix[k] != this && std::strcmp(modify->fix[k]->style, style) == 0)
+      bad_argument("only one fix wheel/active per run (also '%s'): a particle frozen by one "
+                   "would not move near the other's wheel",
+                   modify->fix[k]->id);
   if (modify->find_fix_style("multisphere", 0) != nullptr)
     bad_argument("multisphere particles are not supported (a frozen sphere of a clump would "
                  "stop only itself); use single spheres");
