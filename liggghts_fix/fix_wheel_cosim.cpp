@@ -47,27 +47,27 @@ constexpr int kDefaultSlots = 3;
 /// the particles' Rayleigh time and of the Hertz collision time of a particle hitting the wheel.
 constexpr double kMaxRayleighFraction = 0.3;
 constexpr double kMaxHertzFraction = 0.1;
-/// Candidate list: how far the wheel centre may move, in neighbour skins, before the list is
-/// rebuilt; and a relative allowance on the list's radius so that round-off in the distance test
-/// can never leave out a particle the full scan would test.
+/// Candidate list: how far a point of the wheel surface may move, in neighbour skins, before the
+/// list is rebuilt; and a relative allowance on the list's radius so that round-off in the distance
+/// test can never leave out a particle the full scan would test.
 constexpr double kWheelTravelPerSkin = 1.0;
 constexpr double kCandidateRoundOff = 1e-9;
 
 /// The candidate list (docs/fix-wheel-cosim.md, "Candidate list"): the owned particles of the
-/// group that can come within the wheel's bounding sphere (plus their radius) before the list is
-/// rebuilt. A particle is left out only if, at the build, its centre is farther from the wheel
-/// centre than bounding radius + its radius + how far it can move + how far the wheel centre may
-/// move until the next build. The bounding sphere is centred on the wheel centre, so the wheel's
-/// rotation needs no allowance. Valid until LIGGGHTS rebuilds its neighbour lists (atoms are
-/// then migrated and re-sorted, and may have moved half a skin) or the wheel centre has moved
-/// `wheel_travel_m`.
+/// group that can touch the wheel's surface before the list is rebuilt. A particle is left out
+/// only if, at the build, the surface is farther from its centre than its radius + how far it
+/// can move + how far any point of the surface may move until the next build (the wheel centre's
+/// travel plus bounding radius x rotation angle). Valid until LIGGGHTS rebuilds its neighbour
+/// lists (atoms are then migrated and re-sorted, and may have moved half a skin) or the surface
+/// may have moved `wheel_travel_m`.
 struct CandidateList {
   bool enabled = true;    ///< keyword candidates (no: test every particle each step)
   std::vector<int> atoms; ///< local indices, ascending (the full scan's order)
   LAMMPS_NS::bigint neighbor_builds = -1; ///< neighbor->ncalls at the build; -1: build next use
   int nlocal = -1;                        ///< atom->nlocal at the build
-  Eigen::Vector3d centre_m = Eigen::Vector3d::Zero(); ///< wheel centre at the build [m]
-  double wheel_travel_m = 0.0; ///< how far the centre may move until a rebuild [m]
+  Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();       ///< wheel centre at the build [m]
+  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity(); ///< wheel orientation at the build
+  double wheel_travel_m = 0.0; ///< how far a surface point may move until a rebuild [m]
   bool clear_pending = false;  ///< the histories of non-candidates are still to be emptied
   bool warned_inexact = false;
   // statistics of the current run (printed by post_run)
@@ -668,7 +668,7 @@ void FixWheelCosim::report_candidates() {
     snprintf(line, sizeof(line),
              "fix wheel/cosim %s: candidate list: %.1f of %.0f particles tested per step (all "
              "ranks); list builds: %ld with LIGGGHTS' neighbour lists, %ld in between (wheel "
-             "moved > %.3g m); %.0f particles arrived from other ranks\n",
+             "surface moved > %.3g m); %.0f particles arrived from other ranks\n",
              id, total[0] / list.passes, static_cast<double>(atom->natoms), list.builds_at_neighbor,
              list.builds_between, list.wheel_travel_m, total[1]);
     if (screen)
@@ -847,9 +847,14 @@ bool FixWheelCosim::candidates_exact() const {
 
 bool FixWheelCosim::candidates_stale() const {
   const wheelsim::CandidateList &list = s_->candidates;
-  const double travel2_m2 = (s_->state.p_WB_W - list.centre_m).squaredNorm();
-  return neighbor->ncalls != list.neighbor_builds || atom->nlocal != list.nlocal ||
-         travel2_m2 > list.wheel_travel_m * list.wheel_travel_m;
+  if (neighbor->ncalls != list.neighbor_builds || atom->nlocal != list.nlocal)
+    return true;
+  // How far a point of the surface can have moved since the build: the centre's travel plus
+  // the bounding radius times the rotation angle (an arc is no longer than radius x angle).
+  const double angle_rad = s_->state.q_WB.angularDistance(list.q_WB);
+  const double travel_m =
+      (s_->state.p_WB_W - list.centre_m).norm() + s_->index->bounding_radius_m() * angle_rad;
+  return travel_m > list.wheel_travel_m;
 }
 
 void FixWheelCosim::build_candidates() {
@@ -864,7 +869,10 @@ void FixWheelCosim::build_candidates() {
       at_neighbor_build ? 0.5 * skin_m : (atom->radvary_flag ? 2.0 : 1.0) * skin_m;
   list.wheel_travel_m = wheelsim::kWheelTravelPerSkin * skin_m;
   list.centre_m = s_->state.p_WB_W;
-  const double reach_m = s_->index->bounding_radius_m() + particle_travel_m + list.wheel_travel_m;
+  list.q_WB = s_->state.q_WB;
+  const Eigen::Matrix3d R_BW = list.q_WB.toRotationMatrix().transpose(); // W -> wheel frame
+  const double margin_m = particle_travel_m + list.wheel_travel_m;
+  const double reach_m = s_->index->bounding_radius_m() + margin_m;
 
   double **x = atom->x;
   const double *radius = atom->radius;
@@ -878,7 +886,13 @@ void FixWheelCosim::build_candidates() {
     const Eigen::Vector3d d(x[i][0] - list.centre_m.x(), x[i][1] - list.centre_m.y(),
                             x[i][2] - list.centre_m.z());
     const double listed_m = (reach_m + radius[i]) * (1.0 + wheelsim::kCandidateRoundOff);
-    if (d.squaredNorm() <= listed_m * listed_m)
+    if (d.squaredNorm() > listed_m * listed_m)
+      continue; // cheap reject: outside the bounding sphere's reach
+    // Within reach of the surface itself (not only of its bounding sphere: the soil beside a
+    // narrow wheel, the inside of a lab frame).
+    const double near_m = (radius[i] + margin_m) * (1.0 + wheelsim::kCandidateRoundOff) +
+                          wheelsim::kCandidateRoundOff * s_->index->bounding_radius_m();
+    if (s_->index->surface_within(R_BW * d, near_m))
       list.atoms.push_back(i);
   }
   list.neighbor_builds = neighbor->ncalls;

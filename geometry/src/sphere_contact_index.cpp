@@ -252,6 +252,30 @@ bool SphereContactIndex::vertex_cone_contains(int vertex, const Eigen::Vector3d 
   return true;
 }
 
+bool SphereContactIndex::surface_within(const Eigen::Vector3d &centre_m, double distance_m) const {
+  // A triangle closer than distance_m has its closest point q inside the query box and inside
+  // the grid, and is registered in q's cell (build_grid): visiting the box's cells finds it.
+  const Eigen::Vector3d reach = Eigen::Vector3d::Constant(distance_m);
+  int lo_idx[3], hi_idx[3];
+  if (!cell_range(centre_m - reach, centre_m + reach, lo_idx, hi_idx))
+    return false;
+  for (int k = lo_idx[2]; k <= hi_idx[2]; ++k)
+    for (int j = lo_idx[1]; j <= hi_idx[1]; ++j)
+      for (int i = lo_idx[0]; i <= hi_idx[0]; ++i) {
+        const long cell = (static_cast<long>(k) * dims_[1] + j) * dims_[0] + i;
+        for (int c = cell_offsets_[cell]; c < cell_offsets_[cell + 1]; ++c) {
+          const auto &tri = mesh_.triangles[cell_triangles_[c]];
+          int region;
+          const Eigen::Vector3d q =
+              closest_point_on_triangle(centre_m, mesh_.vertices_m[tri[0]],
+                                        mesh_.vertices_m[tri[1]], mesh_.vertices_m[tri[2]], region);
+          if ((centre_m - q).squaredNorm() < distance_m * distance_m)
+            return true;
+        }
+      }
+  return false;
+}
+
 int SphereContactIndex::find_contacts(const Eigen::Vector3d &centre_m, double radius_m,
                                       std::vector<SurfaceContact> &contacts) const {
   const Eigen::Vector3d reach = Eigen::Vector3d::Constant(radius_m);

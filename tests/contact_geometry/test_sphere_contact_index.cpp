@@ -263,6 +263,54 @@ TEST(SphereContactIndex, NoContactAwayOrInside) {
   EXPECT_TRUE(contacts_of(index, Vector3d(0.5, 0, 1.0), 0.05).empty()); // deep inside
 }
 
+/// Distance from p to triangle (a, b, c), computed independently of the index (projection onto
+/// the plane if it falls inside, else the nearest of the three edges).
+double distance_to_triangle(const Vector3d &p, const Vector3d &a, const Vector3d &b,
+                            const Vector3d &c) {
+  const Vector3d n = (b - a).cross(c - a).normalized();
+  const Vector3d q = p - (p - a).dot(n) * n;
+  if ((b - a).cross(q - a).dot(n) >= 0 && (c - b).cross(q - b).dot(n) >= 0 &&
+      (a - c).cross(q - c).dot(n) >= 0)
+    return std::abs((p - a).dot(n));
+  double d = 1e300;
+  const Vector3d v[3] = {a, b, c};
+  for (int k = 0; k < 3; ++k) {
+    const Vector3d e = v[(k + 1) % 3] - v[k];
+    const double s = std::clamp((p - v[k]).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    d = std::min(d, (p - (v[k] + s * e)).norm());
+  }
+  return d;
+}
+
+TEST(SphereContactIndex, SurfaceWithinMatchesTheBruteForceDistance) {
+  // Points in, around and far from the step solid, inside it too, against coarse and fine grids:
+  // surface_within(p, d) is true exactly when the nearest triangle is closer than d.
+  const TriangleMesh mesh = step_solid();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> ux(-0.6, 2.6), uy(-1.6, 1.6), uz(-0.6, 2.6), ud(0.01, 0.5);
+  for (const double cell_m : {0.0, 0.07}) {
+    const SphereContactIndex index(mesh, cell_m);
+    int near = 0, far = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const Vector3d p(ux(rng), uy(rng), uz(rng));
+      const double d = ud(rng);
+      double closest = 1e300;
+      for (const auto &t : mesh.triangles)
+        closest =
+            std::min(closest, distance_to_triangle(p, mesh.vertices_m[t[0]], mesh.vertices_m[t[1]],
+                                                   mesh.vertices_m[t[2]]));
+      if (std::abs(closest - d) < 1e-9)
+        continue; // on the boundary: either answer is round-off
+      const bool expected = closest < d;
+      (expected ? near : far) += 1;
+      EXPECT_EQ(index.surface_within(p, d), expected)
+          << "at " << p.transpose() << ", d " << d << ", nearest " << closest;
+    }
+    EXPECT_GT(near, 300);
+    EXPECT_GT(far, 300);
+  }
+}
+
 TEST(SphereContactIndex, FeatureKeysAreStable) {
   const SphereContactIndex index(step_solid());
   const auto a = contacts_of(index, Vector3d(0.31, 0.2, 2.04), 0.05);

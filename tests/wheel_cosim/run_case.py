@@ -165,14 +165,14 @@ def check_candidates(a, launch, common):
                          dict(v, cosim_extra=f"candidates {mode}"))
     stats = re.search(r"candidate list: (\S+) of (\S+) particles tested per step \(all ranks\); "
                       r"list builds: (\d+) with LIGGGHTS' neighbour lists, (\d+) in between "
-                      r"\(wheel moved > (\S+) m\); (\S+) particles arrived", outs["yes"])
+                      r"\(wheel surface moved > (\S+) m\); (\S+) particles arrived", outs["yes"])
     if not stats:
         print("run_case: candidates: no candidate-list summary in the output of 'candidates yes' "
               "FAIL")
         return 1
     listed, natoms, at_neigh, between, travel, arrived = stats.groups()
     print(f"run_case: candidates: {listed} of {natoms} particles tested per step; list builds: "
-          f"{at_neigh} with LIGGGHTS' neighbour lists, {between} in between (wheel moved > "
+          f"{at_neigh} with LIGGGHTS' neighbour lists, {between} in between (wheel surface moved > "
           f"{travel} m); {arrived} particles arrived from other ranks")
     ok = int(at_neigh) > 1 and int(between) > 0 and float(listed) < float(natoms)
     if a.need_arrivals and float(arrived) == 0:

@@ -62,6 +62,11 @@ public:
   int find_contacts(const Eigen::Vector3d &centre_m, double radius_m,
                     std::vector<SurfaceContact> &contacts) const;
 
+  /// Whether some point of the surface lies closer than `distance_m` [m] to `centre_m` (mesh
+  /// frame [m]), on either side of it (no contact rules: inside the solid counts too). For
+  /// bounding which spheres can reach the surface soon (the fix's candidate list).
+  bool surface_within(const Eigen::Vector3d &centre_m, double distance_m) const;
+
   /// Largest distance of a vertex from the mesh-frame origin [m] (for a cheap reject test).
   double bounding_radius_m() const { return bounding_radius_m_; }
   double cell_size_m() const { return cell_size_m_; }
