@@ -62,7 +62,7 @@ FixWheelActive::FixWheelActive(LAMMPS *lmp, int narg, char **arg)
       bounding_radius_(0.0), update_centre_{0.0, 0.0, 0.0}, have_update_(false),
       kept_(new wheelsim::FrozenContacts(lmp)), vector_{0.0, 0.0, 0.0, 0.0}, updates_(0),
       run_steps_(0), run_updates_(0), run_forced_(0), run_active_sum_(0.0),
-      wheel_touched_frozen_(0), reported_setup_(false) {
+      wheel_touched_frozen_(0), reported_setup_(false), held_since_setup_(false) {
   if (!atom->radius_flag || !atom->omega_flag || !atom->torque_flag)
     error->fix_error(
         FLERR, this,
@@ -344,6 +344,7 @@ void FixWheelActive::count() {
 
 void FixWheelActive::setup(int /*vflag*/) {
   hold_frozen();
+  held_since_setup_ = false;
   // A coupled wheel gets its first pose from the rig in its own setup, after our update: if it
   // is elsewhere, update again at the first step.
   double centre[3];
@@ -354,7 +355,14 @@ void FixWheelActive::setup(int /*vflag*/) {
   next_reneighbor = dx * dx + dy * dy + dz * dz > travel_ * travel_ ? update->ntimestep + 1 : -1;
 }
 
-void FixWheelActive::pre_initial_integrate() { hold_frozen(); }
+void FixWheelActive::pre_initial_integrate() {
+  // Forces of the steps are discarded in pre_final_integrate; only those of a run's set-up
+  // (other fixes' setup() may add theirs after ours) remain to be discarded, once.
+  if (!held_since_setup_) {
+    hold_frozen();
+    held_since_setup_ = true;
+  }
+}
 
 void FixWheelActive::pre_final_integrate() {
   // the wheel must never touch a frozen particle: count it (post_run warns)
@@ -369,9 +377,9 @@ void FixWheelActive::pre_final_integrate() {
 }
 
 void FixWheelActive::hold_frozen() {
-  // Called after all forces of the step (pre_final_integrate) and before the first half-step of
-  // the next (pre_initial_integrate, which also covers the forces of setup): the integrator then
-  // adds exactly zero to v and x of a frozen particle.
+  // Called after all forces of a step (pre_final_integrate) and once before the first half-step
+  // after a set-up (pre_initial_integrate, for the forces of setup): the integrator then adds
+  // exactly zero to v and x of a frozen particle.
   const int *mask = atom->mask;
   double **v = atom->v, **omega = atom->omega, **f = atom->f, **torque = atom->torque;
   for (int i = 0; i < atom->nlocal; ++i) {

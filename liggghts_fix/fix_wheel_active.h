@@ -108,6 +108,7 @@ private:
   double run_active_sum_;
   long wheel_touched_frozen_; // steps x frozen particles with a wheel contact force
   bool reported_setup_;
+  bool held_since_setup_; // the set-up's forces on frozen particles discarded
 };
 
 } // namespace LAMMPS_NS
