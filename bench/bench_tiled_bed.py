@@ -144,7 +144,7 @@ def x_profile(at, L, W, dmax, zlo, zhi, dx):
 
 def wheel_run(a, out, x0, steps):
     """Mean contact force and torque over the second half of a prescribed-motion wheel run."""
-    log = out / "wheel.log"
+    log = out / f"wheel_x{x0:g}.log"
     if not log.is_file() or "motion_compare: done" not in log.read_text(errors="replace"):
         repo = Path(a.inputs).resolve().parent
         cmd = [a.exe, "-in", str(repo / "tests" / "cosim" / "in.motion_compare"), "-echo",
@@ -169,6 +169,44 @@ def wheel_run(a, out, x0, steps):
             "contacts": d[:, 8].mean(), "sd_Fz": d[:, 4].std()}
 
 
+def tiled_only(a):
+    """The cost of a tiled bed alone (a bin too big to settle whole here), and the whole bed's
+    estimated: its spheres x the block's settling steps (a bed settles in about the same number
+    of steps whatever its length: 57 379 for both on the 1 m dry_sand bin), at the tiled run's
+    loop rate."""
+    work = Path(a.work).resolve()
+    out = work / "tiled"
+    load0 = os.getloadavg()[0]
+    if a.reuse and (out / "bed.restart").is_file() and (out / "wall.txt").is_file():
+        print(f"bench: tiled: reusing {out}", flush=True)
+    else:
+        run_bed(a, "tiled", out)
+    wall, loop, ss, res = bed_cost(out)
+    rev = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], capture_output=True,
+                         text=True, cwd=Path(__file__).resolve().parent).stdout.strip()
+    cpu = next((ln.split(":", 1)[1].strip() for ln in open("/proc/cpuinfo")
+                if ln.startswith("model name")), "?")
+    lines = [f"bench_tiled_bed (tiled only): git {rev}; {platform.node()}, {os.cpu_count()} "
+             f"cores, {cpu}; load average {load0:.2f} now "
+             f"({(out / 'wall.txt').read_text().strip()})",
+             f"command: {' '.join(sys.argv)}",
+             f"bin: {a.soil} {a.bin_length} x {a.bin_width} m, fill_height {a.fill_height} m, "
+             f"np {a.np}, extra {a.var}; tile_length {a.tile_length} m", ""]
+    for k in ("spheres", "particle_mass", "bed_depth", "bulk_density", "core_bulk_density",
+              "settled", "settle_steps", "final_step", "tiles", "tile_length", "tile_spheres",
+              "tile_cut", "relax_steps", "relax_zone_steps"):
+        lines.append(f"{k:22s} {res.get(k, '?')}")
+    n = float(res["spheres"])
+    whole_ss = n * float(res["settle_steps"])
+    lines += ["", f"preparation: wall {wall:.1f} s, LIGGGHTS loop {loop:.1f} s, sphere-steps "
+              f"{ss:.4g} ({ss / loop:.3g} sphere-steps/s)",
+              f"whole bed, estimated: {n:.0f} spheres x {res['settle_steps']} steps = "
+              f"{whole_ss:.4g} sphere-steps = {whole_ss / ss:.2f} x the tiled bed's; at the "
+              f"tiled run's rate {whole_ss / (ss / loop):.0f} s of loop time"]
+    print("\n".join(lines))
+    (work / "result.txt").write_text("\n".join(lines) + "\n")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--exe", required=True)
@@ -184,12 +222,19 @@ def main():
     ap.add_argument("--zone", type=float, default=6.0,
                     help="interior cell: at least this many d_max from the end walls")
     ap.add_argument("--reuse", action="store_true")
+    ap.add_argument("--tiled-only", action="store_true",
+                    help="prepare (or reuse) only the tiled bed and print its cost, with the "
+                    "whole bed's estimated as spheres x the block's settling steps")
     ap.add_argument("--wheel", help="wheel mesh for a prescribed-motion run on each bed")
     ap.add_argument("--wheel-steps", type=int, default=8000)
+    ap.add_argument("--wheel-x0", type=float, nargs="+", help="wheel start positions [m] "
+                    "(default: mid-bin)")
     a = ap.parse_args()
     a.exe = str(Path(a.exe).resolve())
+    if a.tiled_only:
+        return tiled_only(a)
     a.inputs = str(Path(a.inputs).resolve())
-    work = Path(a.work)
+    work = Path(a.work).resolve()
     load0 = os.getloadavg()[0]
     for mode in ("whole", "tiled"):
         out = work / mode
@@ -273,14 +318,20 @@ def main():
         f"surface mean {hw.mean():.4f} / {ht.mean():.4f} m, sd {hw.std():.4f} / {ht.std():.4f}")
     if a.wheel:
         say()
-        x0 = 0.5 * L
-        ww = wheel_run(a, work / "whole", x0, a.wheel_steps)
-        wt = wheel_run(a, work / "tiled", x0, a.wheel_steps)
-        say(f"wheel {a.wheel} (tests/cosim/in.motion_compare, prescribed motion, x0 {x0} m, "
-            f"{a.wheel_steps} steps), means over the second half:")
-        for k in ("Fx", "Fz", "My", "contacts", "sd_Fz"):
-            say(f"  {k:9s} whole {ww[k]:12.5g}  tiled {wt[k]:12.5g}  "
-                f"({100 * (wt[k] / ww[k] - 1):+.1f} %)")
+        x0s = a.wheel_x0 or [0.5 * L]
+        say(f"wheel {a.wheel} (tests/cosim/in.motion_compare, prescribed motion: sinking at "
+            f"0.2 m/s while rolling, {a.wheel_steps} steps), means over the second half, at "
+            f"x0 = {', '.join(f'{x:g}' for x in x0s)} m:")
+        runs = {mm: [wheel_run(a, work / mm, x0, a.wheel_steps) for x0 in x0s]
+                for mm in ("whole", "tiled")}
+        for k in ("Fx", "Fz", "My", "contacts"):
+            vals = {mm: np.array([r[k] for r in runs[mm]]) for mm in runs}
+            per = "  ".join(f"{w:8.4g}/{t:<8.4g}" for w, t in zip(vals["whole"], vals["tiled"]))
+            mw, mt = vals["whole"].mean(), vals["tiled"].mean()
+            sw = vals["whole"].std(ddof=1) if len(x0s) > 1 else float("nan")
+            st = vals["tiled"].std(ddof=1) if len(x0s) > 1 else float("nan")
+            say(f"  {k:9s} whole/tiled per x0: {per}   mean whole {mw:.4g} (sd {sw:.3g}), "
+                f"tiled {mt:.4g} (sd {st:.3g}): {100 * (mt / mw - 1):+.1f} %")
     (work / "result.txt").write_text("\n".join(lines) + "\n")
 
 
