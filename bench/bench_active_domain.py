@@ -160,7 +160,9 @@ def coupled(a):
                    "-var", "active_domain", str(active), "-var", "active_args", a.active_args,
                    "-var", "output_every", "0"]
             t0, l0 = time.time(), load()
-            r = subprocess.run(cmd, capture_output=True, text=True)
+            # wheel-cosim takes its executables from WHEELSIM_BUILD_DIR (default <repo>/build)
+            env = dict(os.environ, WHEELSIM_BUILD_DIR=os.path.dirname(os.path.dirname(a.exe)))
+            r = subprocess.run(cmd, capture_output=True, text=True, env=env)
             if r.returncode != 0:
                 sys.exit(f"bench: coupled run failed: {r.stdout[-2000:]}{r.stderr[-2000:]}")
             walls[active] = (time.time() - t0, l0, load())
