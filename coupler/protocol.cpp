@@ -224,6 +224,11 @@ void validate(const Wrench &m) {
 void validate(const Pose &m) {
   check_step("Pose", "step", m.step);
   check_state("Pose", m.state);
+  if ((m.flags & ~kPoseCheckpointNext) != 0u)
+    throw ProtocolError("Pose.flags: unknown bits set: " + std::to_string(m.flags) +
+                        " (known: " + std::to_string(kPoseCheckpointNext) + " checkpoint)");
+  if (m.reserved != 0u)
+    throw ProtocolError("Pose.reserved: must be 0, got " + std::to_string(m.reserved));
 }
 
 void validate(const Close &m) {

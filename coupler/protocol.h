@@ -1,4 +1,4 @@
-// wheelsim coupling protocol, version 1: LIGGGHTS (fix wheel/cosim, MPI rank 0) <-> wheel-rig.
+// wheelsim coupling protocol, version 2: LIGGGHTS (fix wheel/cosim, MPI rank 0) <-> wheel-rig.
 // The whole protocol is in this header; docs/coupling-protocol.md is its prose version.
 //
 // Roles: the rig is the SERVER (binds the endpoint, integrates the wheel); LIGGGHTS is the CLIENT
@@ -13,7 +13,9 @@
 //               client -> server  Wrench   step s, time, contact force and torque on the wheel
 //                                          computed with the pose of step s
 //               server -> client  Pose     step s + N: the wheel state after the rig advanced
-//                                          N steps holding that wrench constant
+//                                          N steps holding that wrench constant; flags
+//                                          (kPoseCheckpointNext: both sides checkpoint at step
+//                                          s + 2N, the next exchange step; docs/coupled-runs.md)
 //               Between two exchanges (N > 1) the client holds the last received twist
 //               constant (zero-order hold) and integrates the pose itself.
 //   end         either side -> other  Close  reason code + text ("finished", "error: ...").
@@ -52,7 +54,7 @@ namespace wheelsim::coupler {
 #endif
 
 /// Protocol version. Bump it on any change of a struct, a field's meaning or the message order.
-constexpr std::uint32_t kProtocolVersion = 1;
+constexpr std::uint32_t kProtocolVersion = 2; // 2: Pose.flags (checkpoints)
 /// First 4 bytes of every message: "WSCP" read as a little-endian uint32.
 constexpr std::uint32_t kMagic = 0x50435357u;
 /// Accepted deviation of |q| from 1 for every quaternion on the wire.
@@ -182,8 +184,14 @@ static_assert(sizeof(Wrench) == 8 + 8 + 3 * 8 + 3 * 8 + 8);
 struct Pose {
   std::int64_t step = 0; ///< step this state is for
   WheelState state;
+  std::uint32_t flags = 0;    ///< kPose* bits; unknown bits are a ProtocolError
+  std::uint32_t reserved = 0; ///< 0
 };
-static_assert(sizeof(Pose) == 8 + sizeof(WheelState));
+static_assert(sizeof(Pose) == 8 + sizeof(WheelState) + 8);
+/// Pose.flags: the rig asks for a checkpoint at the next exchange step (Pose.step + N). Both sides
+/// then save their state of that step: LIGGGHTS a restart file after the step, before its Wrench;
+/// the rig its checkpoint file when it has advanced to that step, before its Pose.
+constexpr std::uint32_t kPoseCheckpointNext = 1u;
 
 /// Either way, last message. Frozen across protocol versions.
 struct Close {

@@ -84,10 +84,13 @@ WheelPose CoupledMotion::next_state(const WheelPose &now, std::int64_t next_step
   if (rig_finished_ || !is_exchange_step(next_step))
     return held; // zero-order hold
   WheelPose state = now;
-  int finished = 0;
+  int flags[2] = {0, 0}; // finished, checkpoint at the next exchange step
+  int &finished = flags[0];
   if (rank_ == 0) {
     try {
-      state = coupler::from_message(client_->receive_pose(next_step).state);
+      const coupler::Pose pose = client_->receive_pose(next_step);
+      state = coupler::from_message(pose.state);
+      flags[1] = (pose.flags & coupler::kPoseCheckpointNext) != 0u ? 1 : 0;
     } catch (const coupler::PeerClosedError &e) {
       if (e.reason() != coupler::CloseReason::Finished)
         throw;
@@ -97,7 +100,9 @@ WheelPose CoupledMotion::next_state(const WheelPose &now, std::int64_t next_step
                   e.peer_text().c_str(), static_cast<long long>(next_step));
     }
   }
-  MPI_Bcast(&finished, 1, MPI_INT, 0, world_);
+  MPI_Bcast(flags, 2, MPI_INT, 0, world_);
+  if (flags[1])
+    checkpoint_step_ = next_step + settings_.exchange_every;
   if (finished) {
     rig_finished_ = true;
     connected_ = false;

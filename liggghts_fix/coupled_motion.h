@@ -50,6 +50,10 @@ public:
   WheelPose next_state(const WheelPose &now, std::int64_t next_step, double dt_s) override;
   /// Ends the session with Close{finished} (rank 0; no-op if not connected).
   void close();
+  /// The step at which the rig asked both sides to checkpoint (its Pose's kPoseCheckpointNext
+  /// flag: the next exchange step after that Pose), on every rank; -1 if none is pending.
+  std::int64_t checkpoint_step() const { return checkpoint_step_; }
+  void checkpoint_done() { checkpoint_step_ = -1; }
 
 private:
   bool is_exchange_step(std::int64_t step) const;
@@ -63,6 +67,7 @@ private:
   bool rig_finished_ = false;
   std::int64_t start_step_ = 0;
   std::int64_t last_sent_step_ = -1;
+  std::int64_t checkpoint_step_ = -1;
   std::unique_ptr<coupler::CouplingClient> client_; // rank 0 only
 };
 

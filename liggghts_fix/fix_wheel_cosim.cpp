@@ -25,6 +25,7 @@
 #include "neighbor.h"
 #include "update.h"
 #include "variable.h"
+#include "write_restart.h"
 
 #include <algorithm>
 #include <array>
@@ -118,6 +119,16 @@ struct WheelCosimState {
   std::array<std::string, 6> motion_args{{"0", "0", "0", "0", "0", "0"}};
   std::array<int, 6> motion_variable{{-1, -1, -1, -1, -1, -1}};
   std::array<double, 6> motion_constant{{0, 0, 0, 0, 0, 0}};
+
+  // Checkpoints (keyword 'checkpoint', docs/coupled-runs.md "Checkpoint and resume"): restart
+  // files DIR/liggghts-<step>.restart written at the steps the coupled rig asks for.
+  std::string checkpoint_dir;
+  std::string inputs_hash = "none";        // recorded beside each restart, compared on resume
+  std::vector<long> checkpoint_steps;      // written by this process, oldest first (2 are kept)
+  std::string resume_path;                 // keyword 'resume': a checkpoint's wheel state file
+  long restored_wrench_step = -1;          // restart format 2: the step of the wrench below
+  std::array<double, 7> restored_wrench{}; // global vector 1-7 of that step's post_force
+  bool checkpoint_warned = false;          // asked for without 'checkpoint': warned once
 
   bool check_timestep = true;
   int vtk_every = 0;
@@ -222,6 +233,13 @@ FixWheelCosim::FixWheelCosim(LAMMPS *lmp, int narg, char **arg)
   restart_global = 1;
   restart_peratom = 1;
   create_attribute = 1;
+  if (!s_->checkpoint_dir.empty()) {
+    if (!s_->motion_is_coupled)
+      bad_argument("keyword 'checkpoint' needs 'motion coupled' (the rig decides when to "
+                   "checkpoint; a prescribed run uses LIGGGHTS' own 'restart' command)");
+    force_reneighbor = 1; // a checkpoint step rebuilds the neighbour lists (atoms inside the box)
+    next_reneighbor = -1;
+  }
   nevery = 1;
   std::fill(vector_, vector_ + 11, 0.0);
 
@@ -230,6 +248,8 @@ FixWheelCosim::FixWheelCosim(LAMMPS *lmp, int narg, char **arg)
   atom->add_callback(1);
   for (int i = 0; i < atom->nlocal; ++i)
     set_arrays(i);
+  if (!s_->resume_path.empty())
+    read_wheel_state(s_->resume_path);
 
   if (comm->me == 0) {
     char line[512];
@@ -404,6 +424,18 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
                      "wheel) or no (test every particle each step), got '%s'",
                      arg[iarg + 1]);
       iarg += 2;
+    } else if (std::strcmp(key, "checkpoint") == 0) {
+      need(iarg, 1, "a directory for the checkpoint restart files");
+      s_->checkpoint_dir = arg[iarg + 1];
+      iarg += 2;
+    } else if (std::strcmp(key, "resume") == 0) {
+      need(iarg, 1, "the wheel state file of a checkpoint (DIR/liggghts-STEP.restart.wheel)");
+      s_->resume_path = arg[iarg + 1];
+      iarg += 2;
+    } else if (std::strcmp(key, "inputs_hash") == 0) {
+      need(iarg, 1, "a word identifying the run's inputs (scripts/wheel-cosim passes a sha256)");
+      s_->inputs_hash = arg[iarg + 1];
+      iarg += 2;
     } else if (std::strcmp(key, "slots") == 0) {
       need(iarg, 1, "the number of contact-history slots per particle, 2..4");
       const double n = number(iarg + 1, key, "an integer 2..4");
@@ -416,7 +448,7 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
       for (wheelsim::contact::ModelKind k : wheelsim::contact::kModelKinds)
         models += std::string(wheelsim::contact::kind_keyword(k)) + ", ";
       bad_argument("unknown keyword '%s'; expected one of scale, origin, %s%s, motion, vtk, "
-                   "slots, candidates, check_timestep",
+                   "slots, candidates, check_timestep, checkpoint, inputs_hash, resume",
                    key, models.c_str(), wheelsim::contact::switch_keywords().c_str());
     }
   }
@@ -593,6 +625,13 @@ void FixWheelCosim::setup(int /*vflag*/) {
     s_->candidates.warned_inexact = true;
   }
   compute_contacts(false);
+  if (s_->restored_wrench_step == update->ntimestep) {
+    // A run restarted from a checkpoint: the rig gets the wrench the stopped run computed in this
+    // step's post_force, as the uninterrupted run sent it (setup's own is computed from the
+    // end-of-step velocities: damping forces differ).
+    std::copy(s_->restored_wrench.begin(), s_->restored_wrench.end(), vector_);
+    s_->restored_wrench_step = -1;
+  }
   report_wrench(); // the first exchange step's wrench (later setups: already sent)
   if (first_setup_) {
     first_setup_ = false;
@@ -627,6 +666,8 @@ void FixWheelCosim::post_force(int /*vflag*/) {
       coupling_failed(e);
     }
     s_->state_step = update->ntimestep;
+    if (s_->coupled && s_->coupled->checkpoint_step() > update->ntimestep)
+      schedule_checkpoint(s_->coupled->checkpoint_step());
   }
   const double t1 = MPI_Wtime();
   compute_contacts(update->setupflag == 0);
@@ -681,6 +722,11 @@ void FixWheelCosim::report_candidates() {
 }
 
 void FixWheelCosim::end_of_step() {
+  if (s_->coupled && s_->coupled->checkpoint_step() == update->ntimestep) {
+    if (!s_->checkpoint_dir.empty())
+      write_checkpoint(); // before this step's Wrench: the rig then knows the restart exists
+    s_->coupled->checkpoint_done();
+  }
   report_wrench();
   if (s_->vtk_every > 0 && update->ntimestep % s_->vtk_every == 0)
     write_vtk();
@@ -1025,26 +1071,252 @@ int FixWheelCosim::size_restart(int /*i*/) { return history_columns_ + 1; }
 int FixWheelCosim::maxsize_restart() { return history_columns_ + 1; }
 
 /* ----------------------------------------------------------------------
+   Checkpoints asked for by the coupled rig (docs/coupled-runs.md, "Checkpoint and resume")
+------------------------------------------------------------------------- */
+
+void FixWheelCosim::schedule_checkpoint(long step) {
+  if (s_->checkpoint_dir.empty()) {
+    if (!s_->checkpoint_warned && comm->me == 0) {
+      char msg[256];
+      snprintf(msg, sizeof(msg),
+               "fix wheel/cosim %s: the rig asks for a checkpoint at step %ld, but the fix has no "
+               "'checkpoint DIR' keyword: no restart file is written (the rig's half is unpaired)",
+               id, step);
+      error->warning(FLERR, msg);
+    }
+    s_->checkpoint_warned = true;
+    return;
+  }
+  next_reneighbor = step; // atoms remapped into the box at that step, as LIGGGHTS' 'restart' does
+}
+
+/* The wheel's state of a checkpoint, beside LIGGGHTS' restart file: the decks re-declare this
+   fix only after resume.in's first 'run' (which drops the restart data of fixes not yet declared,
+   as LAMMPS does), so the fix keeps its own copy. Binary, host byte order:
+     char[24] "wheelsim-wheel-state 1", then doubles: step, history columns, pose (13: p, q w x y z,
+     v, w), wrench (7: global vector 1-7 of the step's post_force), n, then n rows of
+     (atom tag, history columns) for the particles with a non-zero history. */
+
+namespace {
+constexpr char kWheelStateMagic[24] = "wheelsim-wheel-state 1";
+}
+
+void FixWheelCosim::write_wheel_state(const std::string &path) {
+  std::vector<double> mine;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    if (std::all_of(history_[i], history_[i] + history_columns_, [](double v) { return v == 0.0; }))
+      continue;
+    mine.push_back(static_cast<double>(atom->tag[i]));
+    mine.insert(mine.end(), history_[i], history_[i] + history_columns_);
+  }
+  int count = static_cast<int>(mine.size());
+  std::vector<int> counts(comm->nprocs), offsets(comm->nprocs, 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, world);
+  std::vector<double> all;
+  if (comm->me == 0) {
+    for (int r = 1; r < comm->nprocs; ++r)
+      offsets[r] = offsets[r - 1] + counts[r - 1];
+    all.resize(offsets.back() + counts.back());
+  }
+  MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE,
+              0, world);
+  if (comm->me != 0)
+    return;
+  const wheelsim::WheelPose &st = s_->state;
+  const double head[22] = {static_cast<double>(update->ntimestep),
+                           static_cast<double>(history_columns_),
+                           st.p_WB_W.x(),
+                           st.p_WB_W.y(),
+                           st.p_WB_W.z(),
+                           st.q_WB.w(),
+                           st.q_WB.x(),
+                           st.q_WB.y(),
+                           st.q_WB.z(),
+                           st.v_WB_W.x(),
+                           st.v_WB_W.y(),
+                           st.v_WB_W.z(),
+                           st.w_WB_W.x(),
+                           st.w_WB_W.y(),
+                           st.w_WB_W.z(),
+                           vector_[0],
+                           vector_[1],
+                           vector_[2],
+                           vector_[3],
+                           vector_[4],
+                           vector_[5],
+                           vector_[6]};
+  const double n = static_cast<double>(all.size() / (history_columns_ + 1));
+  const std::string writing = path + ".writing";
+  FILE *fp = fopen(writing.c_str(), "wb");
+  bool ok = fp != nullptr;
+  if (fp) {
+    ok = fwrite(kWheelStateMagic, 1, sizeof kWheelStateMagic, fp) == sizeof kWheelStateMagic &&
+         fwrite(head, sizeof(double), 22, fp) == 22 && fwrite(&n, sizeof(double), 1, fp) == 1 &&
+         fwrite(all.data(), sizeof(double), all.size(), fp) == all.size();
+    ok = fclose(fp) == 0 && ok;
+  }
+  if (!ok || std::rename(writing.c_str(), path.c_str()) != 0) {
+    char msg[768];
+    snprintf(msg, sizeof(msg), "fix wheel/cosim %s: cannot write the checkpoint's wheel state %s",
+             id, path.c_str());
+    error->one(FLERR, msg);
+  }
+}
+
+void FixWheelCosim::read_wheel_state(const std::string &path) {
+  // Every rank reads the (small) file and keeps the rows of its own atoms.
+  if (atom->map_style == 0)
+    bad_argument("keyword 'resume' needs an atom map ('atom_modify map array' before read_restart, "
+                 "as inputs/soilbin/resume.in has it)");
+  FILE *fp = fopen(path.c_str(), "rb");
+  if (!fp)
+    bad_argument("keyword 'resume': cannot open the wheel state file '%s'", path.c_str());
+  char magic[sizeof kWheelStateMagic] = {};
+  double head[22], n = 0.0;
+  bool ok = fread(magic, 1, sizeof magic, fp) == sizeof magic &&
+            std::memcmp(magic, kWheelStateMagic, sizeof magic) == 0 &&
+            fread(head, sizeof(double), 22, fp) == 22 && fread(&n, sizeof(double), 1, fp) == 1;
+  const int columns = ok ? static_cast<int>(head[1]) : 0;
+  std::vector<double> rows;
+  if (ok && columns == history_columns_) {
+    rows.resize(static_cast<std::size_t>(n) * (columns + 1));
+    ok = fread(rows.data(), sizeof(double), rows.size(), fp) == rows.size();
+  }
+  fclose(fp);
+  if (!ok)
+    bad_argument("keyword 'resume': '%s' is not a complete wheel state file of fix wheel/cosim",
+                 path.c_str());
+  if (columns != history_columns_)
+    bad_argument("keyword 'resume': '%s' holds %d history values per particle, this fix expects "
+                 "%d: use the same 'slots' value as the run that wrote it",
+                 path.c_str(), columns, history_columns_);
+  if (static_cast<long>(head[0]) != static_cast<long>(update->ntimestep))
+    bad_argument("keyword 'resume': the wheel state '%s' is of step %ld, the restart file read "
+                 "is of step %ld: use the restart and the wheel state of one checkpoint",
+                 path.c_str(), static_cast<long>(head[0]), static_cast<long>(update->ntimestep));
+  int restored = 0;
+  for (std::size_t r = 0; r < static_cast<std::size_t>(n); ++r) {
+    const double *row = &rows[r * (columns + 1)];
+    const int i = atom->map(static_cast<tagint>(row[0]));
+    if (i >= 0 && i < atom->nlocal) {
+      std::copy(row + 1, row + 1 + columns, history_[i]);
+      ++restored;
+    }
+  }
+  wheelsim::WheelPose &st = s_->state;
+  st.p_WB_W = Eigen::Vector3d(head[2], head[3], head[4]);
+  st.q_WB = Eigen::Quaterniond(head[5], head[6], head[7], head[8]);
+  st.v_WB_W = Eigen::Vector3d(head[9], head[10], head[11]);
+  st.w_WB_W = Eigen::Vector3d(head[12], head[13], head[14]);
+  s_->restored_wrench_step = static_cast<long>(head[0]);
+  std::copy(head + 15, head + 22, s_->restored_wrench.begin());
+  s_->state_step = -1;
+  first_setup_ = false;
+  int total = 0;
+  MPI_Allreduce(&restored, &total, 1, MPI_INT, MPI_SUM, world);
+  if (total != static_cast<int>(n))
+    bad_argument("keyword 'resume': %d of the %ld particle histories in '%s' found no atom "
+                 "(not the restart file of the same checkpoint?)",
+                 static_cast<int>(n) - total, static_cast<long>(n), path.c_str());
+  if (comm->me == 0) {
+    char line[512];
+    snprintf(line, sizeof(line),
+             "fix wheel/cosim %s: resumed from %s (step %ld, centre %g %g %g m, %d particle "
+             "histories)\n",
+             id, path.c_str(), static_cast<long>(head[0]), head[2], head[3], head[4], total);
+    if (screen)
+      fputs(line, screen);
+    if (logfile)
+      fputs(line, logfile);
+  }
+}
+
+void FixWheelCosim::write_checkpoint() {
+  // Written at the end of the step (positions, velocities and contact histories of this step,
+  // the wheel pose of this step in this fix's global restart data), to a temporary name first:
+  // a process killed while writing leaves no file that looks complete. Then DIR/
+  // liggghts-<step>.restart.info (step, time, inputs hash, ranks), also by rename; the wheel's
+  // own state (liggghts-<step>.restart.wheel) is written first.
+  const long step = static_cast<long>(update->ntimestep);
+  const std::string base = s_->checkpoint_dir + "/liggghts-" + std::to_string(step) + ".restart";
+  write_wheel_state(base + ".wheel");
+  std::string writing = base + ".writing";
+  WriteRestart writer(lmp);
+  writer.write(&writing[0]);
+  if (comm->me == 0) {
+    const std::string info = base + ".info", info_writing = info + ".writing";
+    FILE *fp = fopen(info_writing.c_str(), "w");
+    bool ok = fp != nullptr;
+    if (fp) {
+      ok = fprintf(fp,
+                   "wheelsim-liggghts-checkpoint 1\nstep %ld\ntime %.17g\ninputs_hash %s\n"
+                   "nprocs %d\nrestart liggghts-%ld.restart\n",
+                   step, update->get_cur_time(), s_->inputs_hash.c_str(), comm->nprocs, step) > 0;
+      ok = fclose(fp) == 0 && ok;
+    }
+    if (!ok || std::rename(writing.c_str(), base.c_str()) != 0 ||
+        std::rename(info_writing.c_str(), info.c_str()) != 0) {
+      char msg[1024];
+      snprintf(msg, sizeof(msg),
+               "fix wheel/cosim %s: cannot write the checkpoint %s (and its .info) at step %ld: "
+               "check that the directory '%s' exists and is writable",
+               id, base.c_str(), step, s_->checkpoint_dir.c_str());
+      error->one(FLERR, msg);
+    }
+    // Keep the newest two: if this process dies while writing the next one, the rig's and this
+    // side's previous checkpoint still pair up.
+    s_->checkpoint_steps.push_back(step);
+    while (s_->checkpoint_steps.size() > 2) {
+      const std::string old = s_->checkpoint_dir + "/liggghts-" +
+                              std::to_string(s_->checkpoint_steps.front()) + ".restart";
+      std::remove((old + ".info").c_str());
+      std::remove((old + ".wheel").c_str());
+      std::remove(old.c_str());
+      s_->checkpoint_steps.erase(s_->checkpoint_steps.begin());
+    }
+    char line[512];
+    snprintf(line, sizeof(line), "fix wheel/cosim %s: checkpoint %s written at step %ld\n", id,
+             base.c_str(), step);
+    if (screen)
+      fputs(line, screen);
+    if (logfile)
+      fputs(line, logfile);
+  }
+}
+
+/* ----------------------------------------------------------------------
    Global restart state: the wheel pose and twist
 ------------------------------------------------------------------------- */
 
 void FixWheelCosim::write_restart(FILE *fp) {
+  // Format 2: format 1 (the pose and twist) + the step and the wrench (global vector 1-7) this
+  // fix computed in that step's post_force, which a coupled run resumed from this file sends to
+  // the rig again (setup() would recompute it from the end-of-step velocities).
   const wheelsim::WheelPose &st = s_->state;
-  double list[14] = {1.0, // format version
-                     st.p_WB_W.x(), st.p_WB_W.y(), st.p_WB_W.z(), st.q_WB.w(),   st.q_WB.x(),
-                     st.q_WB.y(),   st.q_WB.z(),   st.v_WB_W.x(), st.v_WB_W.y(), st.v_WB_W.z(),
-                     st.w_WB_W.x(), st.w_WB_W.y(), st.w_WB_W.z()};
+  double list[22] = {2.0, // format version
+                     st.p_WB_W.x(), st.p_WB_W.y(),
+                     st.p_WB_W.z(), st.q_WB.w(),
+                     st.q_WB.x(),   st.q_WB.y(),
+                     st.q_WB.z(),   st.v_WB_W.x(),
+                     st.v_WB_W.y(), st.v_WB_W.z(),
+                     st.w_WB_W.x(), st.w_WB_W.y(),
+                     st.w_WB_W.z(), static_cast<double>(update->ntimestep)};
+  std::copy(vector_, vector_ + 7, list + 15);
   if (comm->me == 0) {
     const int size = sizeof(list);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), 14, fp);
+    fwrite(list, sizeof(double), 22, fp);
   }
 }
 
 void FixWheelCosim::restart(char *buf) {
   const double *list = reinterpret_cast<const double *>(buf);
-  if (list[0] != 1.0)
-    bad_argument("restart data of fix wheel/cosim has format %g, expected 1", list[0]);
+  if (list[0] != 1.0 && list[0] != 2.0)
+    bad_argument("restart data of fix wheel/cosim has format %g, expected 1 or 2", list[0]);
+  if (list[0] == 2.0) {
+    s_->restored_wrench_step = static_cast<long>(list[14]);
+    std::copy(list + 15, list + 22, s_->restored_wrench.begin());
+  }
   wheelsim::WheelPose &st = s_->state;
   st.p_WB_W = Eigen::Vector3d(list[1], list[2], list[3]);
   st.q_WB = Eigen::Quaterniond(list[4], list[5], list[6], list[7]).normalized();

@@ -95,6 +95,11 @@ private:
   void clear_history_outside_candidates();
   void report_candidates(); // post_run: list size and builds of the run
   void write_vtk();
+  void schedule_checkpoint(long step); // the rig asked for one: reneighbour at that step
+  void write_checkpoint();             // restart file + .wheel + .info at the current step
+  void write_wheel_state(const std::string &path); // histories, pose, wrench (collective)
+  void read_wheel_state(const std::string &path);  // keyword 'resume'
+
   void report_wrench();                                       // to the motion source
   [[noreturn]] void coupling_failed(const std::exception &e); // error->one on rank 0
   [[noreturn]] void bad_argument(const char *fmt, ...);

@@ -34,7 +34,7 @@ TEST(CouplerProtocol, WireSizesAreFixed) {
   EXPECT_EQ(encode(sample_hello()).size(), 16u + 112u);
   EXPECT_EQ(encode(Welcome{1, 0, 0, kDt, {}}).size(), 16u + 128u);
   EXPECT_EQ(encode(sample_wrench(5)).size(), 16u + 72u);
-  EXPECT_EQ(encode(sample_pose()).size(), 16u + 112u);
+  EXPECT_EQ(encode(sample_pose()).size(), 16u + 120u);
   EXPECT_EQ(encode(Close::make(CloseReason::Finished, "finished")).size(), 16u + 256u);
 }
 
@@ -122,6 +122,16 @@ TEST(CouplerProtocol, NanFieldIsNamed) {
   EXPECT_THAT(message_of<ProtocolError>([&] { decode_hello(hello); }), HasSubstr("Hello.dt_s"));
 }
 
+TEST(CouplerProtocol, PoseCheckpointFlagRoundTripsAndUnknownBitsAreRejected) {
+  Pose pose = sample_pose();
+  pose.flags = kPoseCheckpointNext;
+  EXPECT_EQ(decode_pose(encode(pose)).flags, kPoseCheckpointNext);
+  Bytes bytes = encode(sample_pose());
+  poke_u32(bytes, sizeof(MessageHeader) + offsetof(Pose, flags), 6u);
+  EXPECT_THAT(message_of<ProtocolError>([&] { decode_pose(bytes); }),
+              HasSubstr("Pose.flags: unknown bits set: 6"));
+}
+
 TEST(CouplerProtocol, NonUnitQuaternionIsNamed) {
   Bytes bytes = encode(sample_pose());
   poke_double(bytes, offsetof(Pose, state) + offsetof(WheelState, q_WB), 1.2);
@@ -160,22 +170,22 @@ TEST(CouplerProtocol, HelloRangesAreChecked) {
 
 TEST(CouplerProtocol, VersionMismatchNamesBothVersions) {
   Hello hello = sample_hello();
-  hello.protocol_version = 2;
+  hello.protocol_version = 1;
   const Bytes bytes = encode(hello);
   EXPECT_THAT(message_of<ProtocolError>([&] { decode_hello(bytes); }),
-              HasSubstr("client speaks protocol 2, server 1"));
+              HasSubstr("client speaks protocol 1, server 2"));
 
   Welcome welcome;
   welcome.protocol_version = 7;
   welcome.dt_s = kDt;
   const Bytes wb = encode(welcome);
   EXPECT_THAT(message_of<ProtocolError>([&] { decode_welcome(wb); }),
-              HasSubstr("server speaks protocol 7, client 1"));
+              HasSubstr("server speaks protocol 7, client 2"));
 
   Bytes wrench = encode(sample_wrench(1));
   poke_u32(wrench, offsetof(MessageHeader, version), 3);
   EXPECT_THAT(message_of<ProtocolError>([&] { decode_wrench(wrench); }),
-              HasSubstr("client speaks protocol 3, server 1"));
+              HasSubstr("client speaks protocol 3, server 2"));
 }
 
 TEST(CouplerProtocol, CloseIsReadableFromAnyVersion) {

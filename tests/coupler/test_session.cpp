@@ -59,7 +59,7 @@ TEST(CouplerSession, VersionMismatchIsReportedOnBothSides) {
       [&] { server_error = message_of<ProtocolError>([&] { server.accept(kDt); }); });
   CouplingClient client(std::move(s.client_transport), kShort);
   Hello hello = sample_hello();
-  hello.protocol_version = 2;
+  hello.protocol_version = 3;
   std::string client_error;
   CloseReason reason = CloseReason::Finished;
   try {
@@ -69,8 +69,8 @@ TEST(CouplerSession, VersionMismatchIsReportedOnBothSides) {
     reason = e.reason();
   }
   rig_thread.join();
-  EXPECT_THAT(server_error, HasSubstr("client speaks protocol 2, server 1"));
-  EXPECT_THAT(client_error, HasSubstr("client speaks protocol 2, server 1"));
+  EXPECT_THAT(server_error, HasSubstr("client speaks protocol 3, server 2"));
+  EXPECT_THAT(client_error, HasSubstr("client speaks protocol 3, server 2"));
   EXPECT_THAT(client_error, HasSubstr("the rig (loopback) closed the coupling"));
   EXPECT_EQ(reason, CloseReason::ProtocolError);
 }
@@ -85,11 +85,11 @@ TEST(CouplerSession, ServerOfAnotherVersionIsRejectedByTheClient) {
   welcome.dt_s = kDt;
   rig.send(encode(welcome));
   EXPECT_THAT(message_of<ProtocolError>([&] { client.connect(sample_hello(100)); }),
-              HasSubstr("server speaks protocol 3, client 1"));
+              HasSubstr("server speaks protocol 3, client 2"));
   ASSERT_EQ(peek_type(rig.receive(100ms, "Hello")), MessageType::Hello);
   const Close close = decode_close(rig.receive(100ms, "Close"));
   EXPECT_EQ(close.reason, CloseReason::ProtocolError);
-  EXPECT_THAT(close.message(), HasSubstr("server speaks protocol 3, client 1"));
+  EXPECT_THAT(close.message(), HasSubstr("server speaks protocol 3, client 2"));
 }
 
 TEST(CouplerSession, TimeStepMismatchIsReportedOnBothSides) {

@@ -270,3 +270,61 @@ TEST(RunFile, NothingIsWrittenBeforeAFlushBufferedRowsStayInMemory) {
   EXPECT_EQ(s.rows_written(), 5000);
   EXPECT_EQ(s.buffered_rows(), 0);
 }
+
+// --- resume (docs/coupled-runs.md, "Checkpoint and resume") ------------------------------------
+
+TEST(RunFileResume, KeepsRowsBeforeTheStepAndContinuesAfterThem) {
+  const std::string path = temp_path("resume.h5");
+  {
+    rf::RunFile file(path, kCreator);
+    file.set_parameter("rig_config", "first start");
+    file.begin_health("running");
+    rf::TimeSeries &pos = file.observable("wheel/position", "m", 3);
+    rf::TimeSeries &slip = file.observable("slip", "1", 1);
+    for (std::int64_t step = 0; step < 100; ++step) {
+      append_sample(pos, step);
+      append_sample(slip, step);
+    }
+    file.add_health_finding({10, 0.1, "early", "warning", "before the checkpoint"});
+    file.add_health_finding({80, 0.8, "late", "warning", "after the checkpoint"});
+    file.flush();
+  } // the "stopped" run: its last commit holds steps 0..99
+  {
+    rf::RunFile file(path, rf::RunFile::Resume{50});
+    EXPECT_TRUE(file.has_parameter("rig_config"));
+    EXPECT_FALSE(file.has_parameter("resume/1/step"));
+    EXPECT_TRUE(file.has_health());
+    rf::TimeSeries &pos = file.observable("wheel/position", "m", 3);
+    EXPECT_EQ(pos.rows(), 50);
+    EXPECT_THROW(file.observable("slip", "N", 1), rf::RunFileError); // another unit
+    // Steps must still increase past the kept rows.
+    std::vector<double> v(3, 0.0);
+    EXPECT_THROW(pos.append(49, 0.0, v.data()), rf::RunFileError);
+    for (std::int64_t step = 50; step < 60; ++step)
+      append_sample(pos, step);
+    file.set_parameter("resume/1/step", std::int64_t{50}, "1");
+    file.add_health_finding({55, 0.55, "resumed", "warning", "after the resume"});
+    file.close();
+  }
+  h5read::File f(path);
+  std::vector<std::int64_t> steps(60);
+  for (std::int64_t k = 0; k < 60; ++k)
+    steps[k] = k;
+  expect_series(f.id(), "wheel/position", steps, 3, "m");
+  EXPECT_EQ(h5read::dims(f.id(), "/observables/slip/step"), std::vector<hsize_t>{50});
+  EXPECT_EQ(h5read::int64s(f.id(), "/health/step"), (std::vector<std::int64_t>{10, 55}));
+  EXPECT_EQ(h5read::string_dataset(f.id(), "/parameters/rig_config"), "first start");
+}
+
+TEST(RunFileResume, AMissingFileIsNamed) {
+  const std::string path = temp_path("no_such_run.h5");
+  std::remove(path.c_str());
+  try {
+    rf::RunFile file(path, rf::RunFile::Resume{10});
+    FAIL() << "no error";
+  } catch (const rf::RunFileError &e) {
+    EXPECT_NE(std::string(e.what()).find("cannot resume run file '" + path + "'"),
+              std::string::npos)
+        << e.what();
+  }
+}

@@ -4,7 +4,8 @@
 // writes the HDF5 run file (docs/hdf5-layout.md), with a progress line on the terminal.
 //
 //   wheel-rig --config rig.toml [--out run.h5] [--endpoint ipc:///tmp/x.sock]
-//             [--surface-height Z] [--quiet]
+//             [--surface-height Z] [--quiet] [--checkpoint-dir DIR [--checkpoint-every-steps N]
+//             [--checkpoint-every-seconds S] [--inputs-hash H]] [--resume DIR/rig-STEP.ckpt]
 //   wheel-rig --config rig.toml --check      (validate as a run would; no run, no run file)
 //   wheel-rig --list-keys                    (the config schema as JSON, config_schema.h)
 //
@@ -21,6 +22,7 @@
 #include "coupler/pose_messages.h"
 #include "coupler/transport.h"
 #include "wheelsim/cli.h"
+#include "wheelsim/rig/checkpoint.h"
 #include "wheelsim/rig/config_schema.h"
 #include "wheelsim/rig/rig_config.h"
 #include "wheelsim/rig/rig_simulation.h"
@@ -35,6 +37,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -127,13 +130,35 @@ public:
 /// The rig. Its x and y are measured from the wheel's initial position in LIGGGHTS' box.
 class RigDriver : public DemDriver {
 public:
-  RigDriver(rig::RigSimulation &sim, Sink &sink) : sim_(sim), sink_(sink) {}
+  /// `resumed`: the checkpoint the rig was restored from (its state is in `sim` already), or null.
+  RigDriver(rig::RigSimulation &sim, Sink &sink, const rig::CheckpointData *resumed)
+      : sim_(sim), sink_(sink), resumed_(resumed) {}
   coupler::WheelState start(const coupler::Hello &hello) override {
+    if (resumed_) { // LIGGGHTS must start from the restart file of the same step
+      const std::int64_t step = resumed_->integer("coupling/liggghts_step");
+      if (hello.start_step != step)
+        throw coupler::ProtocolError("checkpoint mismatch: LIGGGHTS starts at step " +
+                                     std::to_string(hello.start_step) + ", the rig's checkpoint " +
+                                     resumed_->source() + " is at step " + std::to_string(step) +
+                                     "; resume both halves of one checkpoint (liggghts-" +
+                                     std::to_string(step) + ".restart)");
+      const std::int64_t every = resumed_->integer("coupling/exchange_every");
+      if (hello.exchange_every != every)
+        throw coupler::ProtocolError("checkpoint mismatch: LIGGGHTS exchanges every " +
+                                     std::to_string(hello.exchange_every) +
+                                     " steps, the checkpoint's run every " + std::to_string(every));
+      const std::vector<double> &o = resumed_->numbers("coupling/offset");
+      offset_ = Eigen::Vector3d(o.at(0), o.at(1), o.at(2));
+      sink_.step_offset = resumed_->integer("coupling/step_offset");
+      return message();
+    }
     const WheelPose initial = coupler::from_message(hello);
     offset_ = Eigen::Vector3d(initial.p_WB_W.x(), initial.p_WB_W.y(), 0.0);
     sink_.step_offset = hello.start_step;
     return message();
   }
+  /// The rig frame's origin in LIGGGHTS' box (x, y of the wheel's initial position).
+  const Eigen::Vector3d &offset() const { return offset_; }
   coupler::WheelState advance(const WheelWrench &wrench, double contacts) override {
     sink_.advance(wrench, contacts);
     return message();
@@ -156,7 +181,90 @@ private:
 
   rig::RigSimulation &sim_;
   Sink &sink_;
+  const rig::CheckpointData *resumed_;
   Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();
+};
+
+/// When to checkpoint and where (docs/coupled-runs.md, "Checkpoint and resume").
+struct CheckpointSettings {
+  std::string dir;           ///< empty: no checkpoints
+  long long every_steps = 0; ///< LIGGGHTS steps between checkpoints (0: by wall time only)
+  double every_s = 1800.0;   ///< wall time between checkpoints [s] (0: by steps only)
+  std::string inputs_hash = "none";
+};
+
+/// Decides when both sides checkpoint (the rig sets kPoseCheckpointNext on a Pose: both save the
+/// next exchange step) and writes the rig's half: DIR/rig-<step>.ckpt with the rig's and the
+/// health checks' state, the coupling's offsets, and the run file committed up to that step.
+class Checkpointer {
+public:
+  Checkpointer(const CheckpointSettings &settings, Sink &sink, runfile::RunFile &file,
+               const RigDriver &driver)
+      : settings_(settings), sink_(sink), file_(file), driver_(driver),
+        last_wall_(std::chrono::steady_clock::now()) {}
+  /// Called once the coupling starts at LIGGGHTS step `start_step`.
+  void start(std::int64_t start_step) { last_step_ = start_step; }
+  /// Before sending the Pose of `pose_step`: true if it should carry kPoseCheckpointNext (then
+  /// the checkpoint is at pose_step + every).
+  bool due(std::int64_t pose_step, int every) {
+    if (pending_ >= 0)
+      return false;
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - last_wall_).count();
+    const bool by_steps =
+        settings_.every_steps > 0 && pose_step + every - last_step_ >= settings_.every_steps;
+    const bool by_wall = settings_.every_s > 0.0 && wall >= settings_.every_s;
+    if (!by_steps && !by_wall)
+      return false;
+    pending_ = pose_step + every;
+    return true;
+  }
+  std::int64_t pending() const { return pending_; }
+  /// The rig's half of the checkpoint at LIGGGHTS step `step` (the rig's state is that step's).
+  void write(std::int64_t step, int every, bool quiet) {
+    file_.flush(); // rows before `step` committed: a resume keeps exactly those
+    rig::CheckpointData data;
+    data.set_text("program",
+                  std::string("wheel-rig ") + WHEELSIM_VERSION + " " + WHEELSIM_GIT_REVISION);
+    data.set_integer("coupling/liggghts_step", step);
+    data.set_integer("coupling/step_offset", sink_.step_offset);
+    data.set_integer("coupling/exchange_every", every);
+    const Eigen::Vector3d &o = driver_.offset();
+    data.set_numbers("coupling/offset", {o.x(), o.y(), o.z()});
+    data.set_text("inputs_hash", settings_.inputs_hash);
+    data.set_text("rig_config", sink_.sim.config().text);
+    data.set_number("run/dt", sink_.sim.config().run.dt_s);
+    data.set_text("run_file/path", file_.path());
+    data.set_integer("run_file/before_step", step);
+    sink_.sim.save_checkpoint(data);
+    sink_.health.save_checkpoint(data);
+    const std::string path = settings_.dir + "/rig-" + std::to_string(step) + ".ckpt";
+    data.write(path);
+    // Keep the newest two (LIGGGHTS keeps its two as well): a kill while one side writes the
+    // next one leaves the previous pair complete.
+    written_.push_back(path);
+    while (written_.size() > 2) {
+      std::remove(written_.front().c_str());
+      written_.erase(written_.begin());
+    }
+    pending_ = -1;
+    last_step_ = step;
+    last_wall_ = std::chrono::steady_clock::now();
+    if (!quiet)
+      std::printf("wheel-rig: checkpoint %s at step %lld (t = %.6g s, %s phase)\n", path.c_str(),
+                  static_cast<long long>(step), sink_.sim.time_s(),
+                  rig::to_string(sink_.sim.phase()));
+  }
+
+private:
+  CheckpointSettings settings_;
+  Sink &sink_;
+  runfile::RunFile &file_;
+  const RigDriver &driver_;
+  std::chrono::steady_clock::time_point last_wall_;
+  std::int64_t last_step_ = 0;
+  std::int64_t pending_ = -1;
+  std::vector<std::string> written_;
 };
 
 /// --kinematic: the wheel follows a fixed twist from LIGGGHTS' initial pose, integrated by
@@ -209,7 +317,8 @@ private:
 };
 
 /// The remote DEM terrain: LIGGGHTS' fix wheel/cosim connects to us.
-void run_dem(const rig::RigConfig &config, DemDriver &driver, runfile::RunFile &file, bool quiet) {
+void run_dem(const rig::RigConfig &config, DemDriver &driver, runfile::RunFile &file, bool quiet,
+             Checkpointer *checkpointer = nullptr) {
   const rig::TerrainConfig &terrain = config.terrain;
   coupler::Timeouts timeouts;
   timeouts.step = millis(terrain.timeout_s);
@@ -221,15 +330,24 @@ void run_dem(const rig::RigConfig &config, DemDriver &driver, runfile::RunFile &
                 timeouts.handshake.count() / 1000.0);
   const coupler::Hello hello = server.accept(config.run.dt_s);
   const int every = static_cast<int>(hello.exchange_every);
-  file.set_parameter("coupling/start_step", static_cast<std::int64_t>(hello.start_step), "1");
-  file.set_parameter("coupling/exchange_every", static_cast<std::int64_t>(every), "1");
-  file.set_parameter("coupling/dt", hello.dt_s, "s");
-  file.set_parameter("coupling/endpoint", terrain.endpoint);
+  if (!file.has_parameter("coupling/start_step")) { // a resumed file has the first start's
+    file.set_parameter("coupling/start_step", static_cast<std::int64_t>(hello.start_step), "1");
+    file.set_parameter("coupling/exchange_every", static_cast<std::int64_t>(every), "1");
+    file.set_parameter("coupling/dt", hello.dt_s, "s");
+    file.set_parameter("coupling/endpoint", terrain.endpoint);
+  }
   coupler::Welcome welcome;
   welcome.start_step = hello.start_step;
   welcome.dt_s = hello.dt_s;
-  welcome.state = driver.start(hello);
+  try {
+    welcome.state = driver.start(hello);
+  } catch (const coupler::ProtocolError &e) { // LIGGGHTS stops with the same text
+    server.close(coupler::CloseReason::ProtocolError, e.what());
+    throw;
+  }
   server.welcome(welcome);
+  if (checkpointer)
+    checkpointer->start(hello.start_step);
   if (!quiet)
     std::printf("wheel-rig: LIGGGHTS connected (start step %lld, dt %g s, exchange every %d)\n",
                 static_cast<long long>(hello.start_step), hello.dt_s, every);
@@ -257,6 +375,10 @@ void run_dem(const rig::RigConfig &config, DemDriver &driver, runfile::RunFile &
         std::printf("wheel-rig: %s; told LIGGGHTS to stop\n", text.c_str());
       return;
     }
+    if (checkpointer && checkpointer->pending() == pose.step)
+      checkpointer->write(pose.step, every, quiet);
+    if (checkpointer && checkpointer->due(pose.step, every))
+      pose.flags |= coupler::kPoseCheckpointNext;
     try {
       server.send_pose(pose);
     } catch (const coupler::PeerClosedError &e) {
@@ -280,7 +402,8 @@ void check_run_inputs(const rig::RigConfig &config) {
 
 /// Runs the rig on the terrain of `config` (or the --kinematic twist) to its end.
 void run_terrain(const rig::RigConfig &config, const std::vector<double> &kinematic, Sink &sink,
-                 runfile::RunFile &file, bool quiet) {
+                 runfile::RunFile &file, bool quiet, const CheckpointSettings &checkpoints,
+                 const rig::CheckpointData *resumed) {
   if (!kinematic.empty()) {
     KinematicDriver driver(Eigen::Vector3d(kinematic[0], kinematic[1], kinematic[2]),
                            Eigen::Vector3d(kinematic[3], kinematic[4], kinematic[5]),
@@ -293,8 +416,11 @@ void run_terrain(const rig::RigConfig &config, const std::vector<double> &kinema
   } else if (const rig::TerrainKind &kind = rig::terrain_kind(config.terrain.type); kind.make) {
     run_in_process(kind, sink, file);
   } else { // the remote terrain: LIGGGHTS over the coupler
-    RigDriver driver(sink.sim, sink);
-    run_dem(config, driver, file, quiet);
+    RigDriver driver(sink.sim, sink, resumed);
+    std::optional<Checkpointer> checkpointer;
+    if (!checkpoints.dir.empty())
+      checkpointer.emplace(checkpoints, sink, file, driver);
+    run_dem(config, driver, file, quiet, checkpointer ? &*checkpointer : nullptr);
   }
 }
 
@@ -311,6 +437,8 @@ int main(int argc, char **argv) {
   bool check = false;
   std::optional<double> dt;
   bool list_keys = false;
+  CheckpointSettings checkpoints;
+  std::string resume_path;
   app.add_option("--config", config_path, "rig configuration (TOML); required unless --list-keys");
   app.add_option("--out", out_path, "HDF5 run file (default: [output] file of the config)");
   app.add_option("--endpoint", endpoint,
@@ -336,6 +464,23 @@ int main(int argc, char **argv) {
   app.add_flag("--list-keys", list_keys,
                "print the rig config's schema as JSON (every table.key with its type, unit, "
                "default, range and the terrain type or carriage mode it applies to) and exit 0");
+  app.add_option("--checkpoint-dir", checkpoints.dir,
+                 "DEM runs: write checkpoints (rig-<step>.ckpt; LIGGGHTS writes liggghts-<step>."
+                 "restart beside them with fix wheel/cosim's 'checkpoint DIR') into this existing "
+                 "directory; docs/coupled-runs.md \"Checkpoint and resume\"");
+  app.add_option("--checkpoint-every-steps", checkpoints.every_steps,
+                 "LIGGGHTS steps between checkpoints (default 0: by wall time only)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--checkpoint-every-seconds", checkpoints.every_s,
+                 "wall time between checkpoints [s] (default 1800; 0: by steps only)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--inputs-hash", checkpoints.inputs_hash,
+                 "a word identifying the run's inputs, stored in each checkpoint and compared on "
+                 "--resume (scripts/wheel-cosim passes a sha256 of them)");
+  app.add_option("--resume", resume_path,
+                 "continue the run from this checkpoint (DIR/rig-<step>.ckpt) with LIGGGHTS "
+                 "restarted from DIR/liggghts-<step>.restart: the run file (--out) keeps its rows "
+                 "before that step and goes on");
   cli::setup(app, "wheel-rig");
   if (const auto status = cli::parse(app, argc, argv))
     return *status;
@@ -371,6 +516,16 @@ int main(int argc, char **argv) {
     for (const std::string &p : parameters)
       if (p.find('=') == std::string::npos || p.find('=') == 0)
         throw cli::UsageError("--parameter expects KEY=VALUE, got '" + p + "'");
+    if ((!checkpoints.dir.empty() || !resume_path.empty()) &&
+        (config.terrain.type != rig::TerrainType::dem || !kinematic.empty()))
+      throw cli::UsageError("--checkpoint-dir and --resume need terrain.type = \"dem\" and the "
+                            "rig model (not --kinematic)");
+    if (!checkpoints.dir.empty() && !std::filesystem::is_directory(checkpoints.dir))
+      throw cli::UsageError("--checkpoint-dir: '" + checkpoints.dir +
+                            "' is not a directory (create it first)");
+    if (!checkpoints.dir.empty() && checkpoints.every_steps == 0 && checkpoints.every_s == 0.0)
+      throw cli::UsageError("--checkpoint-every-steps and --checkpoint-every-seconds are both 0: "
+                            "give one > 0, or leave --checkpoint-dir out");
     if (check) {
       check_run_inputs(config);
       if (!quiet)
@@ -391,27 +546,75 @@ int main(int argc, char **argv) {
     rig::RigSimulation sim(config);
     runfile::FlushPolicy flush;
     flush.write_every_rows = config.output.flush_interval;
-    file = std::make_unique<runfile::RunFile>(
-        config.output.file, runfile::Creator{"wheel-rig", WHEELSIM_VERSION, WHEELSIM_GIT_REVISION},
-        flush);
-    file->set_parameter_text("rig_config", config.text);
-    file->set_parameter("rig_config_file", config.source);
+    // --resume: the checkpoint must be of this run (same rig config, same inputs, same dt).
+    std::optional<rig::CheckpointData> resumed;
+    if (!resume_path.empty()) {
+      resumed = rig::CheckpointData::read(resume_path);
+      if (resumed->text("rig_config") != config.text)
+        throw rig::RigConfigError("--resume: the rig config " + config_path +
+                                  " differs from the one the checkpoint " + resume_path +
+                                  " was written with (resume with the same config)");
+      if (resumed->text("inputs_hash") != checkpoints.inputs_hash)
+        throw rig::RigConfigError("--resume: the checkpoint " + resume_path +
+                                  " was written with inputs hash " + resumed->text("inputs_hash") +
+                                  ", this run has " + checkpoints.inputs_hash +
+                                  " (an input changed since)");
+      if (resumed->number("run/dt") != config.run.dt_s)
+        throw rig::RigConfigError("--resume: the checkpoint's time step " +
+                                  std::to_string(resumed->number("run/dt")) + " s differs from " +
+                                  std::to_string(config.run.dt_s) + " s");
+      sim.restore_checkpoint(*resumed);
+      file = std::make_unique<runfile::RunFile>(
+          config.output.file, runfile::RunFile::Resume{resumed->integer("run_file/before_step")},
+          flush);
+    } else {
+      file = std::make_unique<runfile::RunFile>(
+          config.output.file,
+          runfile::Creator{"wheel-rig", WHEELSIM_VERSION, WHEELSIM_GIT_REVISION}, flush);
+    }
     std::ostringstream command;
     for (int i = 0; i < argc; ++i)
       command << (i ? " " : "") << argv[i];
-    file->set_parameter("command_line", command.str());
-    file->set_parameter("wheel/mass", sim.wheel().mass_kg, "kg");
-    file->set_parameter("wheel/axle_inertia", sim.wheel().axle_inertia_kg_m2, "kg m^2");
-    file->set_parameter("wheel/effective_radius", sim.wheel().effective_radius_m, "m");
-    file->set_parameter("wheel/rim_radius", sim.wheel().rim_radius_m, "m");
-    file->set_parameter("wheel/source", sim.wheel().source);
-    file->set_parameter("terrain/surface_height", config.terrain.surface_height_m, "m");
-    file->set_parameter("run/dt", config.run.dt_s, "s");
-    file->set_parameter("run/dt_source", dt ? "--dt (scripts/wheel-cosim: the bed's time step)"
-                                            : "the rig config's run.dt");
-    for (const std::string &p : parameters) {
-      const auto eq = p.find('='); // KEY=VALUE, checked before the run
-      file->set_parameter(p.substr(0, eq), p.substr(eq + 1));
+    if (resumed) { // provenance: resume/<k>/..., k = 1, 2, ... in the order of the resumes
+      int k = 1;
+      while (file->has_parameter("resume/" + std::to_string(k) + "/step"))
+        ++k;
+      const std::string key = "resume/" + std::to_string(k) + "/";
+      file->set_parameter(key + "step", resumed->integer("coupling/liggghts_step"), "1");
+      file->set_parameter(key + "time", sim.time_s(), "s");
+      file->set_parameter(key + "phase", rig::to_string(sim.phase()));
+      file->set_parameter(key + "checkpoint", resume_path);
+      file->set_parameter(key + "command_line", command.str());
+      file->set_parameter(key + "git_revision", WHEELSIM_GIT_REVISION);
+      for (const std::string &p : parameters) { // the launcher's values of this start
+        const auto eq = p.find('=');
+        if (!file->has_parameter(p.substr(0, eq)))
+          file->set_parameter(p.substr(0, eq), p.substr(eq + 1));
+      }
+    } else {
+      file->set_parameter_text("rig_config", config.text);
+      file->set_parameter("rig_config_file", config.source);
+      file->set_parameter("command_line", command.str());
+      file->set_parameter("wheel/mass", sim.wheel().mass_kg, "kg");
+      file->set_parameter("wheel/axle_inertia", sim.wheel().axle_inertia_kg_m2, "kg m^2");
+      file->set_parameter("wheel/effective_radius", sim.wheel().effective_radius_m, "m");
+      file->set_parameter("wheel/rim_radius", sim.wheel().rim_radius_m, "m");
+      file->set_parameter("wheel/source", sim.wheel().source);
+      file->set_parameter("terrain/surface_height", config.terrain.surface_height_m, "m");
+      file->set_parameter("run/dt", config.run.dt_s, "s");
+      file->set_parameter("run/dt_source", dt ? "--dt (scripts/wheel-cosim: the bed's time step)"
+                                              : "the rig config's run.dt");
+      for (const std::string &p : parameters) {
+        const auto eq = p.find('='); // KEY=VALUE, checked before the run
+        file->set_parameter(p.substr(0, eq), p.substr(eq + 1));
+      }
+      if (!checkpoints.dir.empty()) {
+        file->set_parameter("checkpoint/dir", checkpoints.dir);
+        file->set_parameter("checkpoint/every_steps",
+                            static_cast<std::int64_t>(checkpoints.every_steps), "1");
+        file->set_parameter("checkpoint/every_seconds", checkpoints.every_s, "s");
+        file->set_parameter("checkpoint/inputs_hash", checkpoints.inputs_hash);
+      }
     }
 
     // Run health (docs/run-health.md): findings go to the terminal and to /health as they come.
@@ -423,13 +626,18 @@ int main(int argc, char **argv) {
       file->add_health_finding(
           {step_offset + f.step, f.time_s, f.code, rig::to_string(f.severity), f.message});
     });
-    if (checked)
+    if (checked && file->has_health()) // resumed: its findings before the checkpoint stay
+      file->set_health_status("running");
+    else if (checked)
       file->begin_health("running");
+    if (resumed)
+      health.restore_checkpoint(*resumed);
     rig::RunRecorder recorder(*file);
     rig::ProgressLine progress(quiet ? 0.0 : config.output.progress_interval_s, stdout);
     Sink sink{recorder, progress, sim, health, std::max(1LL, config.output.every), step_offset};
     try {
-      run_terrain(config, kinematic, sink, *file, quiet);
+      run_terrain(config, kinematic, sink, *file, quiet, checkpoints,
+                  resumed ? &*resumed : nullptr);
       if (checked)
         health.finish();
     } catch (const rig::RunHealthError &) {

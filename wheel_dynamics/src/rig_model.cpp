@@ -152,4 +152,22 @@ RigEnergy Rig::energy() const {
   return e;
 }
 
+Rig::Snapshot Rig::snapshot() const {
+  return Snapshot{q_,           u_,     drives_,          reactions_,
+                  time_s_,      steps_, segment_time0_s_, segment_step0_,
+                  segment_dt_s_};
+}
+
+void Rig::restore(const Snapshot &s) {
+  q_ = s.q;
+  u_ = s.u;
+  drives_ = s.drives;
+  reactions_ = s.reactions;
+  time_s_ = s.time_s;
+  steps_ = s.steps;
+  segment_time0_s_ = s.segment_time0_s;
+  segment_step0_ = s.segment_step0;
+  segment_dt_s_ = s.segment_dt_s;
+}
+
 } // namespace wheelsim::rig

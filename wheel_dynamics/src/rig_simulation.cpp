@@ -299,4 +299,75 @@ const RigOutputs &RigSimulation::advance(const WheelWrench &w) {
   return out_;
 }
 
+void RigSimulation::save_checkpoint(CheckpointData &data) const {
+  const Rig::Snapshot r = rig_.snapshot();
+  data.set_numbers("sim/q", {r.q.x_m, r.q.z_m, r.q.mass_z_m, r.q.theta_rad});
+  data.set_numbers("sim/u", {r.u.x_m_s, r.u.z_m_s, r.u.mass_z_m_s, r.u.omega_rad_s});
+  const RigDrives &d = r.drives;
+  data.set_numbers("sim/drives", {static_cast<double>(d.carriage), d.carriage_value,
+                                  static_cast<double>(d.spindle), d.spindle_velocity_m_s,
+                                  static_cast<double>(d.wheel), d.wheel_value});
+  const RigReactions &x = r.reactions;
+  data.set_numbers("sim/reactions",
+                   {x.carriage_force_N, x.spindle_support_force_N, x.motor_torque_Nm,
+                    x.held_force_y_N, x.held_torque_x_Nm, x.held_torque_z_Nm});
+  data.set_number("sim/time", r.time_s);
+  data.set_integer("sim/steps", r.steps);
+  data.set_number("sim/segment_time0", r.segment_time0_s);
+  data.set_integer("sim/segment_step0", r.segment_step0);
+  data.set_number("sim/segment_dt", r.segment_dt_s);
+  data.set_integer("sim/phase", static_cast<std::int64_t>(phase_));
+  data.set_text("sim/phase_name", to_string(phase_));
+  data.set_number("sim/phase_start", phase_start_s_);
+  data.set_number("sim/settle_quiet_since", settle_quiet_since_s_);
+  data.set_number("sim/static_sinkage", static_sinkage_m_);
+  data.set_number("sim/test_start", test_start_s_);
+  data.set_number("sim/load_command", load_command_N_);
+  data.set_integer("sim/warnings", static_cast<std::int64_t>(warnings_.size()));
+  for (std::size_t k = 0; k < warnings_.size(); ++k)
+    data.set_text("sim/warning/" + std::to_string(k), warnings_[k]);
+}
+
+void RigSimulation::restore_checkpoint(const CheckpointData &data) {
+  auto exactly = [&](const char *key, std::size_t n) -> const std::vector<double> & {
+    const std::vector<double> &v = data.numbers(key);
+    if (v.size() != n)
+      throw CheckpointError(data.source() + ": '" + key + "' holds " + std::to_string(v.size()) +
+                            " numbers, expected " + std::to_string(n));
+    return v;
+  };
+  Rig::Snapshot r;
+  const auto &q = exactly("sim/q", 4), &u = exactly("sim/u", 4), &d = exactly("sim/drives", 6),
+             &x = exactly("sim/reactions", 6);
+  r.q = RigCoordinates{q[0], q[1], q[2], q[3]};
+  r.u = RigVelocities{u[0], u[1], u[2], u[3]};
+  r.drives.carriage = static_cast<Drive>(static_cast<int>(d[0]));
+  r.drives.carriage_value = d[1];
+  r.drives.spindle = static_cast<Drive>(static_cast<int>(d[2]));
+  r.drives.spindle_velocity_m_s = d[3];
+  r.drives.wheel = static_cast<Drive>(static_cast<int>(d[4]));
+  r.drives.wheel_value = d[5];
+  r.reactions = RigReactions{x[0], x[1], x[2], x[3], x[4], x[5]};
+  r.time_s = data.number("sim/time");
+  r.steps = data.integer("sim/steps");
+  r.segment_time0_s = data.number("sim/segment_time0");
+  r.segment_step0 = data.integer("sim/segment_step0");
+  r.segment_dt_s = data.number("sim/segment_dt");
+  const std::int64_t phase = data.integer("sim/phase");
+  if (phase < static_cast<int>(Phase::release) || phase > static_cast<int>(Phase::finished))
+    throw CheckpointError(data.source() + ": sim/phase " + std::to_string(phase) +
+                          " is not a phase (0 release .. 4 finished)");
+  rig_.restore(r);
+  phase_ = static_cast<Phase>(phase);
+  phase_start_s_ = data.number("sim/phase_start");
+  settle_quiet_since_s_ = data.number("sim/settle_quiet_since");
+  static_sinkage_m_ = data.number("sim/static_sinkage");
+  test_start_s_ = data.number("sim/test_start");
+  load_command_N_ = data.number("sim/load_command");
+  warnings_.clear();
+  const std::int64_t n = data.integer("sim/warnings");
+  for (std::int64_t k = 0; k < n; ++k)
+    warnings_.push_back(data.text("sim/warning/" + std::to_string(k)));
+}
+
 } // namespace wheelsim::rig

@@ -285,4 +285,64 @@ std::string RunHealth::status() const {
   return has_error() ? "unhealthy" : findings_.empty() ? "healthy" : "warnings";
 }
 
+void RunHealth::save_checkpoint(CheckpointData &data) const {
+  data.set_numbers("health/flags", {stability_warned_ ? 1.0 : 0.0, stability_failed_ ? 1.0 : 0.0});
+  data.set_integer("health/last_step", last_step_);
+  data.set_number("health/last_time", last_time_s_);
+  data.set_integer("health/test_steps", test_steps_);
+  data.set_integer("health/out_of_contact_steps", out_of_contact_steps_);
+  data.set_numbers("health/sums",
+                   {sum_slip_error_, sum_slip_, sum_output_power_W_, sum_input_power_W_,
+                    sum_traction_N_, sum_drawbar_pull_N_, sum_contacts_, load_N_});
+  data.set_numbers("health/drawbar_pull", drawbar_pull_N_);
+  data.set_numbers("health/sinkage", sinkage_m_);
+  data.set_numbers("health/slip", slip_);
+  data.set_integer("health/findings", static_cast<std::int64_t>(findings_.size()));
+  for (std::size_t k = 0; k < findings_.size(); ++k) {
+    const HealthFinding &f = findings_[k];
+    const std::string key = "health/finding/" + std::to_string(k) + "/";
+    data.set_integer(key + "step", f.step);
+    data.set_number(key + "time", f.time_s);
+    data.set_text(key + "code", f.code);
+    data.set_integer(key + "error", f.severity == Severity::error ? 1 : 0);
+    data.set_text(key + "message", f.message);
+  }
+}
+
+void RunHealth::restore_checkpoint(const CheckpointData &data) {
+  const std::vector<double> &flags = data.numbers("health/flags"),
+                            &sums = data.numbers("health/sums");
+  if (flags.size() != 2 || sums.size() != 8)
+    throw CheckpointError(data.source() + ": health/flags or health/sums has the wrong size");
+  stability_warned_ = flags[0] != 0.0;
+  stability_failed_ = flags[1] != 0.0;
+  last_step_ = data.integer("health/last_step");
+  last_time_s_ = data.number("health/last_time");
+  test_steps_ = data.integer("health/test_steps");
+  out_of_contact_steps_ = data.integer("health/out_of_contact_steps");
+  sum_slip_error_ = sums[0];
+  sum_slip_ = sums[1];
+  sum_output_power_W_ = sums[2];
+  sum_input_power_W_ = sums[3];
+  sum_traction_N_ = sums[4];
+  sum_drawbar_pull_N_ = sums[5];
+  sum_contacts_ = sums[6];
+  load_N_ = sums[7];
+  drawbar_pull_N_ = data.numbers("health/drawbar_pull");
+  sinkage_m_ = data.numbers("health/sinkage");
+  slip_ = data.numbers("health/slip");
+  findings_.clear();
+  const std::int64_t n = data.integer("health/findings");
+  for (std::int64_t k = 0; k < n; ++k) {
+    const std::string key = "health/finding/" + std::to_string(k) + "/";
+    HealthFinding f;
+    f.step = data.integer(key + "step");
+    f.time_s = data.number(key + "time");
+    f.code = data.text(key + "code");
+    f.severity = data.integer(key + "error") ? Severity::error : Severity::warning;
+    f.message = data.text(key + "message");
+    findings_.push_back(f);
+  }
+}
+
 } // namespace wheelsim::rig

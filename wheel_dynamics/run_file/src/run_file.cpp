@@ -394,15 +394,7 @@ RunFile::RunFile(const std::string &path, const Creator &creator, const FlushPol
                        "'): " + hdf5_error_text());
   f.file = Handle(file, H5Fclose);
 
-  f.lcpl = Handle(f.check(H5Pcreate(H5P_LINK_CREATE), "creating a property list"), H5Pclose);
-  f.check_status(H5Pset_create_intermediate_group(f.lcpl.get(), 1), "link property list");
-  f.check_status(H5Pset_char_encoding(f.lcpl.get(), H5T_CSET_UTF8), "link property list");
-  f.gcpl = Handle(f.check(H5Pcreate(H5P_GROUP_CREATE), "creating a property list"), H5Pclose);
-  f.check_status(H5Pset_obj_track_times(f.gcpl.get(), 0), "group property list");
-  f.string_type = Handle(f.check(H5Tcopy(H5T_C_S1), "creating the string type"), H5Tclose);
-  f.check_status(H5Tset_size(f.string_type.get(), H5T_VARIABLE), "string type");
-  f.check_status(H5Tset_cset(f.string_type.get(), H5T_CSET_UTF8), "string type");
-
+  open_file_objects(true);
   {
     Handle h5md = f.create_group(file, "h5md");
     f.write_int_array_attribute(h5md.get(), "version", kH5mdVersion, 2);
@@ -423,6 +415,142 @@ RunFile::RunFile(const std::string &path, const Creator &creator, const FlushPol
   f.terrain = f.create_group(file, "terrain");
   commit();
 }
+
+RunFile::RunFile(const std::string &path, const Resume &resume, const FlushPolicy &policy)
+    : path_(path), impl_(std::make_unique<Impl>()) {
+  set_flush_policy(policy);
+  QuietHdf5Errors quiet;
+  Impl &f = *impl_;
+  f.path = path;
+  f.working_path = working_path();
+  f.staging_path = path + ".publishing";
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    throw RunFileError("cannot resume run file '" + path +
+                       "': it does not exist (no committed file of the stopped run)");
+  fs::remove(f.staging_path, ec); // left by a writer that was killed
+  fs::copy_file(path, f.working_path, fs::copy_options::overwrite_existing, ec);
+  if (ec)
+    throw RunFileError("cannot resume run file '" + path + "': copying it to '" + f.working_path +
+                       "': " + ec.message());
+  Handle fapl(f.check(H5Pcreate(H5P_FILE_ACCESS), "creating a property list"), H5Pclose);
+  f.check_status(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18),
+                 "setting the file format version");
+  const hid_t file = H5Fopen(f.working_path.c_str(), H5F_ACC_RDWR, fapl.get());
+  if (file < 0)
+    throw RunFileError("cannot resume run file '" + path +
+                       "': HDF5 cannot open it: " + hdf5_error_text());
+  f.file = Handle(file, H5Fclose);
+  open_file_objects(false);
+  truncate_resumed(resume.before_step);
+  commit();
+}
+
+void RunFile::open_file_objects(bool create) {
+  Impl &f = *impl_;
+  f.lcpl = Handle(f.check(H5Pcreate(H5P_LINK_CREATE), "creating a property list"), H5Pclose);
+  f.check_status(H5Pset_create_intermediate_group(f.lcpl.get(), 1), "link property list");
+  f.check_status(H5Pset_char_encoding(f.lcpl.get(), H5T_CSET_UTF8), "link property list");
+  f.gcpl = Handle(f.check(H5Pcreate(H5P_GROUP_CREATE), "creating a property list"), H5Pclose);
+  f.check_status(H5Pset_obj_track_times(f.gcpl.get(), 0), "group property list");
+  f.string_type = Handle(f.check(H5Tcopy(H5T_C_S1), "creating the string type"), H5Tclose);
+  f.check_status(H5Tset_size(f.string_type.get(), H5T_VARIABLE), "string type");
+  f.check_status(H5Tset_cset(f.string_type.get(), H5T_CSET_UTF8), "string type");
+  if (create)
+    return;
+  auto open_group = [&](const char *name) {
+    if (H5Lexists(f.file.get(), name, H5P_DEFAULT) <= 0)
+      throw RunFileError("cannot resume run file '" + path_ + "': no /" + name +
+                         " (not a run file of wheel-rig)");
+    return Handle(
+        f.check(H5Gopen2(f.file.get(), name, H5P_DEFAULT), std::string("opening /") + name),
+        H5Gclose);
+  };
+  f.parameters = open_group("parameters");
+  f.observables = open_group("observables");
+  f.terrain = open_group("terrain");
+  if (H5Lexists(f.file.get(), "health", H5P_DEFAULT) > 0) {
+    f.health = open_group("health");
+    auto open = [&](const char *name) {
+      return Handle(f.check(H5Dopen2(f.health.get(), name, H5P_DEFAULT),
+                            std::string("opening /health/") + name),
+                    H5Dclose);
+    };
+    f.health_step = open("step");
+    f.health_time = open("time");
+    f.health_code = open("code");
+    f.health_severity = open("severity");
+    f.health_message = open("message");
+  }
+}
+
+void RunFile::truncate_resumed(std::int64_t before_step) {
+  Impl &f = *impl_;
+  // The steps of a 1-D int64 dataset.
+  auto read_steps = [&f](hid_t ds, const std::string &what) {
+    Handle space(f.check(H5Dget_space(ds), what + ": dataspace"), H5Sclose);
+    hsize_t dims[2] = {0, 0};
+    f.check(H5Sget_simple_extent_dims(space.get(), dims, nullptr), what + ": extent");
+    std::vector<std::int64_t> steps(dims[0]);
+    if (dims[0] > 0)
+      f.check_status(H5Dread(ds, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, steps.data()),
+                     what + ": reading");
+    return steps;
+  };
+  // Rows before the first with step >= before_step or an unwritten one (step -1).
+  auto rows_before = [before_step](const std::vector<std::int64_t> &steps) {
+    std::int64_t k = 0;
+    while (k < static_cast<std::int64_t>(steps.size()) && steps[k] >= 0 && steps[k] < before_step)
+      ++k;
+    return k;
+  };
+  // Cuts a dataset to `rows` rows (its other dimension kept).
+  auto cut_rows = [&f](hid_t ds, std::int64_t rows, const std::string &what) {
+    Handle space(f.check(H5Dget_space(ds), what + ": dataspace"), H5Sclose);
+    hsize_t dims[2] = {0, 0};
+    f.check(H5Sget_simple_extent_dims(space.get(), dims, nullptr), what + ": extent");
+    dims[0] = static_cast<hsize_t>(rows);
+    f.check_status(H5Dset_extent(ds, dims),
+                   what + ": cutting to " + std::to_string(rows) + " rows");
+  };
+  std::vector<std::string> groups; // every series: a group holding a dataset 'step'
+  auto visit = [](hid_t, const char *name, const H5L_info_t *, void *data) -> herr_t {
+    const std::string n(name);
+    if (n == "step" || (n.size() > 5 && n.compare(n.size() - 5, 5, "/step") == 0))
+      static_cast<std::vector<std::string> *>(data)->push_back(n.substr(0, n.size() - 5));
+    return 0;
+  };
+  f.check_status(H5Lvisit(f.observables.get(), H5_INDEX_NAME, H5_ITER_NATIVE, visit, &groups),
+                 "listing /observables");
+  for (const std::string &g : groups) {
+    const std::string where = "observable '" + g + "'";
+    Handle group(f.check(H5Gopen2(f.observables.get(), g.c_str(), H5P_DEFAULT), where), H5Gclose);
+    Handle step(f.check(H5Dopen2(group.get(), "step", H5P_DEFAULT), where + " step"), H5Dclose);
+    const std::vector<std::int64_t> steps = read_steps(step.get(), where + " step");
+    const std::int64_t keep = rows_before(steps);
+    for (const char *name : {"step", "time", "value"}) {
+      Handle ds(f.check(H5Dopen2(group.get(), name, H5P_DEFAULT), where + " " + name), H5Dclose);
+      cut_rows(ds.get(), keep, where + " " + name);
+    }
+    resumed_rows_[g] = {keep, keep > 0 ? steps[keep - 1] : -1};
+  }
+  if (f.health.valid()) {
+    const std::int64_t keep = rows_before(read_steps(f.health_step.get(), "/health/step"));
+    for (Handle *h :
+         {&f.health_step, &f.health_time, &f.health_code, &f.health_severity, &f.health_message})
+      cut_rows(h->get(), keep, "/health");
+    f.health_rows = static_cast<hsize_t>(keep);
+  }
+}
+
+bool RunFile::has_parameter(const std::string &name) const {
+  require_open("look up a parameter");
+  QuietHdf5Errors quiet;
+  return impl_->exists(impl_->parameters.get(), split_name("parameter", name));
+}
+
+bool RunFile::has_health() const { return is_open() && impl_->health.valid(); }
 
 RunFile::~RunFile() {
   try {
@@ -510,6 +638,37 @@ TimeSeries &RunFile::observable(const std::string &name, const std::string &unit
 
   QuietHdf5Errors quiet;
   Impl &f = *impl_;
+  if (const auto resumed = resumed_rows_.find(name); resumed != resumed_rows_.end()) {
+    auto ds = std::make_unique<TimeSeries::Datasets>();
+    const std::string where = "run file '" + path_ + "': resumed observable '" + name + "'";
+    ds->group =
+        Handle(f.check(H5Gopen2(f.observables.get(), name.c_str(), H5P_DEFAULT), where), H5Gclose);
+    ds->step = Handle(f.check(H5Dopen2(ds->group.get(), "step", H5P_DEFAULT), where), H5Dclose);
+    ds->time = Handle(f.check(H5Dopen2(ds->group.get(), "time", H5P_DEFAULT), where), H5Dclose);
+    ds->value = Handle(f.check(H5Dopen2(ds->group.get(), "value", H5P_DEFAULT), where), H5Dclose);
+    Handle space(f.check(H5Dget_space(ds->value.get()), where), H5Sclose);
+    hsize_t dims[2] = {0, 1};
+    const int rank = f.check(H5Sget_simple_extent_dims(space.get(), dims, nullptr), where);
+    const int stored = rank == 1 ? 1 : static_cast<int>(dims[1]);
+    Handle attr(f.check(H5Aopen(ds->value.get(), "unit", H5P_DEFAULT), where + ": unit"), H5Aclose);
+    char *text = nullptr;
+    f.check_status(H5Aread(attr.get(), f.string_type.get(), &text), where + ": unit");
+    const std::string stored_unit = text != nullptr ? text : "";
+    H5free_memory(text);
+    if (stored != components || stored_unit != unit)
+      throw RunFileError(where + " has unit '" + stored_unit + "' and " + std::to_string(stored) +
+                         " components; the resumed run asks for '" + unit + "' and " +
+                         std::to_string(components));
+    std::unique_ptr<TimeSeries> series(
+        new TimeSeries(*this, name, unit, components, std::move(ds)));
+    series->rows_written_ = resumed->second.first;
+    series->has_last_step_ = resumed->second.first > 0;
+    series->last_step_ = resumed->second.second;
+    resumed_rows_.erase(resumed);
+    TimeSeries &ref = *series;
+    series_.emplace(name, std::move(series));
+    return ref;
+  }
   if (f.exists(f.observables.get(), parts))
     throw RunFileError("run file '" + path_ + "': observable '" + name +
                        "' collides with an existing group (e.g. 'wheel' vs 'wheel/position')");

@@ -136,6 +136,22 @@ public:
 
   RigEnergy energy() const;
 
+  /// The whole state of the rig between two steps (checkpoints): restoring it continues the run
+  /// bit for bit.
+  struct Snapshot {
+    RigCoordinates q;
+    RigVelocities u;
+    RigDrives drives;
+    RigReactions reactions;
+    double time_s = 0.0;
+    long long steps = 0;
+    double segment_time0_s = 0.0;
+    long long segment_step0 = 0;
+    double segment_dt_s = 0.0;
+  };
+  Snapshot snapshot() const;
+  void restore(const Snapshot &snapshot);
+
 private:
   RigParameters p_;
   RigCoordinates q_;

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "wheelsim/rig/checkpoint.h"
 #include "wheelsim/rig/rig_config.h"
 #include "wheelsim/rig/rig_model.h"
 
@@ -113,6 +114,13 @@ public:
   double static_sinkage_m() const { return static_sinkage_m_; }
   /// Time [s] at which the test phase started (NaN before).
   double test_start_s() const { return test_start_s_; }
+
+  /// Checkpoints (wheelsim/rig/checkpoint.h): the rig's state (Rig::Snapshot), the phase and its
+  /// timers (phase start, settle detection, test start), the static sinkage, the last load
+  /// command and the warnings, under keys "sim/...". restore_checkpoint() continues the run as
+  /// if it had not stopped; it throws CheckpointError naming a missing key.
+  void save_checkpoint(CheckpointData &data) const;
+  void restore_checkpoint(const CheckpointData &data);
 
 private:
   void configure_drives(double t_next);

@@ -86,6 +86,12 @@ public:
   /// Records an error that ended the run from outside the checks (e.g. the coupling failed).
   void run_failed(const std::string &what);
 
+  /// Checkpoints (wheelsim/rig/checkpoint.h): the test-phase statistics, the stability flags and
+  /// the findings so far, under keys "health/...". restore_checkpoint() does not report the
+  /// restored findings again (the run file keeps them).
+  void save_checkpoint(CheckpointData &data) const;
+  void restore_checkpoint(const CheckpointData &data);
+
   const std::vector<HealthFinding> &findings() const { return findings_; }
   bool has_error() const;
   /// "healthy" (no finding), "warnings" or "unhealthy" (an error).

@@ -144,6 +144,16 @@ public:
   /// /terrain groups (committed). Throws RunFileError naming the path if it cannot be created
   /// (e.g. its directory does not exist).
   RunFile(const std::string &path, const Creator &creator, const FlushPolicy &policy = {});
+  /// Resumes the run file `path` of a run that stopped (docs/coupled-runs.md, "Checkpoint and
+  /// resume"): its last commit is reopened for writing, every /observables series and /health
+  /// keep only their rows with step < `before_step` (the rows the checkpoint's run had committed;
+  /// later ones are written again by the resumed run), and appending goes on after them. The
+  /// file's /h5md and /parameters stay as they are (has_parameter() tells which are set; each is
+  /// still written once). Throws RunFileError naming the path if it is missing or not a run file.
+  struct Resume {
+    std::int64_t before_step;
+  };
+  RunFile(const std::string &path, const Resume &resume, const FlushPolicy &policy = {});
   /// Closes the file (close()); an error there is printed to stderr, not thrown.
   ~RunFile();
   RunFile(const RunFile &) = delete;
@@ -159,6 +169,8 @@ public:
   void set_parameter(const std::string &name, double value, const std::string &unit);
   void set_parameter(const std::string &name, std::int64_t value, const std::string &unit);
   void set_parameter(const std::string &name, int value, const std::string &unit);
+  /// True if /parameters/<name> exists (a resumed file has its first run's parameters).
+  bool has_parameter(const std::string &name) const;
 
   // --- /observables ---
   /// The series /observables/<name>; created (and committed, empty) on first use.
@@ -179,6 +191,8 @@ public:
   // --- /health ---
   /// Creates /health with status `status` (e.g. "running") and no rows; committed. Once.
   void begin_health(const std::string &status);
+  /// True once /health exists (begin_health, or a resumed file that has it).
+  bool has_health() const;
   /// Appends one finding to /health (begin_health first); committed at once, so a run that dies
   /// afterwards keeps it.
   void add_health_finding(const HealthRecord &record);
@@ -208,6 +222,10 @@ private:
   void write_buffered_rows(); // every series' buffered rows to the working copy (no commit)
   void commit();              // H5Fflush, then publish the working copy as path_
   void require_open(const char *what) const;
+  void open_file_objects(bool create); // property lists, types, the top-level groups
+  void truncate_resumed(std::int64_t before_step);
+  // Series of a resumed file not yet asked for: rows kept and the last kept step.
+  std::map<std::string, std::pair<std::int64_t, std::int64_t>> resumed_rows_;
 
   std::string path_;
   FlushPolicy policy_;
