@@ -201,7 +201,7 @@ class Runner:
                   f"{p.setting}\n")
         return toml_out.dumps(p.rig, header)
 
-    def command(self, p):
+    def command(self, p, resume=False):
         d = self.point_dir(p)
         params = []
         for k, v in (("wheel", p.wheel.label), ("soil", p.soil.name), ("slip", repr(p.slip)),
@@ -213,6 +213,8 @@ class Runner:
                    "--bed", str(self.bed_restart(p.soil)), "--deck", str(self.sweep.deck),
                    "--np", str(self.sweep.np), "--out", str(d / PART_FILE),
                    "--work", str(d / "cosim"), "--mesh", str(p.wheel.mesh)] + params
+            if resume:
+                cmd.append("--resume")
             if self.sweep.liggghts_args:
                 cmd += ["--"] + self.sweep.liggghts_args
             return cmd
@@ -296,18 +298,24 @@ class Runner:
             return  # stopping: the point stays pending
         d = self.point_dir(p)
         d.mkdir(parents=True, exist_ok=True)
-        for name in (DONE_FILE, RUN_FILE, PART_FILE, PART_FILE + ".writing"):
+        # A DEM point stopped before its end (no done.json) with a checkpoint goes on from it
+        # (wheel-cosim --resume, docs/coupled-runs.md "Checkpoint and resume"); else from scratch.
+        ckpt = d / "cosim" / "checkpoints"
+        resume = (self.sweep.terrain == "dem" and not (d / DONE_FILE).exists()
+                  and (d / PART_FILE).is_file() and ckpt.is_dir() and any(ckpt.iterdir()))
+        stale = (DONE_FILE, RUN_FILE, PART_FILE + ".writing") + (() if resume else (PART_FILE,))
+        for name in stale:
             (d / name).unlink(missing_ok=True)
         _write_atomic(d / "rig.toml", self.rig_file_text(p))
         with self.lock:
             counter["started"] += 1
             self.say(f"[started {counter['started']}/{counter['total']}] {self.describe(p)} "
-                     f"({p.reldir})")
+                     f"({p.reldir}{', resuming from its checkpoint' if resume else ''})")
         t0 = time.monotonic()
         with self.lock:
             counter["running"][p.index] = t0
         try:
-            rc = self._run_child(self.command(p), d / "run.log", cwd=d)
+            rc = self._run_child(self.command(p, resume), d / "run.log", cwd=d)
         except Interrupted:
             with self.lock:
                 self.status[p.index] = "interrupted"
