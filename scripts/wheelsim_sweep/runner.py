@@ -298,11 +298,13 @@ class Runner:
             return  # stopping: the point stays pending
         d = self.point_dir(p)
         d.mkdir(parents=True, exist_ok=True)
-        # A DEM point stopped before its end (no done.json) with a checkpoint goes on from it
-        # (wheel-cosim --resume, docs/coupled-runs.md "Checkpoint and resume"); else from scratch.
+        # A DEM point stopped before its end (no done.json) with a checkpoint of LIGGGHTS' side
+        # goes on from it (wheel-cosim --resume, docs/coupled-runs.md "Checkpoint and resume");
+        # else from scratch, which clears its old checkpoints.
         ckpt = d / "cosim" / "checkpoints"
         resume = (self.sweep.terrain == "dem" and not (d / DONE_FILE).exists()
-                  and (d / PART_FILE).is_file() and ckpt.is_dir() and any(ckpt.iterdir()))
+                  and (d / PART_FILE).is_file() and ckpt.is_dir()
+                  and any(ckpt.glob("liggghts-*.restart.info")))
         stale = (DONE_FILE, RUN_FILE, PART_FILE + ".writing") + (() if resume else (PART_FILE,))
         for name in stale:
             (d / name).unlink(missing_ok=True)
