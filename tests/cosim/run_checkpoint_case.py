@@ -269,8 +269,8 @@ def main():
         after[name] = (v0[~before], v1[~before], float(d[~before].max(initial=0.0)))
     rows = int(np.sum(~before))
     print(f"MEASURED np {a.np}: checkpoint at step {resume_step}; {len(s1)} rows, {rows} of them "
-          f"from the resumed run; max |resumed - reference| before the checkpoint {worst_before:.3g}, "
-          f"in the checkpoint's row {at_checkpoint:.3g}")
+          f"from the resumed run; max |resumed - reference| before the checkpoint "
+          f"{worst_before:.3g}, in the checkpoint's row {at_checkpoint:.3g}")
     ok &= worst_before == 0.0 and at_checkpoint == 0.0
     # After the checkpoint: LIGGGHTS' restart is not bit for bit (see docs/coupled-runs.md), so
     # single rows of a granular contact force drift apart; the wheel's path and the means over
