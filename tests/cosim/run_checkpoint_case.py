@@ -104,8 +104,10 @@ def read_run(path):
         f["observables"].visititems(visit)
         health = f["health"].attrs["status"] if "health" in f else None
         codes = [c.decode() for c in f["health/code"][()]] if "health" in f else []
-        resume = {k: f[f"parameters/resume/1/{k}"][()] for k in ("step", "time")} \
+        resume = {k: f[f"parameters/resume/1/{k}"][()] for k in ("step", "time", "wall_time")} \
             if "parameters/resume/1" in f else None
+        if resume is not None:
+            resume["run_wall_time"] = f["parameters/run/wall_time"][()]
     return out, health, codes, resume
 
 
@@ -245,6 +247,10 @@ def main():
     if resume is None or int(resume["step"]) != resume_step:
         print(f"/parameters/resume/1/step is {resume and resume['step']}, expected {resume_step} "
               "FAIL")
+        ok = False
+    elif not 0.0 < resume["wall_time"] < resume["run_wall_time"]:
+        print(f"run/wall_time {resume['run_wall_time']} s should add the stopped session's time to "
+              f"the resumed session's resume/1/wall_time {resume['wall_time']} s FAIL")
         ok = False
     if set(ref_run) != set(res_run):
         print(f"observables differ: {sorted(set(ref_run) ^ set(res_run))} FAIL")

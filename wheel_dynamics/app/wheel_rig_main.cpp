@@ -191,6 +191,10 @@ struct CheckpointSettings {
   long long every_steps = 0; ///< LIGGGHTS steps between checkpoints (0: by wall time only)
   double every_s = 1800.0;   ///< wall time between checkpoints [s] (0: by steps only)
   std::string inputs_hash = "none";
+  /// The run's wall time before this session (a resumed run: the checkpoint's) [s], and this
+  /// session's start: each checkpoint records their sum as the run's wall time so far.
+  double wall_before_s = 0.0;
+  std::chrono::steady_clock::time_point wall_start = std::chrono::steady_clock::now();
 };
 
 /// Decides when both sides checkpoint (the rig sets kPoseCheckpointNext on a Pose: both save the
@@ -236,6 +240,11 @@ public:
     data.set_number("run/dt", sink_.sim.config().run.dt_s);
     data.set_text("run_file/path", file_.path());
     data.set_integer("run_file/before_step", step);
+    data.set_number(
+        "run/wall_time",
+        settings_.wall_before_s +
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - settings_.wall_start)
+                .count());
     sink_.sim.save_checkpoint(data);
     sink_.health.save_checkpoint(data);
     const std::string path = settings_.dir + "/rig-" + std::to_string(step) + ".ckpt";
@@ -542,6 +551,8 @@ int main(int argc, char **argv) {
   std::unique_ptr<runfile::RunFile> file;
   int status = 0;
   const auto wall_start = std::chrono::steady_clock::now(); // the run's cost: run/wall_time
+  checkpoints.wall_start = wall_start;
+  std::string resume_key; // "resume/<k>/" of this session when resumed
   try {
     rig::RigSimulation sim(config);
     runfile::FlushPolicy flush;
@@ -580,6 +591,9 @@ int main(int argc, char **argv) {
       while (file->has_parameter("resume/" + std::to_string(k) + "/step"))
         ++k;
       const std::string key = "resume/" + std::to_string(k) + "/";
+      resume_key = key;
+      if (resumed->has("run/wall_time"))
+        checkpoints.wall_before_s = resumed->number("run/wall_time");
       file->set_parameter(key + "step", resumed->integer("coupling/liggghts_step"), "1");
       file->set_parameter(key + "time", sim.time_s(), "s");
       file->set_parameter(key + "phase", rig::to_string(sim.phase()));
@@ -682,7 +696,10 @@ int main(int argc, char **argv) {
     if (file) {
       // Also for a failed run: what it cost until it stopped (docs/hdf5-layout.md).
       const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - wall_start;
-      file->set_parameter("run/wall_time", wall.count(), "s");
+      if (!resume_key.empty()) // this session's; the run's: the checkpoint's + this session's
+        file->set_parameter(resume_key + "wall_time", wall.count(), "s");
+      if (!file->has_parameter("run/wall_time")) // a stopped session that closed wrote it
+        file->set_parameter("run/wall_time", checkpoints.wall_before_s + wall.count(), "s");
       file->close();
     }
   } catch (const std::exception &e) {
