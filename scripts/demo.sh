@@ -4,12 +4,15 @@
 #   1. DEM: prepares a small settled ci soil bin and runs the small lugged wheel test_small
 #      (D0 0.20 m, 8 combined lugs: a scaled-down study wheel) coupled to the rig at 3 slips
 #      (inputs/sweeps/demo_dem.toml: LIGGGHTS + wheel-rig, two runs at a time on 2 cores);
-#   2. SCM: the same wheel and rig on the SCM soft soil with dry-sand Bekker values at 6 slips
-#      (inputs/sweeps/demo_scm.toml);
+#   2. SCM: the same wheel and rig on the SCM soft soil of the same soil: the Bekker, Mohr-Coulomb
+#      and Janosi values the soil lab fitted to the DEM soil ci (inputs/scm_soils/from_dem/ci.toml)
+#      at 6 slips (inputs/sweeps/demo_scm.toml);
 #   3. traction curves of both (drawbar pull, torque, sinkage, efficiency against slip) as one
-#      CSV and one PNG (postprocess/wheelsim-post curves), SCM maps and wheel-pressure maps.
+#      CSV and one PNG (postprocess/wheelsim-post curves, one series per terrain and soil), SCM
+#      maps and wheel-pressure maps.
 # About 5 minutes on 2 cores after the build. Output: runs/demo/ (or $WHEELSIM_DEMO_DIR).
-#   scripts/demo.sh [--quick]     --quick: short test phases (CI's end-to-end check, ~2 min)
+#   scripts/demo.sh [--quick]     --quick: short test phases and 2 DEM slips (CI's end-to-end
+#                                 check, ~2 min)
 # Re-running resumes: finished sweep points are skipped (wheel-sweep --force to redo them).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -38,7 +41,10 @@ sweep_config() { # NAME DURATION_S -> path of the config to run
   if ((quick == 0)); then echo "$src"; return; fi
   local dst="$out/$name.quick.toml"
   sed -e "s#^base = \"\.\./#base = \"$root/inputs/#" \
-      -e "s#^deck = \"\.\./#deck = \"$root/inputs/#" "$src" > "$dst"
+      -e "s#^deck = \"\.\./#deck = \"$root/inputs/#" \
+      -e "s#\"\.\./scm_soils/#\"$root/inputs/scm_soils/#" \
+      -e "s#^slips = \[0.1, 0.25, 0.4\]#slips = [0.1, 0.4]   \# demo --quick: 2 of the 3 DEM slips#" \
+      "$src" > "$dst"
   printf '\n[override.run]\nduration = %s   # s (demo --quick)\n' "$duration" >> "$dst"
   echo "$dst"
 }
@@ -47,25 +53,29 @@ echo "demo: [1/3] DEM: small ci bin + test_small coupled to the rig at 3 slips (
 "$root/scripts/wheel-sweep" "$(sweep_config demo_dem 0.1)" --out-dir "$out/dem" \
   --build-dir "$build_dir"
 
-echo "demo: [2/3] SCM: test_small on dry sand (Bekker) at 6 slips ..."
+echo "demo: [2/3] SCM: test_small on the ci soil's SCM parameters (fitted from DEM) at 6 slips ..."
 "$root/scripts/wheel-sweep" "$(sweep_config demo_scm 0.5)" --out-dir "$out/scm" \
   --build-dir "$build_dir"
 
 echo "demo: [3/3] traction curves and maps ..."
 mapfile -t runs < <(find "$out/dem" "$out/scm" -name run.h5 | sort)
-"$python" "$root/postprocess/wheelsim-post" curves "${runs[@]}" --group-by terrain \
+"$python" "$root/postprocess/wheelsim-post" curves "${runs[@]}" --group-by terrain,soil \
   --csv "$out/traction_curves.csv" --png "$out/traction_curves.png"
 scm_mid=$(find "$out/scm" -path '*s0.200*' -name run.h5 | head -n 1)
 "$python" "$root/postprocess/wheelsim-post" maps "$scm_mid" --field sinkage,pressure \
   --png-dir "$out/maps"
-# the wheel surface of the middle DEM slip at its last output (numeric order of the step)
-vtk=$(find "$out/dem" -path '*s0.250*' -name 'wheel_surface_*.vtk' | sort -V | tail -n 1)
+# the wheel surface of the middle DEM slip (--quick: the largest) at its last output (numeric
+# order of the step)
+vtk_dir=$(find "$out/dem" -type d -name 's0.250' | head -n 1)
+[[ -n $vtk_dir ]] || vtk_dir=$(find "$out/dem" -type d -name 's0.*' | sort | tail -n 1)
+vtk=""
+[[ -n $vtk_dir ]] && vtk=$(find "$vtk_dir" -name 'wheel_surface_*.vtk' | sort -V | tail -n 1)
 if [[ -n $vtk ]]; then
   "$python" "$root/postprocess/wheelsim-post" maps --vtk "$vtk" --png-dir "$out/maps"
 fi
 
 echo "demo: done in $(( $(date +%s) - start )) s after the build. Results in $out:"
-echo "    traction_curves.png     drawbar pull, torque, sinkage, efficiency vs slip (DEM and SCM)"
+echo "    traction_curves.png     drawbar pull, torque, sinkage, efficiency vs slip (DEM and SCM, same soil)"
 echo "    traction_curves.csv     the same numbers: steady-state mean and std per run"
 echo "    maps/                   SCM sinkage and pressure maps (20 % slip), DEM wheel contact pressure"
 echo "    dem/, scm/              one directory per point: rig.toml, run.log, run.h5 (HDF5 run file)"

@@ -1,6 +1,7 @@
 """Runs scripts/demo.sh --quick and checks what it promises: a traction-curve CSV with one row per
-sweep point (3 DEM slips, 6 SCM slips) with finite steady-state values, its PNG, the SCM maps and
-the DEM wheel-pressure map, and the closing lines that say where the results are.
+sweep point (2 DEM slips in --quick, 6 SCM slips) with finite steady-state values, one series per
+terrain naming its soil (DEM ci and the SCM soil fitted to it), its PNG, the SCM maps and the DEM
+wheel-pressure map, and the closing lines that say where the results are.
 
 usage: check_demo.py DEMO_SH OUT_DIR   (environment: WHEELSIM_DEMO_DIR=OUT_DIR, build dir, ...)
 """
@@ -28,7 +29,7 @@ def main():
         fail(f"demo.sh --quick exited {proc.returncode}")
     if f"Results in {out}" not in proc.stdout:
         fail("the demo does not say where its results are")
-    progress_lines = ("demo: [1/3] DEM", "demo: [2/3] SCM", "demo: [3/3]", "dry_sand s=0.5 done")
+    progress_lines = ("demo: [1/3] DEM", "demo: [2/3] SCM", "demo: [3/3]", "ci_fitted s=0.5 done")
     for progress in progress_lines:
         if progress not in proc.stdout:
             fail(f"no progress line containing {progress!r}")
@@ -40,8 +41,13 @@ def main():
     for row in rows:
         by_terrain.setdefault(row["terrain"], []).append(row)
     counts = {t: len(r) for t, r in by_terrain.items()}
-    if counts != {"dem": 3, "scm": 6}:
-        fail(f"expected 3 DEM and 6 SCM points in {table}, got {counts}")
+    if counts != {"dem": 2, "scm": 6}:
+        fail(f"expected 2 DEM and 6 SCM points in {table}, got {counts}")
+    # The legend names terrain and soil: the DEM ci bin and the SCM soil fitted to it.
+    groups = {row["terrain"]: row["group"] for row in rows}
+    for terrain, soil in (("dem", "soil=ci_demo"), ("scm", "soil=ci_fitted")):
+        if soil not in groups.get(terrain, ""):
+            fail(f"the {terrain} series is not labelled with {soil!r}: {groups}")
     for row in rows:
         for column in ("slip_mean", "drawbar_pull_mean_N", "driving_torque_mean_Nm", "sinkage_mean_m"):
             if not math.isfinite(float(row[column])):
