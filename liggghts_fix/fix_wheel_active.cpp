@@ -1,6 +1,7 @@
 // fix wheel/active: see fix_wheel_active.h and docs/fix-wheel-active.md.
 #include "fix_wheel_active.h"
 
+#include "fix_output.h"
 #include "fix_wheel_cosim.h"
 #include "frozen_contacts.h"
 
@@ -35,21 +36,6 @@ constexpr double kDistanceRadiusPart = 0.5;
 constexpr double kDistanceSinkageFactor = 2.0;
 constexpr double kDefaultHysteresisPerDistance = 0.1;
 constexpr double kDefaultTravelPerDistance = 0.1;
-
-bool parse_length(const char *text, double &value) {
-  char *end = nullptr;
-  value = std::strtod(text, &end);
-  return end != text && *end == '\0' && std::isfinite(value);
-}
-
-void print_line(LAMMPS *lmp, const char *line) {
-  if (lmp->comm->me != 0)
-    return;
-  if (lmp->screen)
-    fputs(line, lmp->screen);
-  if (lmp->logfile)
-    fputs(line, lmp->logfile);
-}
 
 } // namespace
 
@@ -116,13 +102,9 @@ FixWheelActive::~FixWheelActive() {
 }
 
 void FixWheelActive::bad_argument(const char *fmt, ...) {
-  char msg[1024];
   va_list args;
   va_start(args, fmt);
-  vsnprintf(msg, sizeof(msg), fmt, args);
-  va_end(args);
-  error->fix_error(FLERR, this, msg);
-  std::abort(); // not reached: fix_error ends the run
+  wheelsim::fix_argument_error(error, this, fmt, args);
 }
 
 void FixWheelActive::parse_arguments(int narg, char **arg) {
@@ -134,7 +116,7 @@ void FixWheelActive::parse_arguments(int narg, char **arg) {
     if (iarg + 1 >= narg)
       bad_argument("keyword '%s' expects %s", arg[iarg], what);
     double value = 0.0;
-    if (!parse_length(arg[iarg + 1], value) || value < 0.0 || (!zero_ok && value == 0.0))
+    if (!wheelsim::parse_finite(arg[iarg + 1], value) || value < 0.0 || (!zero_ok && value == 0.0))
       bad_argument("keyword '%s' expects %s, got '%s'", arg[iarg], what, arg[iarg + 1]);
     return value;
   };
@@ -248,7 +230,7 @@ void FixWheelActive::resolve_distances() {
              !skip_frozen_pairs_ ? "computed"
              : keep_history_     ? "skipped, contact histories kept"
                                  : "skipped, contact histories dropped");
-    print_line(lmp, line);
+    wheelsim::print_line(lmp, comm->me, line);
     reported_setup_ = true;
   }
 }
@@ -420,7 +402,7 @@ void FixWheelActive::post_run() {
              "%ld (%ld forced by the wheel moving %.3g m)\n",
              id, run_steps_, mean_active, total, total > 0 ? 100.0 * mean_active / total : 0.0,
              vector_[0], vector_[1], vector_[2], run_updates_, run_forced_, travel_);
-    print_line(lmp, line);
+    wheelsim::print_line(lmp, comm->me, line);
     if (touched > 0) {
       char msg[400];
       snprintf(msg, sizeof(msg),

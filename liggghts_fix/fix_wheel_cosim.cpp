@@ -7,6 +7,7 @@
 #include "coupled_motion.h"
 #include "coupler/protocol.h"
 #include "coupler/transport.h"
+#include "fix_output.h"
 #include "prescribed_motion.h"
 #include "wheel_motion.h"
 #include "wheel_surface_vtk.h"
@@ -150,12 +151,6 @@ struct WheelCosimState {
 
 namespace {
 
-bool parse_double(const char *text, double &value) {
-  char *end = nullptr;
-  value = std::strtod(text, &end);
-  return end != text && *end == '\0' && std::isfinite(value);
-}
-
 bool parse_on_off(const char *text, bool &value) {
   if (std::strcmp(text, "on") == 0 || std::strcmp(text, "yes") == 0)
     value = true;
@@ -259,10 +254,7 @@ FixWheelCosim::FixWheelCosim(LAMMPS *lmp, int narg, char **arg)
              id, s_->mesh_path.c_str(), mesh.triangles.size(), mesh.vertices_m.size(),
              s_->index->bounding_radius_m(), s_->index->cell_size_m(),
              s_->motion->describe().c_str());
-    if (screen)
-      fputs(line, screen);
-    if (logfile)
-      fputs(line, logfile);
+    wheelsim::print_line(lmp, comm->me, line);
   }
 }
 
@@ -274,13 +266,9 @@ FixWheelCosim::~FixWheelCosim() {
 }
 
 void FixWheelCosim::bad_argument(const char *fmt, ...) {
-  char msg[1024];
   va_list args;
   va_start(args, fmt);
-  vsnprintf(msg, sizeof(msg), fmt, args);
-  va_end(args);
-  error->fix_error(FLERR, this, msg);
-  std::abort(); // not reached: fix_error ends the run
+  wheelsim::fix_argument_error(error, this, fmt, args);
 }
 
 void FixWheelCosim::parse_arguments(int narg, char **arg) {
@@ -302,7 +290,7 @@ void FixWheelCosim::parse_arguments(int narg, char **arg) {
   };
   auto number = [&](int iarg, const char *keyword, const char *what) {
     double value = 0.0;
-    if (!parse_double(arg[iarg], value))
+    if (!wheelsim::parse_finite(arg[iarg], value))
       bad_argument("keyword '%s' expects %s, got '%s'", keyword, what, arg[iarg]);
     return value;
   };
@@ -688,10 +676,7 @@ void FixWheelCosim::post_run() {
              "(%.1f us/step)\n",
              id, s_->timed_steps, slowest[0], 1e6 * slowest[0] / s_->timed_steps, slowest[1],
              1e6 * slowest[1] / s_->timed_steps);
-    if (screen)
-      fputs(line, screen);
-    if (logfile)
-      fputs(line, logfile);
+    wheelsim::print_line(lmp, comm->me, line);
   }
   s_->contact_seconds = s_->motion_seconds = 0.0;
   s_->timed_steps = 0;
@@ -712,10 +697,7 @@ void FixWheelCosim::report_candidates() {
              "surface moved > %.3g m); %.0f particles arrived from other ranks\n",
              id, total[0] / list.passes, static_cast<double>(atom->natoms), list.builds_at_neighbor,
              list.builds_between, list.wheel_travel_m, total[1]);
-    if (screen)
-      fputs(line, screen);
-    if (logfile)
-      fputs(line, logfile);
+    wheelsim::print_line(lmp, comm->me, line);
   }
   list.listed_sum = 0.0;
   list.passes = list.builds_at_neighbor = list.builds_between = list.arrived = 0;
@@ -1224,10 +1206,7 @@ void FixWheelCosim::read_wheel_state(const std::string &path) {
              "fix wheel/cosim %s: resumed from %s (step %ld, centre %g %g %g m, %d particle "
              "histories)\n",
              id, path.c_str(), static_cast<long>(head[0]), head[2], head[3], head[4], total);
-    if (screen)
-      fputs(line, screen);
-    if (logfile)
-      fputs(line, logfile);
+    wheelsim::print_line(lmp, comm->me, line);
   }
 }
 
@@ -1277,10 +1256,7 @@ void FixWheelCosim::write_checkpoint() {
     char line[512];
     snprintf(line, sizeof(line), "fix wheel/cosim %s: checkpoint %s written at step %ld\n", id,
              base.c_str(), step);
-    if (screen)
-      fputs(line, screen);
-    if (logfile)
-      fputs(line, logfile);
+    wheelsim::print_line(lmp, comm->me, line);
   }
 }
 
@@ -1330,9 +1306,6 @@ void FixWheelCosim::restart(char *buf) {
              "fix wheel/cosim %s: pose restored from the restart file (centre %g %g %g m); "
              "keyword 'origin' ignored\n",
              id, list[1], list[2], list[3]);
-    if (screen)
-      fputs(line, screen);
-    if (logfile)
-      fputs(line, logfile);
+    wheelsim::print_line(lmp, comm->me, line);
   }
 }

@@ -1,5 +1,7 @@
 #include "fix_wheelsim_selftest.h"
 
+#include "fix_output.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
@@ -50,10 +52,7 @@ void FixWheelsimSelftest::init() {
     char line[256];
     snprintf(line, sizeof(line), "wheelsim/selftest: fix %s active on %d MPI ranks, %.0f atoms\n",
              id, comm->nprocs, natoms_in_group);
-    if (screen)
-      fputs(line, screen);
-    if (logfile)
-      fputs(line, logfile);
+    wheelsim::print_line(lmp, comm->me, line);
   }
 }
 
