@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # Validation case 1 — Nakanishi et al. 2020 lugged wheel, DEM code-to-code (README.md).
 #
-#   validation/nakanishi_2020/run.sh [--smoke] [--out-dir DIR] [--jobs N] [--force]
+#   validation/nakanishi_2020/run.sh [--smoke | --sensitivity] [--out-dir DIR] [--jobs N] [--force]
 #
 # Full case: prepares the 80 000-sphere bin once, runs the 8 published slips through wheel-sweep
 # (resumable: a re-run skips finished points), then writes into this folder results.csv,
 # comparison.png, comparison.md and provenance.toml (git hash, command, machine, wall time).
 # About 1 h on 2 cores (README "Cost"). Run it in the background: nohup ... &
+# --sensitivity: only the sensitivity sweeps, on the main sweep's bed (run the case first):
+#          time step halved at 35.42 % (sweep_dt.toml) against the same point repeated on that bed
+#          (sweep_bed_repeat.toml), and the published 3.25 s test phase at 77.97-86.8 %
+#          (sweep_window.toml); writes results_<name>.csv and comparison_<name>.md here.
 # --smoke: the CI version (a 0.40 m bin, one slip, 0.3 s of test phase; minutes): same pipeline,
 #          outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
@@ -15,17 +19,19 @@ root=$(cd "$here/../.." && pwd)
 source "$root/validation/common/provenance.sh"
 build_dir=${WHEELSIM_BUILD_DIR:-$root/build}
 python=/usr/bin/python3
-smoke=0 out="" sweep_args=()
+smoke=0 sensitivity=0 out="" sweep_args=() args=("$@")
 while (($#)); do
   case "$1" in
     --smoke) smoke=1; shift ;;
+    --sensitivity) sensitivity=1; shift ;;
     --out-dir) out=$2; shift 2 ;;
     --jobs|-j) sweep_args+=(--jobs "$2"); shift 2 ;;
     --force) sweep_args+=(--force); shift ;;
-    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
     *) echo "run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
+((smoke && sensitivity)) && { echo "run.sh: --smoke and --sensitivity exclude each other" >&2; exit 2; }
 if ((smoke)); then config=$here/sweep_smoke.toml; out=${out:-$root/runs/validation/nakanishi_2020_smoke}
 else config=$here/sweep.toml; out=${out:-$root/runs/validation/nakanishi_2020}; fi
 [[ -f $build_dir/meshes/nakanishi_2020.stl ]] || {
@@ -34,9 +40,39 @@ else config=$here/sweep.toml; out=${out:-$root/runs/validation/nakanishi_2020}; 
 start=$(date +%s)
 started_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 status=0
+if ((sensitivity)); then
+  # sens NAME CONFIG WINDOW_START WINDOW_END: one sensitivity sweep into $out/sensitivity/NAME and
+  # its results_NAME.csv / comparison_NAME.md here (window in test-phase seconds)
+  sens() {
+    local name=$1 config=$2 w0=$3 w1=$4 runs
+    "$root/scripts/wheel-sweep" "$here/$config" --out-dir "$out/sensitivity/$name" \
+      --build-dir "$build_dir" "${sweep_args[@]}" || status=1
+    mapfile -t runs < <(find "$out/sensitivity/$name" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
+    ((${#runs[@]})) || { echo "run.sh: no finished run under $out/sensitivity/$name" >&2; return 1; }
+    "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start "$w0" --window-end "$w1" \
+      --results "$here/results_$name.csv" --csv "$out/sensitivity/$name/curves.csv"
+    "$python" "$here/compare.py" "$here/results_$name.csv" "$here/reference.csv" --r-eff 0.11 \
+      --md "$here/comparison_$name.md"
+    return $status
+  }
+  # the sensitivity sweeps name the main sweep's bed under the default runs directory
+  [[ $out == "$root/runs/validation/nakanishi_2020" ]] || {
+    echo "run.sh: --sensitivity runs in the default runs directory (its sweeps name the main sweep's bed there): leave out --out-dir" >&2; exit 2; }
+  [[ -f $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart ]] || {
+    echo "run.sh: --sensitivity runs on the main sweep's bed, $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart: run the case first" >&2; exit 2; }
+  # the two one-point sweeps side by side (one rank each), then the three window points
+  sens bed_repeat sweep_bed_repeat.toml 1.0 2.4 & pid_repeat=$!
+  sens dt_0.6e-4 sweep_dt.toml 1.0 2.4 & pid_dt=$!
+  wait $pid_repeat || status=1
+  wait $pid_dt || status=1
+  sens window_3.25 sweep_window.toml 1.0 3.25
+  write_provenance "$here/provenance_sensitivity.toml" validation/nakanishi_2020 \
+    "validation/nakanishi_2020/run.sh${args[*]:+ }${args[*]}" "$started_utc" "$start" "$out/sensitivity"
+  exit $status
+fi
 "$root/scripts/wheel-sweep" "$config" --out-dir "$out" --build-dir "$build_dir" "${sweep_args[@]}" || status=$?
 # results of every finished point (a failed point is reported by wheel-sweep and left out)
-mapfile -t runs < <(find "$out" -mindepth 4 -name run.h5 -not -path "*/beds/*" | sort)
+mapfile -t runs < <(find "$out" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" | sort)
 ((${#runs[@]})) || { echo "run.sh: no finished run under $out" >&2; exit 1; }
 # Window: test-phase seconds 1.0 .. end (the first second is the approach to steady sinkage, as
 # the published runs average after 1 s of driving); smoke: the second half of its 0.3 s.
