@@ -3,6 +3,7 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "contact_history_access.h"
 #include "error.h"
 #include "fix_contact_history.h"
 #include "lammps.h"
@@ -12,23 +13,7 @@
 
 using LAMMPS_NS::FixContactHistory;
 
-namespace {
-
-// fix contacthistory's partner arrays are protected members (LIGGGHTS lets only Neighbor and
-// PairGran, its friends, touch them). A class derived from it may name them, and a pointer to
-// a member formed through the derived class has the type `T FixContactHistory::*`, which can be
-// applied to any FixContactHistory: standard C++, no layout assumption. No object of this type
-// is ever created.
-struct HistoryAccess : FixContactHistory {
-  static int *FixContactHistory::*npartner() { return &HistoryAccess::npartner_; }
-  static int **FixContactHistory::*partner() { return &HistoryAccess::partner_; }
-  static double **FixContactHistory::*values() { return &HistoryAccess::contacthistory_; }
-  static int FixContactHistory::*maxtouch() { return &HistoryAccess::maxtouch_; }
-  static LAMMPS_NS::MyPage<int> *FixContactHistory::*ipage() { return &HistoryAccess::ipage_; }
-  static LAMMPS_NS::MyPage<double> *FixContactHistory::*dpage() { return &HistoryAccess::dpage_; }
-};
-
-} // namespace
+using HistoryAccess = wheelsim::ContactHistoryAccess;
 
 namespace wheelsim {
 
@@ -74,28 +59,16 @@ void FrozenContacts::put_back(int i, const double *entries, int count) {
   }
   if (added == 0)
     return;
-  // New chunks from fix contacthistory's own pages, as its unpack_exchange takes them; the old
-  // chunk is orphaned until the pages are reset at the next pre_exchange (as LIGGGHTS does for
-  // migrating atoms).
-  const int n_new = n_old + added;
-  int *new_partner = (h.*HistoryAccess::ipage())->get(n_new);
-  double *new_values = (h.*HistoryAccess::dpage())->get(n_new * dnum_);
-  if (new_partner == nullptr || new_values == nullptr)
-    lmp_->error->one(FLERR, "fix wheel/active: contact history overflow while restoring the "
-                            "contacts of reactivated particles; boost neigh_modify one");
-  std::copy(partner[i], partner[i] + n_old, new_partner);
-  std::copy(values[i], values[i] + n_old * dnum_, new_values);
-  for (int e = 0; e < added; ++e) {
-    const double *entry = &scratch_[e * width_];
-    new_partner[n_old + e] = static_cast<int>(entry[0]);
-    std::copy(entry + 1, entry + width_, new_values + (n_old + e) * dnum_);
+  // the arrays' entries followed by the added ones, in one new chunk
+  std::vector<double> merged;
+  merged.reserve(static_cast<std::size_t>(n_old + added) * width_);
+  for (int m = 0; m < n_old; ++m) {
+    merged.push_back(partner[i][m]);
+    merged.insert(merged.end(), values[i] + m * dnum_, values[i] + (m + 1) * dnum_);
   }
-  partner[i] = new_partner;
-  values[i] = new_values;
-  npartner[i] = n_new;
-  int &maxtouch = h.*HistoryAccess::maxtouch();
-  maxtouch = std::max(maxtouch, n_new);
-  lmp_->comm->maxexchange_fix = std::max(lmp_->comm->maxexchange_fix, width_ * maxtouch + 1);
+  merged.insert(merged.end(), scratch_.begin(), scratch_.end());
+  wheelsim::replace_partners(lmp_, h, i, merged.data(), n_old + added,
+                             "fix wheel/active, restoring the contacts of reactivated particles");
 }
 
 void FrozenContacts::sync(int frozen_bit) {
