@@ -9,8 +9,9 @@
 # About 1 h on 2 cores (README "Cost"). Run it in the background: nohup ... &
 # --sensitivity: only the sensitivity sweeps, on the main sweep's bed (run the case first):
 #          time step halved at 35.42 % (sweep_dt.toml) against the same point repeated on that bed
-#          (sweep_bed_repeat.toml), and the published 3.25 s test phase at 77.97-86.8 %
-#          (sweep_window.toml); writes results_<name>.csv and comparison_<name>.md here.
+#          (sweep_bed_repeat.toml), the published 3.25 s test phase at 77.97-86.8 %
+#          (sweep_window.toml) and the rolling friction mu_r 0 and 0.1 at 35.42 %, each on its
+#          own bed (sweep_mur.toml); writes results_<name>.csv and comparison_<name>.md here.
 # --smoke: the CI version (a 0.40 m bin, one slip, 0.3 s of test phase; minutes): same pipeline,
 #          outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
@@ -27,7 +28,7 @@ while (($#)); do
     --out-dir) out=$2; shift 2 ;;
     --jobs|-j) sweep_args+=(--jobs "$2"); shift 2 ;;
     --force) sweep_args+=(--force); shift ;;
-    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
     *) echo "run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -66,6 +67,7 @@ if ((sensitivity)); then
   wait $pid_repeat || status=1
   wait $pid_dt || status=1
   sens window_3.25 sweep_window.toml 1.0 3.25
+  sens mur sweep_mur.toml 1.0 2.4
   write_provenance "$here/provenance_sensitivity.toml" validation/nakanishi_2020 \
     "validation/nakanishi_2020/run.sh${args[*]:+ }${args[*]}" "$started_utc" "$start" "$out/sensitivity"
   exit $status
