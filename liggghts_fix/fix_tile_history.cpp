@@ -33,6 +33,21 @@ std::int64_t copy_key(int block_tag, long copy) {
   return (static_cast<std::int64_t>(block_tag) << 20) | static_cast<std::int64_t>(copy + (1 << 19));
 }
 
+// Every rank's `mine`, concatenated in rank order, on every rank.
+template <typename T>
+std::vector<T> gather_all(const std::vector<T> &mine, MPI_Datatype type, MPI_Comm world) {
+  int nprocs = 1;
+  MPI_Comm_size(world, &nprocs);
+  int n = static_cast<int>(mine.size());
+  std::vector<int> counts(nprocs), offsets(nprocs, 0);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  for (int r = 1; r < nprocs; ++r)
+    offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<T> all(static_cast<std::size_t>(offsets.back() + counts.back()));
+  MPI_Allgatherv(mine.data(), n, type, all.data(), counts.data(), offsets.data(), type, world);
+  return all;
+}
+
 } // namespace
 
 FixTileHistory::FixTileHistory(LAMMPS *lmp, int narg, char **arg)
@@ -122,18 +137,9 @@ void FixTileHistory::record() {
   comm->maxexchange_fix =
       std::max(comm->maxexchange_fix, kPackHead + carried_width_ + max_entries * width_);
   // every block grain's x on every rank
-  int n = static_cast<int>(tags.size());
-  std::vector<int> counts(comm->nprocs), offsets(comm->nprocs, 0);
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
-  for (int r = 1; r < comm->nprocs; ++r)
-    offsets[r] = offsets[r - 1] + counts[r - 1];
-  const int total = offsets.back() + counts.back();
-  std::vector<int> all_tags(total);
-  std::vector<double> all_x(total);
-  MPI_Allgatherv(tags.data(), n, MPI_INT, all_tags.data(), counts.data(), offsets.data(), MPI_INT,
-                 world);
-  MPI_Allgatherv(xs.data(), n, MPI_DOUBLE, all_x.data(), counts.data(), offsets.data(), MPI_DOUBLE,
-                 world);
+  const std::vector<int> all_tags = gather_all(tags, MPI_INT, world);
+  const std::vector<double> all_x = gather_all(xs, MPI_DOUBLE, world);
+  const int total = static_cast<int>(all_tags.size());
   block_x_of_tag_.clear();
   block_x_of_tag_.reserve(static_cast<std::size_t>(total));
   for (int k = 0; k < total; ++k)
@@ -203,15 +209,8 @@ void FixTileHistory::remap(bool keep) {
              unrecorded_all);
     error->all(FLERR, msg);
   }
-  int n = static_cast<int>(mine.size());
-  std::vector<int> counts(comm->nprocs), offsets(comm->nprocs, 0);
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
-  for (int r = 1; r < comm->nprocs; ++r)
-    offsets[r] = offsets[r - 1] + counts[r - 1];
-  const int total = offsets.back() + counts.back();
-  std::vector<int> all(total);
-  MPI_Allgatherv(mine.data(), n, MPI_INT, all.data(), counts.data(), offsets.data(), MPI_INT,
-                 world);
+  const std::vector<int> all = gather_all(mine, MPI_INT, world);
+  const int total = static_cast<int>(all.size());
   std::unordered_map<std::int64_t, int> id_of_copy;
   id_of_copy.reserve(static_cast<std::size_t>(total / 3));
   std::vector<int> ids;
@@ -285,7 +284,8 @@ void FixTileHistory::remap(bool keep) {
                       "found");
   *computeflag = 0;
 
-  long local[4] = {static_cast<long>(n / 3), kept, across, dropped}, sum[4] = {0, 0, 0, 0};
+  long local[4] = {static_cast<long>(mine.size() / 3), kept, across, dropped},
+       sum[4] = {0, 0, 0, 0};
   MPI_Allreduce(local, sum, 4, MPI_LONG, MPI_SUM, world);
   for (int k = 0; k < 4; ++k)
     vector_[k] = static_cast<double>(sum[k]);
