@@ -4,6 +4,7 @@ the wheel's answer with and without it.
 
   bench_active_domain.py --exe liggghts-wheel --inputs DIR --mesh test_small.stl --work DIR
                          [--lengths 0.5,1,2] [--steps 4000] [--np 1] [--active-args "..."]
+                         [--active-fixes 0|1]
                          [--coupled-rig RIG.toml --wheel-cosim scripts/wheel-cosim]
 
 1. Speed-up: for each bin length L, a ci bed 0.10 m wide, fill 0.025 m (tiled from 0.25 m blocks
@@ -93,7 +94,8 @@ def run_wheel(a, restart, length, active):
     variables = {"inputs_dir": a.inputs, "restart_file": restart, "mesh": a.mesh,
                  "x0": length / 2, "vx": 0.1125, "vz": -0.05, "wy": 1.5,
                  "steps1": a.steps, "thermo_every": 10,
-                 "active": 1 if active else 0, "active_args": a.active_args}
+                 "active": 1 if active else 0, "active_args": a.active_args,
+                 "active_fixes": a.active_fixes}
     cmd = launcher(a) + ["-in", DECK, "-log", "none", "-echo", "none"]
     for k, v in variables.items():
         cmd += ["-var", k, str(v)]
@@ -118,7 +120,8 @@ def run_wheel(a, restart, length, active):
 
 def speedup(a):
     print(f"bench: git {git_hash()}, np {a.np}, {a.steps} steps per run, wheel test_small "
-          f"(R 0.1 m), active-domain keywords '{a.active_args or '(defaults)'}'")
+          f"(R 0.1 m), active-domain keywords '{a.active_args or '(defaults)'}', active_fixes "
+          f"{a.active_fixes}")
     print("bench: L [m] | particles | ms/step without | with | speed-up | active share | "
           "dFx/|F|, dFz/|F|, dTy/(|F| R) | load avg before/after (without; with)")
     results = []
@@ -197,6 +200,9 @@ def main():
     p.add_argument("--np", type=int, default=1)
     p.add_argument("--mpiexec", default="mpiexec")
     p.add_argument("--active-args", default="", help="fix wheel/active keywords")
+    p.add_argument("--active-fixes", type=int, choices=(0, 1), default=1,
+                   help="1: gravity, walls and integrator on the active group only (deck "
+                        "variable active_fixes); 0: on every particle")
     p.add_argument("--coupled-rig", help="rig config: also compare a coupled run")
     p.add_argument("--wheel-cosim", default=os.path.join(ROOT, "scripts", "wheel-cosim"))
     p.add_argument("--skip-speedup", action="store_true")

@@ -42,7 +42,7 @@ constexpr double kDefaultTravelPerDistance = 0.1;
 /* ---------------------------------------------------------------------- */
 
 FixWheelActive::FixWheelActive(LAMMPS *lmp, int narg, char **arg)
-    : Fix(lmp, narg, arg), wheel_(nullptr), frozen_bit_(0), keep_history_(true),
+    : Fix(lmp, narg, arg), wheel_(nullptr), frozen_bit_(0), active_bit_(0), keep_history_(true),
       skip_frozen_pairs_(true), distance_arg_(-1.0), sinkage_arg_(-1.0), hysteresis_arg_(-1.0),
       travel_arg_(-1.0), distance_(0.0), sinkage_(0.0), hysteresis_(0.0), travel_(0.0),
       bounding_radius_(0.0), update_centre_{0.0, 0.0, 0.0}, have_update_(false),
@@ -65,6 +65,18 @@ FixWheelActive::FixWheelActive(LAMMPS *lmp, int narg, char **arg)
     igroup = group->find(frozen_group_.c_str());
   }
   frozen_bit_ = group->bitmask[igroup];
+  // Its complement, ID_active (every particle not frozen), for the deck's per-particle fixes:
+  // gravity, walls and the integrator on ID_active skip the frozen soil (docs/fix-wheel-active.md
+  // "Active group"). A new group starts with every particle; after read_restart it comes back
+  // from the file.
+  active_group_ = std::string(id) + "_active";
+  int jgroup = group->find(active_group_.c_str());
+  if (jgroup < 0) {
+    std::vector<int> all(std::max(atom->nlocal, 1), 1);
+    group->create(const_cast<char *>(active_group_.c_str()), all.data());
+    jgroup = group->find(active_group_.c_str());
+  }
+  active_bit_ = group->bitmask[jgroup];
   // Pairs of two frozen particles are left out of the neighbour lists from the next build on.
   if (skip_frozen_pairs_) {
     std::vector<char> name(frozen_group_.begin(), frozen_group_.end());
@@ -96,7 +108,7 @@ FixWheelActive::~FixWheelActive() {
   // are dropped (docs/fix-wheel-active.md, "Restrictions").
   const int inverse = ~frozen_bit_;
   for (int i = 0; i < atom->nlocal; ++i)
-    atom->mask[i] &= inverse;
+    atom->mask[i] = (atom->mask[i] & inverse) | active_bit_;
   atom->delete_callback(id, 0);
   atom->delete_callback(id, 1);
 }
@@ -278,17 +290,19 @@ void FixWheelActive::update_active_set() {
     if (!(mask[i] & groupbit)) {
       if (frozen)
         mask[i] &= inverse;
-      continue;
+    } else {
+      const double dx = x[i][0] - centre[0], dy = x[i][1] - centre[1], dz = x[i][2] - centre[2];
+      const double d2 = dx * dx + dy * dy + dz * dz;
+      if (frozen && d2 <= active_r2) {
+        mask[i] &= inverse;
+      } else if (!frozen && d2 > frozen_r2) {
+        mask[i] |= frozen_bit_;
+        v[i][0] = v[i][1] = v[i][2] = 0.0;
+        omega[i][0] = omega[i][1] = omega[i][2] = 0.0;
+      }
     }
-    const double dx = x[i][0] - centre[0], dy = x[i][1] - centre[1], dz = x[i][2] - centre[2];
-    const double d2 = dx * dx + dy * dy + dz * dz;
-    if (frozen && d2 <= active_r2) {
-      mask[i] &= inverse;
-    } else if (!frozen && d2 > frozen_r2) {
-      mask[i] |= frozen_bit_;
-      v[i][0] = v[i][1] = v[i][2] = 0.0;
-      omega[i][0] = omega[i][1] = omega[i][2] = 0.0;
-    }
+    // ID_active is the complement (ghost masks follow with this rebuild's borders)
+    mask[i] = (mask[i] & frozen_bit_) ? (mask[i] & ~active_bit_) : (mask[i] | active_bit_);
   }
   std::copy(centre, centre + 3, update_centre_);
   have_update_ = true;

@@ -92,6 +92,8 @@ private:
   FixWheelCosim *wheel_;
   std::string frozen_group_;
   int frozen_bit_;
+  std::string active_group_; // the complement of the frozen group (ID_active)
+  int active_bit_;
   bool keep_history_;
   bool skip_frozen_pairs_; // false: frozen pairs still computed (keyword frozen_pairs)
   // lengths [m]; < 0: not given (default from the wheel's size at init)
