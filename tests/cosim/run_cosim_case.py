@@ -294,10 +294,46 @@ def cost_recorded(a):
     return 0 if ok else 1
 
 
+def active_coupled(a):
+    """The wheel deck (inputs/examples/in.wheel_coupled) with the active domain and its active
+    group (active_fixes 1: gravity, walls and integrator redeclared on act_active): the coupled
+    run completes, soil far from the wheel is frozen, and the run file has its test phase."""
+    rig = rig_config(a, "rig.toml", duration="0.02")
+    work = os.path.join(os.path.abspath(a.work), "run")
+    run = subprocess.run(
+        [os.path.join(a.root, "scripts", "wheel-cosim"), "--rig", rig, "--bed", a.bed,
+         "--deck", os.path.join(a.root, "inputs", "examples", "in.wheel_coupled"), "--np",
+         str(a.np), "--work", work, "--no-checkpoints",
+         "--", "-var", "active_domain", "1", "-var", "active_args", "distance 0.03",
+         "-var", "output_every", "0"],
+        capture_output=True, text=True, timeout=600,
+        env=dict(os.environ, WHEELSIM_BUILD_DIR=a.build))
+    print(run.stdout[-2000:], run.stderr[-2000:])
+    screen = ""
+    for name in ("liggghts.log", "log.liggghts"):
+        path = os.path.join(work, name)
+        if os.path.exists(path):
+            screen += open(path, errors="replace").read()
+    m = re.search(r"([0-9.]+) of ([0-9.]+) particles active on average", screen)
+    import h5py
+
+    rows = 0
+    if os.path.exists(os.path.join(work, "run.h5")):
+        with h5py.File(os.path.join(work, "run.h5"), "r") as f:
+            rows = len(f["observables/wheel/position/step"])
+    frozen = m is not None and float(m.group(1)) < float(m.group(2))
+    regrouped = "unfix wall_z0" in screen or "act_active" in screen
+    ok = run.returncode == 0 and frozen and rows > 0
+    print(f"run_cosim_case: exit {run.returncode}; active on average "
+          f"{m.group(1) + ' of ' + m.group(2) if m else 'not reported'}; run file rows {rows}; "
+          f"active group in the log: {regrouped} {'PASS' if ok else 'FAIL'}")
+    return 0 if ok else 1
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("mode", choices=["compare", "kill_rig", "kill_liggghts", "launcher_fail",
-                                    "dt_from_bed", "cost_recorded"])
+                                    "dt_from_bed", "cost_recorded", "active_coupled"])
     p.add_argument("--root", required=True)
     p.add_argument("--build", required=True)
     p.add_argument("--bed", required=True)
@@ -310,7 +346,7 @@ def main():
     os.makedirs(a.work, exist_ok=True)
     return {"compare": compare, "kill_rig": kill_rig, "kill_liggghts": kill_liggghts,
             "launcher_fail": launcher_fail, "dt_from_bed": dt_from_bed,
-            "cost_recorded": cost_recorded}[a.mode](a)
+            "cost_recorded": cost_recorded, "active_coupled": active_coupled}[a.mode](a)
 
 
 if __name__ == "__main__":
