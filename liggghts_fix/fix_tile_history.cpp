@@ -66,7 +66,8 @@ FixTileHistory::FixTileHistory(LAMMPS *lmp, int narg, char **arg)
   history_ = static_cast<FixContactHistory *>(modify->find_fix_style_strict("contacthistory", 0));
   if (history_ == nullptr)
     bad_argument("no pair contact history to carry: the pair style keeps none (a granular pair "
-                 "style with 'tangential history', run at least once before this fix)");
+                 "style with 'tangential history', run at least once before this fix); for a "
+                 "soil without it tile a bed with -var tile_history 0");
   width_ = 1 + history_->get_dnum();
 
   vector_flag = 1;
