@@ -56,27 +56,24 @@ FixWheelActive::FixWheelActive(LAMMPS *lmp, int narg, char **arg)
   parse_arguments(narg, arg);
 
   // The frozen particles are a group (also usable in the deck, e.g. to dump only the active
-  // soil); after read_restart the group and its members come back from the file.
+  // soil). A group found after read_restart keeps its members from the file; a new one starts
+  // with `member` (0 or 1) for every local particle. Returns its bit.
+  auto find_or_create_group = [&](const std::string &name, int member) {
+    int igroup = group->find(name.c_str());
+    if (igroup < 0) {
+      std::vector<int> flags(std::max(atom->nlocal, 1), member);
+      group->create(const_cast<char *>(name.c_str()), flags.data());
+      igroup = group->find(name.c_str());
+    }
+    return group->bitmask[igroup];
+  };
   frozen_group_ = std::string(id) + "_frozen";
-  int igroup = group->find(frozen_group_.c_str());
-  if (igroup < 0) {
-    std::vector<int> none(std::max(atom->nlocal, 1), 0);
-    group->create(const_cast<char *>(frozen_group_.c_str()), none.data());
-    igroup = group->find(frozen_group_.c_str());
-  }
-  frozen_bit_ = group->bitmask[igroup];
+  frozen_bit_ = find_or_create_group(frozen_group_, 0);
   // Its complement, ID_active (every particle not frozen), for the deck's per-particle fixes:
   // gravity, walls and the integrator on ID_active skip the frozen soil (docs/fix-wheel-active.md
-  // "Active group"). A new group starts with every particle; after read_restart it comes back
-  // from the file.
+  // "Active group"). A new one starts with every particle.
   active_group_ = std::string(id) + "_active";
-  int jgroup = group->find(active_group_.c_str());
-  if (jgroup < 0) {
-    std::vector<int> all(std::max(atom->nlocal, 1), 1);
-    group->create(const_cast<char *>(active_group_.c_str()), all.data());
-    jgroup = group->find(active_group_.c_str());
-  }
-  active_bit_ = group->bitmask[jgroup];
+  active_bit_ = find_or_create_group(active_group_, 1);
   // Pairs of two frozen particles are left out of the neighbour lists from the next build on.
   if (skip_frozen_pairs_) {
     std::vector<char> name(frozen_group_.begin(), frozen_group_.end());
