@@ -151,6 +151,27 @@ TEST(RunHealth, GridCoarserThanHalfTheRimRadiusIsAnErrorBeforeTheRun) {
   EXPECT_TRUE(fine.findings().empty());
 }
 
+TEST(RunHealth, GridWiderThanTheLugsIsAWarning) {
+  // test_small (wheel-mesh catalogue): 8 lugs 8 mm thick, from test_small.props.toml beside the
+  // mesh. 10 mm spacing lets a lug pass between node rows; 5 mm (the shipped config) does not.
+  std::string cfg = config();
+  cfg.replace(cfg.find("mass = 1.0\ninertia = 0.005\n"), 27,
+              "mesh = \"" WHEELSIM_MESH_DIR "/test_small.stl\"\ndensity = 7850.0\n");
+  cfg.replace(cfg.find("vertical_load = 15.0"), 20, "vertical_load = 300.0"); // 16.4 kg of steel
+  RigSimulation sim(parse_rig_config(cfg, "t.toml"));
+  EXPECT_EQ(sim.wheel().lug_count, 8);
+  EXPECT_DOUBLE_EQ(sim.wheel().lug_width_m, 0.008);
+  EXPECT_DOUBLE_EQ(sim.wheel().lug_height_m, 0.01);
+  RunHealth coarse(sim, nullptr);
+  coarse.set_grid(0.01, 2e8);
+  ASSERT_EQ(codes(coarse.findings()), std::vector<std::string>{"grid_coarse/warning"});
+  EXPECT_NE(coarse.findings()[0].message.find("use at most 0.004 m"), std::string::npos)
+      << coarse.findings()[0].message;
+  RunHealth fine(sim, nullptr);
+  fine.set_grid(0.005, 2e8);
+  EXPECT_TRUE(fine.findings().empty());
+}
+
 TEST(RunHealth, ContactStiffTooForTheTimeStepIsFlagged) {
   // omega_c dt = sqrt(k / 1.5 kg) * 2e-4 s: 2e4 N/m -> 0.023 (fine); 1e8 -> 1.6 (warning);
   // 1e9 -> 5.2 (error; the flat ground itself is still 2e4 N/m, so the run stays finite).

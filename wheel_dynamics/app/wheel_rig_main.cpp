@@ -614,6 +614,11 @@ int main(int argc, char **argv) {
       file->set_parameter("wheel/effective_radius", sim.wheel().effective_radius_m, "m");
       file->set_parameter("wheel/rim_radius", sim.wheel().rim_radius_m, "m");
       file->set_parameter("wheel/source", sim.wheel().source);
+      if (sim.wheel().lug_count > 0) { // from the mesh's props file (post-processing's window)
+        file->set_parameter("wheel/lug_count", std::int64_t{sim.wheel().lug_count}, "1");
+        file->set_parameter("wheel/lug_width", sim.wheel().lug_width_m, "m");
+        file->set_parameter("wheel/lug_height", sim.wheel().lug_height_m, "m");
+      }
       file->set_parameter("terrain/surface_height", config.terrain.surface_height_m, "m");
       file->set_parameter("run/dt", config.run.dt_s, "s");
       file->set_parameter("run/dt_source", dt ? "--dt (scripts/wheel-cosim: the bed's time step)"

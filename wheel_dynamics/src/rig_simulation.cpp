@@ -3,9 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+
+#include <toml++/toml.h>
 
 #include "wheelsim/geometry/mass_properties.h"
 #include "wheelsim/geometry/mesh_error.h"
@@ -29,6 +32,34 @@ std::string fmt(double v) {
   std::ostringstream os;
   os << v;
   return os.str();
+}
+
+/// The lugs of a wheel-mesh mesh from `<stem>.props.toml` beside it (see WheelProperties); leaves
+/// `p` unchanged if there is no such file. A props file that does not parse is an error naming it.
+void read_lug_properties(const std::string &mesh, double mesh_scale, WheelProperties &p) {
+  const std::filesystem::path props = std::filesystem::path(mesh).replace_extension(".props.toml");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(props, ec))
+    return;
+  toml::table t;
+  try {
+    t = toml::parse_file(props.string());
+  } catch (const toml::parse_error &e) {
+    throw RigConfigError("wheel.mesh: the mesh's properties file " + props.string() +
+                         " does not parse: " + std::string(e.description()));
+  }
+  const auto *wheel = t["wheel"].as_table();
+  if (wheel == nullptr || (*wheel)["smooth"].value_or(false))
+    return;
+  const auto count = (*wheel)["lug_count"].value<std::int64_t>();
+  const auto width = (*wheel)["lug_width_m"].value<double>();
+  const auto height = (*wheel)["lug_height_m"].value<double>();
+  if (!count || !width || !height || *count < 1 || !(*width > 0) || !(*height > 0))
+    return; // not a lugged wheel-mesh wheel: the lug checks stay off
+  p.lug_count = static_cast<int>(*count);
+  p.lug_width_m = *width * mesh_scale;
+  p.lug_height_m = *height * mesh_scale;
+  p.lug_source = props.string();
 }
 
 } // namespace
@@ -64,6 +95,7 @@ WheelProperties resolve_wheel_properties(const WheelConfig &w) {
     for (const auto &v : mesh.vertices_m)
       p.rim_radius_m = std::max(p.rim_radius_m, std::hypot(v.x(), v.z()));
     p.source = "mesh " + w.mesh;
+    read_lug_properties(w.mesh, w.mesh_scale, p);
     if (w.density_kg_m3) {
       geometry::MassProperties mp;
       try {

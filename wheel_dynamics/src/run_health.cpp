@@ -87,6 +87,17 @@ void RunHealth::set_grid(double spacing_m, double elastic_K_Pa_m) {
              "in metres (did you mean " + fmt(spacing_m / 1000.0) + "?); use at most about " +
              fmt(R / 20.0) + " m (R/20)",
          sim_.step(), sim_.time_s());
+  // A lug narrower than the grid spacing can pass between two node rows: the terrain then sees
+  // it only at some positions, and its thrust comes and goes with the lug's phase on the grid.
+  const auto &wheel = sim_.wheel();
+  if (wheel.lug_width_m > 0.0 && spacing_m > limits_.grid_lug_width * wheel.lug_width_m)
+    add(Severity::warning, "grid_coarse",
+        "terrain.grid_spacing = " + fmt(spacing_m) + " m is wider than the wheel's lugs (" +
+            fmt(wheel.lug_width_m) + " m thick, " + wheel.lug_source +
+            "): a lug can pass between grid nodes and is seen only at some positions; use at "
+            "most " +
+            fmt(wheel.lug_width_m / 2.0) + " m (half the lug thickness)",
+        sim_.step(), sim_.time_s());
 }
 
 void RunHealth::set_contact_stiffness(double stiffness_N_m) { stiffness_N_m_ = stiffness_N_m; }

@@ -37,10 +37,17 @@ struct WheelProperties {
   double effective_radius_m = 0.0; ///< R_eff: slip, traction force, flat-ground contact
   double rim_radius_m = 0.0;       ///< outer radius: lowest rim point for sinkage
   std::string source;              ///< "config" or "mesh <path> (density ...)"
+  /// The lugs, from the `<mesh stem>.props.toml` that wheel-mesh writes beside its meshes
+  /// ([wheel] lug_count, lug_width_m, lug_height_m); 0 without that file or for a smooth wheel.
+  int lug_count = 0;
+  double lug_width_m = 0.0;  ///< lug thickness, across the lug [m]
+  double lug_height_m = 0.0; ///< [m]
+  std::string lug_source;    ///< the props file read, empty if none
 };
 
 /// From the config: mass/inertia given, or from the mesh and density (wheelsim_geometry). With a
-/// mesh, rim_radius is the mesh's largest distance from the axle and R_eff defaults to it. Throws
+/// mesh, rim_radius is the mesh's largest distance from the axle and R_eff defaults to it; the lugs
+/// come from the mesh's props file when there is one (scaled by wheel.mesh_scale). Throws
 /// RigConfigError (mesh problems included, naming the file) and if the mesh's centroid is off
 /// the axle by more than 1 mm (the model assumes a balanced wheel).
 WheelProperties resolve_wheel_properties(const WheelConfig &wheel);
