@@ -1,0 +1,57 @@
+#!/usr/bin/python3
+"""scripts/wheel-cosim's command line (docs/coupled-runs.md, "Exit codes"): --help and --version
+exit 0, bad usage exits 2 with one line naming the bad flag (and the nearest valid one), before
+anything is started.
+
+  check_wheel_cosim_cli.py --cosim scripts/wheel-cosim --build BUILD_DIR
+Exit 0 pass, 1 fail.
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--cosim", required=True)
+    ap.add_argument("--build", required=True)
+    a = ap.parse_args()
+    env = dict(os.environ, WHEELSIM_BUILD_DIR=a.build)
+    failures = []
+
+    def run(*args):
+        r = subprocess.run([a.cosim, *args], capture_output=True, text=True, env=env, timeout=30)
+        return r.returncode, r.stdout, r.stderr
+
+    def expect(args, code, stream_pattern, which="stderr"):
+        rc, out, err = run(*args)
+        text = out if which == "stdout" else err
+        ok = rc == code and re.search(stream_pattern, text) is not None
+        if code == 2:
+            ok = ok and len(err.strip().splitlines()) == 1
+        print(f"{'ok  ' if ok else 'FAIL'} wheel-cosim {' '.join(args)}: exit {rc}, "
+              f"{which} {text.strip()[:160]!r}")
+        if not ok:
+            failures.append(args)
+
+    expect(["--help"], 0, r"(?s)--rig RIG\.toml.*--checkpoint-every-seconds", "stdout")
+    expect(["-h"], 0, r"Docs: docs/coupled-runs\.md", "stdout")
+    expect(["--version"], 0, r"^wheel-cosim \d+\.\d+\.\d+", "stdout")
+    expect(["--verison"], 2, r"unknown option '--verison' \(did you mean '--version'\?\)")
+    expect(["--rig", "r.toml", "--soilfile", "s.in"], 2,
+           r"unknown option '--soilfile' \(did you mean '--soil-file'\?\)")
+    expect(["--rig"], 2, r"--rig: expects a value")
+    expect(["--np", "--rig", "r.toml"], 2, r"--np: expects a value")
+    expect(["--parameter", "novalue"], 2, r"--parameter: expected KEY=VALUE")
+    expect([], 2, r"--rig: rig config '' not found")
+    if failures:
+        print(f"{len(failures)} failed")
+        return 1
+    print("all passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
