@@ -11,6 +11,7 @@ import fcntl
 import hashlib
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -57,6 +58,43 @@ def _prep_keys_changed(recipe_file, recipe):
     if not keys or any(k not in TILE_VARS for k in keys):
         return None
     return ", ".join(f"{k} {old.get(k, 'unset')} -> {recipe.get(k, 'unset')}" for k in keys)
+
+
+_INCLUDE = re.compile(r"^[ \t]*include[ \t]+(\S+)", re.M)
+_DECK_VAR = re.compile(r"\$\{(\w+)\}")
+
+
+def deck_includes(deck, variables):
+    """The files LIGGGHTS input `deck` includes, recursively, in order: each `include` whose
+    path, with ${NAME} replaced from `variables` (e.g. inputs_dir), is an existing absolute path.
+    Paths built from run-time variables (the soil file, the restart's .vars) are left out: the
+    resume hash covers those files on their own."""
+    found, todo = [], [Path(deck)]
+    while todo:
+        try:
+            text = todo.pop(0).read_text(errors="replace")
+        except OSError:
+            continue
+        for m in _INCLUDE.finditer(text):
+            path = _DECK_VAR.sub(lambda v: variables.get(v.group(1), v.group(0)), m.group(1))
+            f = Path(path)
+            if "$" in path or not f.is_absolute() or not f.is_file() or f in found:
+                continue
+            found.append(f)
+            todo.append(f)
+    return found
+
+
+def _same_bed_inputs(inputs_file, inputs):
+    """True if a bed's recorded inputs (its .inputs.json) are `inputs`. A record from before the
+    included files were recorded is compared without them."""
+    try:
+        recorded = json.loads(inputs_file.read_text())
+    except (OSError, ValueError):
+        return False
+    if "included_sha256" not in recorded:
+        inputs = {k: v for k, v in inputs.items() if k != "included_sha256"}
+    return recorded == inputs
 
 
 def _last_error(log):
@@ -265,6 +303,21 @@ class Runner:
                     ident.update(bed_soil_sha256=self.file_hash(p.soil.dem_soil_file))
         return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
 
+    def included_hashes(self, p):
+        """{path: sha256} of the files a DEM point's LIGGGHTS inputs include in turn: the deck's
+        (resume.in, bed_fixes.in, soil_check.in, ...), the DEM soil file's (materials.in) and, for
+        a bin recipe, in.soilbin's (settle.in, ...). Recorded in done.json beside inputs_sha256 and
+        compared when present (points finished before it was recorded are not re-run for it)."""
+        if self.sweep.terrain != "dem":
+            return {}
+        roots = [self.sweep.deck]
+        if p.soil.dem_soil_file is not None:
+            roots.append(p.soil.dem_soil_file)
+        if p.soil.recipe is not None:
+            roots.append(self.repo / "inputs" / "in.soilbin")
+        variables = {"inputs_dir": str(self.repo / "inputs")}
+        return {str(f): self.file_hash(f) for r in roots for f in deck_includes(r, variables)}
+
     def tile_hashes(self, soil):
         """A tiled recipe's (tile_length set) extra deck files: {name_sha256: sha256}; {} for a
         bed settled whole (so the records of existing beds stay as they were)."""
@@ -286,6 +339,12 @@ class Runner:
             return False, f"failed before (exit {done.get('exit_status')})"
         if done.get("inputs_sha256") != self.inputs_hash(p):
             return False, "inputs changed since it finished"
+        recorded = done.get("included_sha256")
+        if recorded is not None:
+            now = self.included_hashes(p)
+            changed = sorted(f for f in set(recorded) | set(now) if recorded.get(f) != now.get(f))
+            if changed:
+                return False, f"included file {changed[0]} changed since it finished"
         if not (d / RUN_FILE).is_file():
             return False, f"{RUN_FILE} missing"
         return True, ""
@@ -338,6 +397,8 @@ class Runner:
                 "terrain": self.sweep.terrain, "exit_status": rc,
                 "status": "done" if rc == 0 else "failed", "wall_time_s": round(wall, 3),
                 "run_file": RUN_FILE if rc == 0 else None, "inputs_sha256": self.inputs_hash(p)}
+        if self.sweep.terrain == "dem":
+            done["included_sha256"] = self.included_hashes(p)
         _write_atomic(d / DONE_FILE, json.dumps(done, indent=2) + "\n")
         with self.lock:
             self.status[p.index] = done["status"]
@@ -425,12 +486,17 @@ class Runner:
             # The files the bed is made from: a changed soil file or in.soilbin (same paths)
             # makes the bed stale, as it makes a finished point re-run (inputs_hash).
             inputs_file = bdir / f"{restart.name}.inputs.json"
-            inputs_text = json.dumps(
-                {"soilbin_sha256": self.file_hash(self.repo / "inputs" / "in.soilbin"),
-                 "soil_file": str(soil.dem_soil_file),
-                 "soil_file_sha256": self.file_hash(soil.dem_soil_file),
-                 **self.tile_hashes(soil)},
-                sort_keys=True, indent=2) + "\n"
+            variables = {"inputs_dir": str(self.repo / "inputs")}
+            inputs = {"soilbin_sha256": self.file_hash(self.repo / "inputs" / "in.soilbin"),
+                      "soil_file": str(soil.dem_soil_file),
+                      "soil_file_sha256": self.file_hash(soil.dem_soil_file),
+                      **self.tile_hashes(soil),
+                      # what in.soilbin and the soil file include in turn (settle.in, ...)
+                      "included_sha256": {
+                          str(f): self.file_hash(f)
+                          for r in (self.repo / "inputs" / "in.soilbin", soil.dem_soil_file)
+                          for f in deck_includes(r, variables)}}
+            inputs_text = json.dumps(inputs, sort_keys=True, indent=2) + "\n"
             why = ""
             if restart.is_file() and Path(f"{restart}.vars").is_file():
                 changed = None
@@ -446,13 +512,12 @@ class Runner:
                     self.say(f"bed {soil.label}: reusing {restart} (prepared before its input "
                              "files' hashes were recorded: not checked against them)")
                     continue
-                elif inputs_file.read_text() == inputs_text:
+                elif _same_bed_inputs(inputs_file, inputs):
                     self.say(f"bed {soil.label}: reusing {restart}")
                     continue
                 else:
-                    tiled = " (or inputs/soilbin/tile*.in)" if self.tile_hashes(soil) else ""
-                    why = (" again: its soil file or inputs/in.soilbin changed since it was "
-                           f"prepared{tiled} ({inputs_file})")
+                    why = (" again: its soil file, inputs/in.soilbin or a file they include "
+                           f"changed since it was prepared ({inputs_file})")
             if self.dry_run:
                 self.say(f"bed {soil.label}: would prepare {restart}{why} (in.soilbin, "
                          f"{self.sweep.bed_np} rank(s))")

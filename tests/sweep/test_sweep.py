@@ -449,6 +449,14 @@ def case_dem_soil_file(a, work):
     check("variable soil_name string ci\n" in text, "inputs/soils/ci.in has no soil_name line")
     soil.write_text(text.replace("variable soil_name string ci\n",
                                  'variable soil_name string my_sand\nprint "my_sand.in: included"\n'))
+    # the deck (tests/cosim/in.motion_compare) with one more include, by absolute path
+    extra = work / "extra.in"
+    extra.write_text('print "extra.in: included"\n')
+    deck = work / "in.motion_compare"
+    deck_text = (repo / "tests" / "cosim" / "in.motion_compare").read_text()
+    resume_line = "include ${inputs_dir}/soilbin/resume.in\n"
+    check(resume_line in deck_text, "tests/cosim/in.motion_compare does not include resume.in")
+    deck.write_text(deck_text.replace(resume_line, f"{resume_line}include {extra}\n"))
     cfg = work / "sweep.toml"
     cfg.write_text(f"""terrain = "dem"
 base = "{repo}/inputs/rigs/ci_small_wheel.toml"
@@ -459,7 +467,7 @@ slips = [0.2]
 [dem]
 np = 1
 bed_np = 1
-deck = "{repo}/tests/cosim/in.motion_compare"
+deck = "{deck}"
 liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
 """)
     out = work / "out"
@@ -480,13 +488,26 @@ liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
     with h5py.File(pdir / "run.h5", "r") as f:
         par = {k: f[f"parameters/bed/{k}"].asstr()[()] for k in ("soil", "soil_file")}
     check(par == {"soil": "my_sand", "soil_file": str(soil)}, f"run file /parameters/bed: {par}")
+    check("extra.in: included" in (pdir / "cosim" / "liggghts.log").read_text(),
+          "the coupled run's LIGGGHTS did not include the deck's extra file")
+    included = done.get("included_sha256", {})
+    for f in (extra, repo / "inputs" / "soilbin" / "resume.in",
+              repo / "inputs" / "soilbin" / "bed_fixes.in"):
+        check(str(f) in included, f"done.json's included_sha256 misses {f}: {sorted(included)}")
     r = subprocess.run(cmd + ["--dry-run"], capture_output=True, text=True, timeout=120)
     check("finished  test_small my_sand s=0.2" in r.stdout, f"not finished on a re-run:\n{r.stdout}")
+    # a file the deck includes changed (same path): the point re-runs, the bed stays
+    extra.write_text('print "extra.in: included, changed"\n')
+    r = subprocess.run(cmd + ["--dry-run"], capture_output=True, text=True, timeout=120)
+    check(f"would run test_small my_sand s=0.2 (included file {extra} changed since it finished)"
+          in r.stdout and f"bed my_sand: reusing {bed}" in r.stdout,
+          f"a changed included file (same path) does not re-run the point:\n{r.stdout}")
     soil.write_text(soil.read_text() + "# changed\n")
     r = subprocess.run(cmd + ["--dry-run"], capture_output=True, text=True, timeout=120)
     check("would run test_small my_sand s=0.2 (inputs changed since it finished)" in r.stdout,
           f"a changed soil file (same path) does not re-run the point:\n{r.stdout}")
-    check(f"bed my_sand: would prepare {bed} again: its soil file or inputs/in.soilbin changed"
+    check(f"bed my_sand: would prepare {bed} again: its soil file, inputs/in.soilbin or a file "
+          "they include changed"
           in r.stdout, f"a changed soil file (same path) does not re-prepare the bed:\n{r.stdout}")
 
 
