@@ -21,7 +21,8 @@ MODE
   cost_recorded  the run file of a coupled run records its cost for `wheelsim-post results`:
                  /parameters/liggghts/atoms = the bed's sphere count (the bed's own log,
                  'soilbin: spheres = N'), liggghts/np = --np, run/wall_time in (0, the
-                 launcher's elapsed time].
+                 launcher's elapsed time]; and, its rig config setting run.dt, that dt and
+                 "the rig config's run.dt" as its source (launcher line and run file).
 """
 import argparse
 import os
@@ -287,10 +288,17 @@ def cost_recorded(a):
         atoms = int(p["liggghts/atoms"][()]) if "liggghts/atoms" in p else None
         ranks = p["liggghts/np"].asstr()[()] if "liggghts/np" in p else None
         wall = float(p["run/wall_time"][()]) if "run/wall_time" in p else None
+        dt = float(p["run/dt"][()])
+        dt_source = p["run/dt_source"].asstr()[()]
+    # the rig config sets run.dt: both sides use it, and the launcher and run file say so
+    rig_dt = float(re.search(r"(?m)^dt\s*=\s*(\S+)", open(rig).read()).group(1))
+    dt_ok = (dt == rig_dt and dt_source == "the rig config's run.dt"
+             and f"dt {rig_dt!r} s from the rig config's run.dt" in run.stdout)
     ok = (run.returncode == 0 and atoms == spheres and ranks == str(a.np)
-          and wall is not None and 0.0 < wall <= elapsed)
+          and wall is not None and 0.0 < wall <= elapsed and dt_ok)
     print(f"run_cosim_case: atoms {atoms} (bed: {spheres} spheres), np {ranks} (--np {a.np}), "
-          f"wall_time {wall} s (launcher {elapsed:.2f} s) {'PASS' if ok else 'FAIL'}")
+          f"wall_time {wall} s (launcher {elapsed:.2f} s), dt {dt!r} s from '{dt_source}' "
+          f"(rig config {rig_dt!r}) {'PASS' if ok else 'FAIL'}")
     return 0 if ok else 1
 
 
