@@ -203,10 +203,17 @@ def kill_liggghts(a):
         steps = f["observables/slip/step"][:]
         rows = int((steps >= 0).sum())
         creator = f["h5md/creator"].attrs["name"]
-    ok = ok and rows >= 200
+        # the DEM run's health (docs/run-health.md): unhealthy, the failure recorded
+        status = f["health"].attrs["status"] if "health" in f else None
+        findings = ([(c.decode(), msg.decode()) for c, msg in
+                     zip(f["health/code"][()], f["health/message"][()])] if "health" in f else [])
+    failed = [msg for code, msg in findings if code == "run_failed"]
+    ok = (ok and rows >= 200 and status == "unhealthy" and len(failed) == 1
+          and "LIGGGHTS" in failed[0])
     print(f"run_cosim_case: the rig exited {rc} {elapsed:.1f} s after LIGGGHTS was killed "
           f"(timeout {TIMEOUT_S} s): {m.group(0) if m else 'no error message'}; run file by "
-          f"{creator!s} reads back with {rows} rows {'PASS' if ok else 'FAIL'}")
+          f"{creator!s} reads back with {rows} rows; /health {status}, run_failed {failed} "
+          f"{'PASS' if ok else 'FAIL'}")
     return 0 if ok else 1
 
 
