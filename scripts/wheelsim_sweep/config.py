@@ -18,7 +18,9 @@ from pathlib import Path
 
 from .estimate import wheel_radius
 
-TERRAINS = ("scm", "dem", "flat")
+# The terrain types are wheel-rig's (its registry, read from `wheel-rig --list-keys`: terrains());
+# these two have soils of their own kind here: "scm" soil files, "dem" beds (prepared by the
+# sweep). Every other type (flat and any new one) takes soils as labels or tables of [terrain] keys.
 TOP_KEYS = ("description", "terrain", "base", "override", "wheels", "soils", "slips", "dem",
             "slip_control")
 # How a point's slip is imposed (docs/sweeps.md, "Slip control"): "imposed_slip" (the default)
@@ -153,31 +155,44 @@ def _deep_merge(base, over):
 _SCHEMAS = {}
 
 
-def rig_keys(build_dir):
-    """{table: (key, ...)} of the rig config, from the schema `<build>/bin/wheel-rig --list-keys`
-    prints (docs/rig-config.md, "The schema and the registries"): the keys are declared once, in
-    wheel-rig. Read once per executable."""
+def _rig_schema(build_dir):
+    """The schema `<build>/bin/wheel-rig --list-keys` prints (docs/rig-config.md, "The schema and
+    the registries"), as {"keys": {table: (key, ...)}, "terrains": (name, ...)}: the keys and the
+    terrain types are declared once, in wheel-rig. Read once per executable."""
     rig = Path(build_dir) / "bin" / "wheel-rig"
     if rig not in _SCHEMAS:
         how = f"build it: cmake --build {build_dir} --target wheel-rig"
         if not rig.is_file():
-            raise ConfigError(f"{rig} not found: [override] keys are checked against its "
-                              f"--list-keys ({how})")
+            raise ConfigError(f"{rig} not found: the terrain types and the [override] keys are "
+                              f"read from its --list-keys ({how})")
         try:
             r = subprocess.run([str(rig), "--list-keys"], capture_output=True, text=True,
                                timeout=60)
             schema = json.loads(r.stdout) if r.returncode == 0 else None
         except (OSError, subprocess.TimeoutExpired, json.JSONDecodeError):
             schema = None
-        if not isinstance(schema, dict) or not isinstance(schema.get("keys"), list):
-            raise ConfigError(f"{rig} --list-keys did not print the rig-config schema (JSON); "
-                              f"an older wheel-rig? ({how})")
+        if (not isinstance(schema, dict) or not isinstance(schema.get("keys"), list)
+                or not isinstance(schema.get("terrain_types"), dict)):
+            raise ConfigError(f"{rig} --list-keys did not print the rig-config schema (JSON "
+                              f"with keys and terrain_types); an older wheel-rig? ({how})")
         keys = {t: [] for t in schema.get("tables", ())}
         for k in schema["keys"]:
             if k["key"] not in keys.setdefault(k["table"], []):
                 keys[k["table"]].append(k["key"])
-        _SCHEMAS[rig] = {t: tuple(v) for t, v in keys.items()}
+        _SCHEMAS[rig] = {"keys": {t: tuple(v) for t, v in keys.items()},
+                         "terrains": tuple(schema["terrain_types"])}
     return _SCHEMAS[rig]
+
+
+def rig_keys(build_dir):
+    """{table: (key, ...)} of the rig config, from wheel-rig's schema (_rig_schema)."""
+    return _rig_schema(build_dir)["keys"]
+
+
+def terrains(build_dir):
+    """The terrain types wheel-rig registers (terrain.type values, in its order), from its
+    schema (_rig_schema)."""
+    return _rig_schema(build_dir)["terrains"]
 
 
 def _check_rig_tables(ctx, doc, where, build_dir=None):
@@ -346,15 +361,15 @@ def _dem_recipe_soil(ctx, e, key, repo):
 
 def _soils(ctx, entries, terrain, repo):
     if entries is None:
-        if terrain == "flat":
-            return [Soil("flat")]
+        if terrain not in ("scm", "dem"):  # one soil, the type's [terrain] keys of the base
+            return [Soil(terrain)]
         raise ctx.err(f"missing key 'soils' (required for terrain = \"{terrain}\")")
     if not isinstance(entries, list) or not entries:
         raise ctx.err("soils must be a non-empty array")
     out = []
     for i, e in enumerate(entries):
         key = f"soils[{i}]"
-        if terrain == "flat":
+        if terrain not in ("scm", "dem"):  # flat and any other registered type
             if isinstance(e, str):
                 out.append(Soil(ctx.label(e, key), name=e))
             elif isinstance(e, dict):
@@ -394,7 +409,7 @@ def _soils(ctx, entries, terrain, repo):
                               f"{key}.name" if name is not None else key)
             out.append(Soil(label, name=name if name is not None else soil_name(f, default=label),
                             terrain_keys=tk, soil_file=f.resolve()))
-        else:  # dem
+        else:  # dem: beds
             if isinstance(e, str):
                 p = ctx.path_of(e, key)
                 if not p.is_file():
@@ -583,8 +598,13 @@ def load(path, repo, build_dir):
         if k not in doc:
             raise ctx.err(f"missing key '{k}'")
     terrain = doc["terrain"]
-    if terrain not in TERRAINS:
-        raise ctx.err(f"terrain must be one of {', '.join(TERRAINS)}, got {terrain!r}")
+    try:
+        known = terrains(build_dir)
+    except ConfigError as e:
+        raise ctx.err(f"terrain: {e}")
+    if terrain not in known:
+        raise ctx.err(f"terrain must be one of {', '.join(known)} (wheel-rig's terrain types), "
+                      f"got {terrain!r}")
     description = doc.get("description", "")
     if not isinstance(description, str):
         raise ctx.err("description must be a string")

@@ -12,8 +12,14 @@ a working directory outside both trees, with WHEELSIM_BUILD_DIR unset):
    as the installed soil file gives it;
 3. `wheelsim-post curves` on that run file writes one row for wheel2 on LETE sand whose lug count
    comes from the installed wheel catalogue;
-4. the Python tools find their data installed: `wheel-sweep --dry-run` on the installed SCM demo
-   sweep, `soil-lab --help`, and `scm-soil export` of an installed soil.
+4. the demo's SCM half (scripts/demo.sh step 2 and its curves, step 3) runs from the prefix:
+   `wheel-sweep` on the installed inputs/sweeps/demo_scm.toml as it is (6 slips, 2 s test
+   phases; its base rig, soil and wheel mesh are the installed ones, by the config's relative
+   paths), then `wheelsim-post curves --group-by terrain,soil` on its run files: one row per
+   slip, wheel test_small, soil ci_fitted, terrain scm, every mean and the radius and load
+   finite; about 7 s on 2 cores;
+5. the Python tools find their data installed: `soil-lab --help`, and `scm-soil export` of an
+   installed soil.
 """
 
 import argparse
@@ -38,6 +44,40 @@ def run(cmd, cwd, env, what, timeout=120):
         sys.exit(f"FAIL: {what}: exit {r.returncode}\n$ {' '.join(map(str, cmd))}\n"
                  f"{r.stdout[-3000:]}\n{r.stderr[-3000:]}")
     return r
+
+
+def demo_scm_half(prefix, share, work, env):
+    """scripts/demo.sh's SCM half (step 2 and the curves of step 3) from the prefix, as the demo
+    runs it: the installed sweep config, unchanged (6 slips, 2 s test phases; about 7 s on 2
+    cores), then the curves CSV of its runs."""
+    config = share / "inputs" / "sweeps" / "demo_scm.toml"
+    slips = sorted(tomllib.loads(config.read_text())["slips"])
+    out = work / "demo" / "scm"
+    run([prefix / "bin" / "wheel-sweep", config, "--out-dir", out], work, env,
+        "wheel-sweep on the installed demo_scm.toml", timeout=240)
+    runs = sorted(out.rglob("run.h5"))
+    if len(runs) != len(slips):
+        sys.exit(f"FAIL: the sweep wrote {len(runs)} run files, expected {len(slips)}")
+    curves = work / "demo" / "traction_curves.csv"
+    run([prefix / "bin" / "wheelsim-post", "curves", *runs, "--group-by", "terrain,soil",
+         "--csv", curves], work, env, "wheelsim-post curves on the demo's SCM runs")
+    rows = list(csv.DictReader(line for line in curves.open() if not line.startswith("#")))
+    if len(rows) != len(slips):
+        sys.exit(f"FAIL: {curves} has {len(rows)} rows, expected {len(slips)}")
+    means = [c for c in rows[0] if "_mean" in c and not c.endswith("_sem")]
+    if not any(c.startswith("drawbar_pull_mean") for c in means):
+        sys.exit(f"FAIL: {curves} has no drawbar pull mean column: {list(rows[0])}")
+    rows.sort(key=lambda r: float(r["target_slip"]))
+    for row, slip in zip(rows, slips):
+        bad = [c for c in means + ["r_eff_m", "vertical_load_N"]
+               if not math.isfinite(float(row[c]))]
+        if ((row["wheel"], row["soil"], row["terrain"]) != ("test_small", "ci_fitted", "scm")
+                or float(row["target_slip"]) != slip or bad):
+            sys.exit(f"FAIL: unexpected curves row for slip {slip}: wheel {row['wheel']}, soil "
+                     f"{row['soil']}, terrain {row['terrain']}, target slip "
+                     f"{row['target_slip']}, not finite: {bad}")
+    dp = ", ".join(f"{float(r['drawbar_pull_mean_N']):.2f}" for r in rows)
+    print(f"ok: the demo's SCM half from the prefix: {len(rows)} slips, DP {dp} N")
 
 
 def main():
@@ -121,11 +161,11 @@ def main():
         print(f"ok: wheelsim-post curves, DP {float(row['drawbar_pull_mean_N']):.0f} N, "
               f"{row['lug_count']} lugs")
 
-        # 4. the Python tools' data lookups, installed
+        # 4. the demo's SCM half
         if "wheel-sweep" in tools:
-            run([prefix / "bin" / "wheel-sweep", share / "inputs" / "sweeps" / "demo_scm.toml",
-                 "--dry-run", "--out-dir", work / "sweep"], work, env, "wheel-sweep --dry-run")
-            print("ok: wheel-sweep --dry-run on the installed demo_scm.toml")
+            demo_scm_half(prefix, share, work, env)
+
+        # 5. the Python tools' data lookups, installed
         if "soil-lab" in tools:
             run([prefix / "bin" / "soil-lab", "--help"], work, env, "soil-lab --help")
         if "scm-soil" in tools:

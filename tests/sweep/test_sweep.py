@@ -642,7 +642,8 @@ BAD = [
     ("wheel_name", None, r"wheels\[0\]: no catalogue wheel 'no_such_wheel'"),
     ("wheel_key", None, r"unknown key 'wheels\[1\]\.mas'; did you mean 'mass'\?"),
     ("dem_table_flat", '[dem]\nnp = 2\n', r"\[dem\] is only used with terrain = \"dem\""),
-    ("terrain", None, r"terrain must be one of scm, dem, flat, got 'sand'"),
+    ("terrain", None, r"terrain must be one of flat, dem, scm \(wheel-rig's terrain types\), "
+                      r"got 'sand'"),
     ("scm_soils_missing", None, r"missing key 'soils'"),
     ("dem_recipe_key", None, r"unknown key 'soils\[0\]\.bin_lenght'; did you mean 'bin_length'\?"),
     ("toml_syntax", 'slips = [0.1,\n', r"TOML syntax error"),
@@ -683,8 +684,9 @@ def case_bad_config(a, work):
 def case_override_schema(a, work):
     """[override.<table>] keys are checked against the schema wheel-rig --list-keys prints: a
     misspelt key (also in [override.terrain], once passed through) exits 2 with a did-you-mean;
-    a stand-in wheel-rig whose schema has one more key makes that key valid (the list is read
-    from wheel-rig, not copied); a wheel-rig without --list-keys is an error that names it."""
+    a stand-in wheel-rig whose schema has one more key makes that key valid, and one with one more
+    terrain type makes that `terrain` valid (the lists are read from wheel-rig, not copied); a
+    wheel-rig without --list-keys is an error that names it."""
     base_rig(work / "base.toml", 0.2)
     good = 'terrain = "flat"\nbase = "base.toml"\nwheels = ["wheel1"]\nslips = [0.1]\n'
     rig = Path(a.build_dir) / "bin" / "wheel-rig"
@@ -718,6 +720,25 @@ def case_override_schema(a, work):
     repo = Path(a.sweep).resolve().parents[1]
     sweep = config.load(work / "new_key.toml", repo, build)
     check(sweep.points[0].rig["run"]["settle_extra"] == 1.0, "the stand-in's key was not taken")
+    # ... and the terrain type "mud" in its registry: a sweep on it loads (one soil named after
+    # it, as for flat), refused by the real wheel-rig's list, which the message names
+    mud = work / "mud.toml"
+    mud.write_text(good.replace('terrain = "flat"', 'terrain = "mud"')
+                   + '[override.terrain]\ntype = "mud"\n')
+    try:
+        config.load(mud, repo, Path(a.build_dir))
+        check(False, "terrain = \"mud\" accepted by the real wheel-rig's list")
+    except config.ConfigError as e:
+        want = ", ".join(schema["terrain_types"])
+        check(f"terrain must be one of {want} (wheel-rig's terrain types), got 'mud'" in str(e),
+              f"message: {e}")
+    schema["terrain_types"]["mud"] = {"summary": "a stand-in's terrain", "in_process": True}
+    (build / "schema.json").write_text(json.dumps(schema))
+    config._SCHEMAS.clear()
+    sweep = config.load(mud, repo, build)
+    check(sweep.terrain == "mud" and [s.label for s in sweep.soils] == ["mud"]
+          and sweep.points[0].rig["terrain"]["type"] == "mud",
+          f"the stand-in's terrain was not taken: {sweep.terrain}, {sweep.points[0].rig}")
     stand_in.write_text("#!/bin/sh\necho 'no such option' >&2\nexit 2\n")
     config._SCHEMAS.clear()
     try:

@@ -10,6 +10,7 @@ Exit 0 pass, 1 fail, 77 skip (a prerequisite missing).
 """
 
 import argparse
+import json
 import math
 import os
 import re
@@ -33,6 +34,21 @@ class Skip(Exception):
 def check(cond, msg):
     if not cond:
         raise Fail(msg)
+
+
+def _stand_in_rig(build, keys=(), otherwise="exit 1\n"):
+    """A stand-in `<build>/bin/wheel-rig` (these tests run none): `--list-keys` prints a schema with
+    wheel-rig's three terrain types (the sweep's `terrain` names come from it) and `keys`
+    ((table, key) pairs, for [override] checks); any other call runs `otherwise`."""
+    schema = json.dumps({
+        "tables": ["wheel", "rig", "motor", "carriage", "run", "terrain", "output"],
+        "terrain_types": {"flat": {}, "dem": {}, "scm": {}},
+        "keys": [{"table": t, "key": k} for t, k in keys]})
+    (build / "bin").mkdir(parents=True, exist_ok=True)
+    rig = build / "bin" / "wheel-rig"
+    rig.write_text(f"#!/bin/sh\nif [ \"$1\" = --list-keys ]; then\n  echo '{schema}'\n  exit 0\nfi\n"
+                   + otherwise)
+    rig.chmod(0o755)
 
 
 def case_toml_roundtrip(a, work):
@@ -118,6 +134,7 @@ def case_soil_names(a, work):
     bed = work / "soilbin_x.restart"
     bed.write_text("")
     Path(f"{bed}.vars").write_text("variable bed_depth equal 0.03\nvariable soil string ci\n")
+    _stand_in_rig(work)
 
     def load(text):
         (work / "sweep.toml").write_text(f'base = "base.toml"\nwheels = ["w.stl"]\n'
@@ -183,6 +200,7 @@ def case_tiled_recipe(a, work):
     mesh = work / "w.stl"
     mesh.write_text("solid w\nendsolid w\n")
     (work / "base.toml").write_text("[run]\ndt = 1e-4\n")
+    _stand_in_rig(work)
 
     def load(entry):
         (work / "sweep.toml").write_text(f'terrain = "dem"\nbase = "base.toml"\n'
@@ -440,11 +458,10 @@ def _budget_setup(work):
     build = work / "build"
     (build / "bin").mkdir(parents=True)
     version = "liggghts-wheel 0.1.0 (git unit)"
-    for name, text in (("liggghts-wheel",
-                        f'if [ "$1" = --version ]; then echo "{version}"; exit 0; fi\nexit 1\n'),
-                       ("wheel-rig", "exit 1\n")):
-        (build / "bin" / name).write_text("#!/bin/sh\n" + text)
-        (build / "bin" / name).chmod(0o755)
+    (build / "bin" / "liggghts-wheel").write_text(
+        f'#!/bin/sh\nif [ "$1" = --version ]; then echo "{version}"; exit 0; fi\nexit 1\n')
+    (build / "bin" / "liggghts-wheel").chmod(0o755)
+    _stand_in_rig(build)
     cache = work / "dem_rate.toml"
     R.write_cache(cache, _rate_entry(R.machine_key(version), rate_per_rank=1e6, startup_s=0.0))
     bed = work / "bed" / "soilbin_x.restart"
@@ -568,6 +585,10 @@ def case_slip_control(a, work):
             pass
 
     # config.load: a flat sweep with the carriage speed imposed
+    # the terrain and override checks need a wheel-rig --list-keys; otherwise it prints the
+    # schema too (no --check in it: the configs are listed, not checked)
+    carriage = [("carriage", "mode"), ("carriage", "speed"), ("carriage", "slip")]
+    _stand_in_rig(work, carriage, otherwise="exec \"$0\" --list-keys\n")
     _ascii_stl(work / "w.stl", 0.1)
     base = work / "base.toml"
     base_text = ('[wheel]\nmass = 1.0\ninertia = 0.01\n[rig]\nvertical_load = 24.0\n'
@@ -635,12 +656,6 @@ def case_slip_control(a, work):
          "got -0.1"),
         (dict(wheels='["bin.stl"]'), "wheels: 'bin': slip_control = \"wheel_speed\" needs R_eff"),
     ]
-    (work / "bin").mkdir(exist_ok=True)  # the override check needs a wheel-rig --list-keys:
-    schema = ('{"tables": ["wheel", "rig", "motor", "carriage", "run", "terrain", "output"], '
-              '"keys": [{"table": "carriage", "key": "mode"}, {"table": "carriage", '
-              '"key": "speed"}, {"table": "carriage", "key": "slip"}]}')
-    (work / "bin" / "wheel-rig").write_text(f"#!/bin/sh\necho '{schema}'\n")
-    (work / "bin" / "wheel-rig").chmod(0o755)
     for kw, msg in errors:
         try:
             load(**kw)

@@ -252,5 +252,40 @@ TEST(RunHealth, ADriftingDrawbarPullIsNotSteady) {
   EXPECT_TRUE(steady.empty()) << steady.front().message;
 }
 
+TEST(RunHealth, EachSlipModeChecksWhatItsTableEntryHolds) {
+  // The slip modes' held_slip and steady (slip_modes.cpp) drive the checks: an imposed speed
+  // with the speed motor holds 1 - v/(omega R_eff) = 1 - 0.16/(2 * 0.1) = 0.2; a constant load
+  // lets slip emerge but expects it steady (not the drawbar pull); a ramped load expects nothing
+  // steady. Drifts as in ADriftingDrawbarPullIsNotSteady (noise 0.1 N, 0.005, 0.1 mm).
+  const std::string speed = "mode = \"imposed_speed\"\nspeed = 0.16";
+  const std::string constant = "mode = \"constant_load\"\nload = 3.0";
+  const std::string ramped =
+      "mode = \"ramped_load\"\nload_start = 0.0\nload_end = 5.0\nramp_time = 1.0";
+  std::mt19937 rng(2);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  const auto drifting = [&](int i, RigOutputs &o) {
+    o.drawbar_pull_N = 3.0 + 2.0 * i / 5000.0 + 0.1 * noise(rng);
+    o.slip = 0.2 + 0.1 * i / 5000.0 + 0.005 * noise(rng);
+    o.sinkage_m = 0.01 + 0.01 * i / 5000.0 + 1e-4 * noise(rng);
+  };
+  EXPECT_TRUE(feed(speed, 1000, [](int, RigOutputs &) {}).empty());
+  EXPECT_EQ(codes(feed(speed, 1000, [](int, RigOutputs &o) { o.slip = 0.25; })),
+            std::vector<std::string>{"slip_not_held/error"});
+  EXPECT_TRUE(feed(constant, 1000, [](int, RigOutputs &o) { o.slip = 0.25; }).empty());
+  const auto f_speed = feed(speed, 5000, drifting);
+  const auto f_constant = feed(constant, 5000, drifting);
+  const auto f_ramped = feed(ramped, 5000, drifting);
+  const auto trend_of = [](const std::vector<HealthFinding> &f) {
+    std::vector<std::string> out;
+    for (const auto &x : f)
+      if (x.code == "steady_state_trend")
+        out.push_back(x.message.substr(0, x.message.find(" changed")));
+    return out;
+  };
+  EXPECT_EQ(trend_of(f_speed), (std::vector<std::string>{"the drawbar pull", "the sinkage"}));
+  EXPECT_EQ(trend_of(f_constant), (std::vector<std::string>{"the slip", "the sinkage"}));
+  EXPECT_TRUE(f_ramped.empty()) << f_ramped.front().message;
+}
+
 } // namespace
 } // namespace wheelsim::rig

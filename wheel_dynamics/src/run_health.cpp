@@ -1,6 +1,7 @@
 #include "wheelsim/rig/run_health.h"
 
 #include "wheelsim/config_messages.h"
+#include "wheelsim/rig/slip_modes.h"
 
 #include <cmath>
 #include <numeric>
@@ -25,15 +26,10 @@ const char *first_nonfinite(std::initializer_list<std::pair<const char *, double
   return nullptr;
 }
 
-/// The slip the config imposes in the test phase, or NaN when slip is free (torque motor with
-/// an imposed speed, load-controlled carriage).
+/// The slip the config imposes in the test phase, or NaN when slip is free: the slip mode's
+/// (slip_modes.cpp).
 double imposed_slip(const RigConfig &c, double effective_radius_m) {
-  if (c.carriage.mode == CarriageMode::imposed_slip)
-    return c.carriage.slip;
-  if (c.carriage.mode == CarriageMode::imposed_speed && c.motor.mode == MotorMode::omega &&
-      c.motor.omega_rad_s * effective_radius_m > 0.0)
-    return 1.0 - c.carriage.speed_m_s / (c.motor.omega_rad_s * effective_radius_m);
-  return std::nan("");
+  return slip_mode(c.carriage.mode).held_slip(c, effective_radius_m);
 }
 
 } // namespace
@@ -270,13 +266,12 @@ void RunHealth::finish() {
     }
   }
 
-  const bool load_controlled = c.carriage.mode == CarriageMode::constant_load ||
-                               c.carriage.mode == CarriageMode::ramped_load;
-  if (!load_controlled)
+  const unsigned steady = slip_mode(c.carriage.mode).steady; // what the mode leaves free
+  if (steady & steady_drawbar_pull)
     check_steady(drawbar_pull_N_, "the drawbar pull", "N", limits_.trend_load_fraction * load_N_);
-  else if (c.carriage.mode == CarriageMode::constant_load)
+  if (steady & steady_slip)
     check_steady(slip_, "the slip", "", limits_.trend_slip);
-  if (c.carriage.mode != CarriageMode::ramped_load)
+  if (steady & steady_sinkage)
     check_steady(sinkage_m_, "the sinkage", "m",
                  limits_.trend_radius_fraction * sim_.wheel().rim_radius_m);
 }

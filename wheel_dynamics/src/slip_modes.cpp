@@ -3,6 +3,8 @@
 
 #include "config_table.h"
 
+#include <cmath>
+
 namespace wheelsim::rig {
 namespace {
 
@@ -22,6 +24,7 @@ void parse_imposed_slip(const Table &t, CarriageConfig &c) {
 CarriageDrive drive_imposed_slip(const CarriageConfig &c, const CarriageDriveInput &in) {
   return {Drive::follow_wheel, (1.0 - c.slip) * in.effective_radius_m, 0.0};
 }
+double held_imposed_slip(const RigConfig &c, double) { return c.carriage.slip; }
 
 // ---- imposed_speed: v = carriage.speed (ramped with the motor)
 void parse_imposed_speed(const Table &t, CarriageConfig &c) {
@@ -30,9 +33,17 @@ void parse_imposed_speed(const Table &t, CarriageConfig &c) {
 CarriageDrive drive_imposed_speed(const CarriageConfig &c, const CarriageDriveInput &in) {
   return {Drive::imposed_velocity, in.ramp_fraction_next * c.speed_m_s, 0.0};
 }
+/// With a speed motor the slip is 1 − v/(ω R_eff); with a torque motor it is free.
+double held_imposed_speed(const RigConfig &c, double effective_radius_m) {
+  if (c.motor.mode == MotorMode::omega && c.motor.omega_rad_s * effective_radius_m > 0.0)
+    return 1.0 - c.carriage.speed_m_s / (c.motor.omega_rad_s * effective_radius_m);
+  return std::nan("");
+}
 
 /// A free carriage pulled back by `load` [N].
 CarriageDrive loaded(double load_N) { return {Drive::free, -load_N, load_N}; }
+/// Slip emerges (load-controlled carriage).
+double slip_free(const RigConfig &, double) { return std::nan(""); }
 
 // ---- constant_load: a free carriage, drawbar load carriage.load (ramped with the motor)
 void parse_constant_load(const Table &t, CarriageConfig &c) {
@@ -67,19 +78,25 @@ const std::vector<SlipMode> &slip_modes() {
        {mode_key("imposed_slip", {"", "slip", "number", "", "",
                                   "in [-1, 1], driving convention 1 - v/(omega R_eff)"})},
        parse_imposed_slip,
-       drive_imposed_slip},
+       drive_imposed_slip,
+       held_imposed_slip,
+       steady_drawbar_pull | steady_sinkage},
       {"imposed_speed",
        CarriageMode::imposed_speed,
        "carriage speed imposed (ramped with the motor); slip emerges",
        {mode_key("imposed_speed", {"", "speed", "number", "m/s", "", "finite"})},
        parse_imposed_speed,
-       drive_imposed_speed},
+       drive_imposed_speed,
+       held_imposed_speed,
+       steady_drawbar_pull | steady_sinkage},
       {"constant_load",
        CarriageMode::constant_load,
        "free carriage pulled back by a constant drawbar load; slip emerges",
        {mode_key("constant_load", {"", "load", "number", "N", "", "finite; positive pulls back"})},
        parse_constant_load,
-       drive_constant_load},
+       drive_constant_load,
+       slip_free,
+       steady_slip | steady_sinkage},
       {"ramped_load",
        CarriageMode::ramped_load,
        "free carriage, drawbar load ramped from load_start to load_end over ramp_time",
@@ -87,7 +104,9 @@ const std::vector<SlipMode> &slip_modes() {
         mode_key("ramped_load", {"", "load_end", "number", "N", "", "finite"}),
         mode_key("ramped_load", {"", "ramp_time", "number", "s", "", "> 0"})},
        parse_ramped_load,
-       drive_ramped_load},
+       drive_ramped_load,
+       slip_free,
+       steady_none}, // the load, and with it slip and sinkage, change by design
   };
   return modes;
 }

@@ -1,11 +1,16 @@
-// The terrain registry: the list of terrain types (one file each in terrains/) and the [terrain]
-// table's parser, which chooses the type through it.
+// The terrain registry: the list of terrain types (one file each in terrains/, declared and
+// listed here) and the [terrain] table's parser, which chooses the type through it.
 #include "wheelsim/rig/terrain_registry.h"
 
 #include "config_table.h"
-#include "terrains/terrains.h"
 
 namespace wheelsim::rig {
+
+namespace terrains {
+TerrainKind flat_terrain(); ///< terrains/flat_terrain.cpp
+TerrainKind dem_terrain();  ///< terrains/dem_terrain.cpp
+TerrainKind scm_terrain();  ///< terrains/scm_terrain.cpp
+} // namespace terrains
 
 using detail::Table;
 

@@ -1,5 +1,6 @@
-// Private to wheelsim_rig: the entries of the terrain registry, one file each in this folder;
-// terrain_registry.cpp lists them.
+// Private to wheelsim_rig: what the entries of the terrain registry share. Each entry is one file
+// in this folder (built from there: wheel_dynamics/CMakeLists.txt takes every .cpp here), defining
+// `TerrainKind <name>_terrain()`; terrain_registry.cpp declares and lists them.
 #pragma once
 
 #include "wheelsim/rig/config_schema.h"
@@ -8,10 +9,6 @@
 #include <utility>
 
 namespace wheelsim::rig::terrains {
-
-TerrainKind flat_terrain(); ///< flat_terrain.cpp
-TerrainKind dem_terrain();  ///< dem_terrain.cpp
-TerrainKind scm_terrain();  ///< scm_terrain.cpp
 
 /// A [terrain] key that applies when terrain.type = `type` (the entries' key lists use it).
 inline ConfigKey terrain_key(const char *type, ConfigKey key) {

@@ -34,6 +34,15 @@ struct CarriageDrive {
   double load_command_N = 0.0; ///< the drawbar load applied (load modes), else 0 [N]
 };
 
+/// The quantities the run health (run_health.h, check `steady_state_trend`) expects steady over
+/// the test phase under a mode: those the mode does not impose or ramp (bit flags).
+enum SteadyQuantity : unsigned {
+  steady_none = 0,
+  steady_drawbar_pull = 1u << 0, ///< the drawbar pull [N] (slip or speed imposed)
+  steady_slip = 1u << 1,         ///< the slip [-] (a constant load imposed)
+  steady_sinkage = 1u << 2,      ///< the sinkage [m]
+};
+
 struct SlipMode {
   const char *name; ///< carriage.mode
   CarriageMode mode;
@@ -42,6 +51,11 @@ struct SlipMode {
   /// Reads its keys (other modes' keys are rejected before). Throws RigConfigError.
   void (*parse)(const detail::Table &t, CarriageConfig &c);
   CarriageDrive (*drive)(const CarriageConfig &c, const CarriageDriveInput &in);
+  /// The slip [-] (driving convention) the config imposes in the test phase, which the run health
+  /// requires the rig to hold (check `slip_not_held`); NaN when the slip is free.
+  double (*held_slip)(const RigConfig &c, double effective_radius_m);
+  /// SteadyQuantity flags: what the run health checks for a trend in the test phase.
+  unsigned steady;
 };
 
 const std::vector<SlipMode> &slip_modes();
