@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Validation case 1 — Nakanishi et al. 2020 lugged wheel, DEM code-to-code (README.md).
 #
-#   validation/nakanishi_2020/run.sh [--smoke | --sensitivity] [--out-dir DIR] [--jobs N] [--force]
+#   validation/nakanishi_2020/run.sh [--smoke | --sensitivity [--only NAMES]] [--out-dir DIR]
+#                                    [--jobs N] [--force]
 #
 # Full case: prepares the 80 000-sphere bin once, runs the 8 published slips through wheel-sweep
 # (resumable: a re-run skips finished points), then writes into this folder results.csv,
@@ -11,7 +12,9 @@
 #          time step halved at 35.42 % (sweep_dt.toml) against the same point repeated on that bed
 #          (sweep_bed_repeat.toml), the published 3.25 s test phase at 77.97-86.8 %
 #          (sweep_window.toml) and the rolling friction mu_r 0 and 0.1 at 35.42 %, each on its
-#          own bed (sweep_mur.toml); writes results_<name>.csv and comparison_<name>.md here.
+#          own bed (sweep_mur.toml); writes results_<name>.csv, comparison_<name>.md and
+#          provenance_<name>.toml here. --only NAMES: just these, comma-separated from bed_repeat,
+#          dt_0.6e-4, window_3.25, mur (mur prepares its own beds: it needs no main bed).
 # --smoke: the CI version (a 0.40 m bin, one slip, 0.3 s of test phase; minutes): same pipeline,
 #          outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
@@ -20,15 +23,16 @@ root=$(cd "$here/../.." && pwd)
 source "$root/validation/common/provenance.sh"
 build_dir=${WHEELSIM_BUILD_DIR:-$root/build}
 python=/usr/bin/python3
-smoke=0 sensitivity=0 out="" sweep_args=() args=("$@")
+smoke=0 sensitivity=0 only="bed_repeat,dt_0.6e-4,window_3.25,mur" out="" sweep_args=() args=("$@")
 while (($#)); do
   case "$1" in
     --smoke) smoke=1; shift ;;
     --sensitivity) sensitivity=1; shift ;;
+    --only) only=${2:-}; shift 2 ;;
     --out-dir) out=$2; shift 2 ;;
     --jobs|-j) sweep_args+=(--jobs "$2"); shift 2 ;;
     --force) sweep_args+=(--force); shift ;;
-    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,/^set -euo pipefail/{/^set -euo/!p}' "$0"; exit 0 ;;
     *) echo "run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -43,33 +47,44 @@ started_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 status=0
 if ((sensitivity)); then
   # sens NAME CONFIG WINDOW_START WINDOW_END: one sensitivity sweep into $out/sensitivity/NAME and
-  # its results_NAME.csv / comparison_NAME.md here (window in test-phase seconds)
+  # its results_NAME.csv / comparison_NAME.md / provenance_NAME.toml here (window in test-phase
+  # seconds)
   sens() {
-    local name=$1 config=$2 w0=$3 w1=$4 runs
+    local name=$1 config=$2 w0=$3 w1=$4 runs t0 t0_utc rc=0
+    t0=$(date +%s); t0_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
     "$root/scripts/wheel-sweep" "$here/$config" --out-dir "$out/sensitivity/$name" \
-      --build-dir "$build_dir" "${sweep_args[@]}" || status=1
+      --build-dir "$build_dir" "${sweep_args[@]}" || rc=1
     mapfile -t runs < <(find "$out/sensitivity/$name" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
     ((${#runs[@]})) || { echo "run.sh: no finished run under $out/sensitivity/$name" >&2; return 1; }
     "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start "$w0" --window-end "$w1" \
       --results "$here/results_$name.csv" --csv "$out/sensitivity/$name/curves.csv"
     "$python" "$here/compare.py" "$here/results_$name.csv" "$here/reference.csv" --r-eff 0.11 \
       --md "$here/comparison_$name.md"
-    return $status
+    write_provenance "$here/provenance_$name.toml" validation/nakanishi_2020 \
+      "validation/nakanishi_2020/run.sh${args[*]:+ }${args[*]}" "$t0_utc" "$t0" \
+      "$out/sensitivity/$name"
+    return $rc
   }
+  wanted() { [[ ,$only, == *,$1,* ]]; }
+  for name in ${only//,/ }; do
+    case $name in bed_repeat|dt_0.6e-4|window_3.25|mur) ;;
+      *) echo "run.sh: --only: unknown sensitivity '$name' (expected bed_repeat, dt_0.6e-4, window_3.25, mur)" >&2; exit 2 ;;
+    esac
+  done
   # the sensitivity sweeps name the main sweep's bed under the default runs directory
   [[ $out == "$root/runs/validation/nakanishi_2020" ]] || {
     echo "run.sh: --sensitivity runs in the default runs directory (its sweeps name the main sweep's bed there): leave out --out-dir" >&2; exit 2; }
-  [[ -f $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart ]] || {
-    echo "run.sh: --sensitivity runs on the main sweep's bed, $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart: run the case first" >&2; exit 2; }
+  if wanted bed_repeat || wanted dt_0.6e-4 || wanted window_3.25; then
+    [[ -f $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart ]] || {
+      echo "run.sh: --sensitivity runs on the main sweep's bed, $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart: run the case first (or --only mur)" >&2; exit 2; }
+  fi
   # the two one-point sweeps side by side (one rank each), then the three window points
-  sens bed_repeat sweep_bed_repeat.toml 1.0 2.4 & pid_repeat=$!
-  sens dt_0.6e-4 sweep_dt.toml 1.0 2.4 & pid_dt=$!
-  wait $pid_repeat || status=1
-  wait $pid_dt || status=1
-  sens window_3.25 sweep_window.toml 1.0 3.25
-  sens mur sweep_mur.toml 1.0 2.4
-  write_provenance "$here/provenance_sensitivity.toml" validation/nakanishi_2020 \
-    "validation/nakanishi_2020/run.sh${args[*]:+ }${args[*]}" "$started_utc" "$start" "$out/sensitivity"
+  pids=()
+  if wanted bed_repeat; then sens bed_repeat sweep_bed_repeat.toml 1.0 2.4 & pids+=($!); fi
+  if wanted dt_0.6e-4; then sens dt_0.6e-4 sweep_dt.toml 1.0 2.4 & pids+=($!); fi
+  for pid in "${pids[@]}"; do wait "$pid" || status=1; done
+  if wanted window_3.25; then sens window_3.25 sweep_window.toml 1.0 3.25 || status=1; fi
+  if wanted mur; then sens mur sweep_mur.toml 1.0 2.4 || status=1; fi
   exit $status
 fi
 "$root/scripts/wheel-sweep" "$config" --out-dir "$out" --build-dir "$build_dir" "${sweep_args[@]}" || status=$?
