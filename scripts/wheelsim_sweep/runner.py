@@ -139,6 +139,7 @@ class Runner:
         self.status = {}  # point index -> done | failed | interrupted | pending
         self.exit_status = {}
         self._file_hashes = {}  # path -> sha256 of its contents (file_hash)
+        self._includes = {}  # deck path -> the files it includes in turn (included_files)
         self.health = {}  # point index -> (status, codes) of its run file (check_health)
 
     # ---- output ---------------------------------------------------------------------------------
@@ -315,8 +316,17 @@ class Runner:
             roots.append(p.soil.dem_soil_file)
         if p.soil.recipe is not None:
             roots.append(self.repo / "inputs" / "in.soilbin")
-        variables = {"inputs_dir": str(self.repo / "inputs")}
-        return {str(f): self.file_hash(f) for r in roots for f in deck_includes(r, variables)}
+        return self.included_files(roots)
+
+    def included_files(self, roots):
+        """{path: sha256} of the files the LIGGGHTS inputs `roots` include in turn
+        (deck_includes with inputs_dir; each root is read once per run of the driver)."""
+        out = {}
+        for r in roots:
+            if str(r) not in self._includes:
+                self._includes[str(r)] = deck_includes(r, {"inputs_dir": str(self.repo / "inputs")})
+            out.update((str(f), self.file_hash(f)) for f in self._includes[str(r)])
+        return out
 
     def tile_hashes(self, soil):
         """A tiled recipe's (tile_length set) extra deck files: {name_sha256: sha256}; {} for a
@@ -486,16 +496,13 @@ class Runner:
             # The files the bed is made from: a changed soil file or in.soilbin (same paths)
             # makes the bed stale, as it makes a finished point re-run (inputs_hash).
             inputs_file = bdir / f"{restart.name}.inputs.json"
-            variables = {"inputs_dir": str(self.repo / "inputs")}
             inputs = {"soilbin_sha256": self.file_hash(self.repo / "inputs" / "in.soilbin"),
                       "soil_file": str(soil.dem_soil_file),
                       "soil_file_sha256": self.file_hash(soil.dem_soil_file),
                       **self.tile_hashes(soil),
                       # what in.soilbin and the soil file include in turn (settle.in, ...)
-                      "included_sha256": {
-                          str(f): self.file_hash(f)
-                          for r in (self.repo / "inputs" / "in.soilbin", soil.dem_soil_file)
-                          for f in deck_includes(r, variables)}}
+                      "included_sha256": self.included_files(
+                          (self.repo / "inputs" / "in.soilbin", soil.dem_soil_file))}
             inputs_text = json.dumps(inputs, sort_keys=True, indent=2) + "\n"
             why = ""
             if restart.is_file() and Path(f"{restart}.vars").is_file():
