@@ -5,6 +5,7 @@ Bad usage is one line on stderr and exit status 2, naming the nearest valid opti
 path).
 """
 
+import fnmatch
 import os
 import sys
 from pathlib import Path
@@ -49,6 +50,9 @@ def main(argv=None):
                     help="list the points, whether each is finished, and the commands; "
                          "write nothing")
     ap.add_argument("--force", action="store_true", help="re-run finished points too")
+    ap.add_argument("--points", metavar="GLOBS",
+                    help="only the points whose folder (WHEEL/SOIL/sSLIP, e.g. wheel1/*/s0.200) "
+                         "matches one of these comma-separated shell patterns")
     ap.add_argument("--build-dir", metavar="D",
                     help="build directory (default: $WHEELSIM_BUILD_DIR, else <repo>/build)")
     cost = ap.add_argument_group("DEM cost estimate (docs/sweeps.md, \"Cost estimate\")")
@@ -86,6 +90,14 @@ def main(argv=None):
     except config.ConfigError as e:
         print(f"wheel-sweep: error: {e}", file=sys.stderr)
         return EXIT_USAGE
+    if a.points is not None:
+        globs = [g for g in a.points.split(",") if g]
+        chosen = [p for p in sweep.points if any(fnmatch.fnmatchcase(p.reldir, g) for g in globs)]
+        if not chosen:
+            print(f"wheel-sweep: error: --points {a.points!r} matches none of the sweep's points: "
+                  f"{', '.join(p.reldir for p in sweep.points)}", file=sys.stderr)
+            return EXIT_USAGE
+        sweep.points = chosen
     needed = [build / "bin" / "wheel-rig"]
     if sweep.terrain == "dem":
         needed += [REPO / "scripts" / "wheel-cosim", build / "bin" / "liggghts-wheel"]

@@ -485,9 +485,11 @@ class Runner:
 
     # ---- DEM beds -------------------------------------------------------------------------------
     def prepare_beds(self):
-        """Prepares each bin recipe's bed once (skipped when its restart exists)."""
+        """Prepares each bin recipe's bed once (skipped when its restart exists), for the soils
+        of the sweep's points (all of them, unless wheel-sweep --points chose some)."""
+        used = {id(p.soil) for p in self.sweep.points}
         for soil in self.sweep.soils:
-            if soil.recipe is None:
+            if soil.recipe is None or id(soil) not in used:
                 continue
             restart = self.bed_restart(soil)
             bdir = restart.parent

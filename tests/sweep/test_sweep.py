@@ -145,6 +145,28 @@ def case_matrix(a, work):
     check((out / "sweep.toml").is_file(), "config copy missing")
 
 
+def case_points_filter(a, work):
+    """--points runs only the matching points (and lists only them); a pattern that matches
+    none exits 2 listing the points; a later run without it skips those and runs the rest."""
+    cfg = work / "sweep.toml"
+    sweep_config(cfg, a.build_dir)
+    out = work / "out"
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--points", "wheel1/*/s0.250,small/*/s0.5*")
+    check(r.returncode == 0, "sweep --points failed")
+    rows = manifest(out)
+    got = sorted((m["wheel"], float(m["slip"]), m["status"]) for m in rows)
+    check(got == [("small", 0.5, "done"), ("wheel1", 0.25, "done")],
+          f"--points ran {got}, expected wheel1 s0.25 and small s0.5")
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--points", "wheel2/*")
+    check(r.returncode == 2, f"a pattern matching nothing: exit {r.returncode}, expected 2")
+    check("--points 'wheel2/*' matches none of the sweep's points: wheel1/mu05/s0.100" in r.stderr,
+          f"the error does not name the pattern and list the points: {r.stderr!r}")
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--jobs", "2")
+    check(r.returncode == 0, "the whole sweep after --points failed")
+    check("skipping 2 finished point(s)" in r.stdout, "the points run with --points were not skipped")
+    check_complete(out, ["wheel1", "small"], SLIPS)
+
+
 def case_resume_marker(a, work):
     """A lost done.json with a partial temp file, and a failed point, are re-run; the rest is
     skipped; a changed config re-runs everything; --force re-runs all."""
