@@ -11,7 +11,6 @@ import fcntl
 import hashlib
 import json
 import os
-import re
 import shutil
 import signal
 import subprocess
@@ -21,6 +20,8 @@ import threading
 import time
 from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
 from pathlib import Path
+
+from wheelsim_post.deck_files import deck_includes
 
 from . import estimate, health, toml_out, watchdog
 from .config import TILE_VARS
@@ -58,31 +59,6 @@ def _prep_keys_changed(recipe_file, recipe):
     if not keys or any(k not in TILE_VARS for k in keys):
         return None
     return ", ".join(f"{k} {old.get(k, 'unset')} -> {recipe.get(k, 'unset')}" for k in keys)
-
-
-_INCLUDE = re.compile(r"^[ \t]*include[ \t]+(\S+)", re.M)
-_DECK_VAR = re.compile(r"\$\{(\w+)\}")
-
-
-def deck_includes(deck, variables):
-    """The files LIGGGHTS input `deck` includes, recursively, in order: each `include` whose
-    path, with ${NAME} replaced from `variables` (e.g. inputs_dir), is an existing absolute path.
-    Paths built from run-time variables (the soil file, the restart's .vars) are left out: the
-    resume hash covers those files on their own."""
-    found, todo = [], [Path(deck)]
-    while todo:
-        try:
-            text = todo.pop(0).read_text(errors="replace")
-        except OSError:
-            continue
-        for m in _INCLUDE.finditer(text):
-            path = _DECK_VAR.sub(lambda v: variables.get(v.group(1), v.group(0)), m.group(1))
-            f = Path(path)
-            if "$" in path or not f.is_absolute() or not f.is_file() or f in found:
-                continue
-            found.append(f)
-            todo.append(f)
-    return found
 
 
 def _same_bed_inputs(inputs_file, inputs):

@@ -19,6 +19,8 @@ import sys
 import time
 from pathlib import Path
 
+from wheelsim_post.deck_files import deck_includes
+
 from .plan import LabInputError, SoilInfo
 
 DECKS = Path(__file__).resolve().parent.parent / "decks"
@@ -106,6 +108,8 @@ class Lab:
 
     # --- steps with resume -----------------------------------------------------------------------
     def _done(self, directory, key):
+        """The step's done.json if it finished with these inputs (a key of _key), else None."""
+        inputs, included = key
         f = Path(directory) / "done.json"
         if not f.is_file():
             return None
@@ -113,27 +117,41 @@ class Lab:
             done = json.loads(f.read_text())
         except ValueError:
             return None
-        return done if done.get("inputs") == key else None
+        if done.get("inputs") != inputs:
+            return None
+        # a record from before the included files were recorded is compared without them
+        if "included_sha256" in done and done["included_sha256"] != included:
+            return None
+        return done
 
     def _finish(self, directory, key, **info):
+        inputs, included = key
         tmp = Path(directory) / "done.json.tmp"
-        tmp.write_text(json.dumps({"inputs": key, **info}, indent=1) + "\n")
+        tmp.write_text(json.dumps({"inputs": inputs, "included_sha256": included, **info},
+                                  indent=1) + "\n")
         os.replace(tmp, Path(directory) / "done.json")
 
     def _key(self, *parts, files=()):
+        """(a hash of `parts` and the contents of `files`, {path: sha256} of the files the LIGGGHTS
+        inputs among `files` (decks, soil files) include in turn, e.g. a soil file's base soil)."""
         h = hashlib.sha256()
         for p in parts:
             h.update(json.dumps(p, sort_keys=True).encode())
+        included = {}
         for f in files:
             h.update(_sha256(f).encode())
-        return h.hexdigest()[:16]
+            name = Path(f).name
+            if name.endswith(".in") or name.startswith("in."):
+                for g in deck_includes(f, {"inputs_dir": str(self.inputs)}):
+                    included[str(g)] = _sha256(g)
+        return h.hexdigest()[:16], included
 
     def mesh(self, name, args):
         """The tool mesh wheel-mesh tool ARGS, as meshes/<name>.obj (made once)."""
         d = self.out / "meshes"
         d.mkdir(parents=True, exist_ok=True)
         path = d / f"{name}.obj"
-        key = self._key(args)
+        key = self._key(args)[0]
         stamp = d / f"{name}.args"
         if path.is_file() and stamp.is_file() and stamp.read_text() == key:
             return path

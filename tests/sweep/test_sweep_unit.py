@@ -712,6 +712,7 @@ def main():
     a = ap.parse_args()
     sys.dont_write_bytecode = True
     sys.path.insert(0, str(Path(a.sweep).resolve().parent))
+    sys.path.insert(1, str(Path(a.sweep).resolve().parents[1] / "postprocess"))  # as wheel-sweep
     work = Path(a.work)
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)

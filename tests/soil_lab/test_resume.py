@@ -1,0 +1,58 @@
+"""soil-lab's resume records (soil_lab_py.runner.Lab): a finished step is skipped only while its
+inputs are unchanged, including the files its decks and soil file include in turn (a soil file
+that includes a base soil, as dry_sand_coarse.in includes dry_sand.in)."""
+
+import json
+import tempfile
+import unittest
+from pathlib import Path
+
+from soil_lab_py.runner import Lab
+
+
+class Resume(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        root = Path(self.tmp.name)
+        (root / "build" / "bin").mkdir(parents=True)
+        for exe in ("liggghts-wheel", "wheel-mesh"):  # the Lab checks they exist; nothing runs
+            (root / "build" / "bin" / exe).write_text("")
+        soils = root / "repo" / "inputs" / "soils"
+        soils.mkdir(parents=True)
+        self.base = soils / "base_sand.in"
+        self.base.write_text("variable soil_mur index 0.3\n")
+        self.variant = root / "my_sand.in"
+        self.variant.write_text("variable soil_size_scale index 2.0\n"
+                                "include ${inputs_dir}/soils/base_sand.in\n")
+        self.lab = Lab(root / "repo", root / "build", root / "out", quiet=True)
+        self.step = root / "out" / "beds" / "plate"
+        self.step.mkdir(parents=True)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def key(self):
+        return self.lab._key({"bin_length": "0.2"}, files=(self.variant,))
+
+    def test_a_changed_included_file_redoes_the_step(self):
+        self.lab._finish(self.step, self.key(), wall_s=1.0)
+        self.assertIsNotNone(self.lab._done(self.step, self.key()), "unchanged inputs: skipped")
+        done = json.loads((self.step / "done.json").read_text())
+        self.assertEqual(list(done["included_sha256"]), [str(self.base)])
+        self.base.write_text("variable soil_mur index 0.2\n")  # the variant file is unchanged
+        self.assertIsNone(self.lab._done(self.step, self.key()),
+                          "the base soil changed: the step must be done again")
+
+    def test_a_changed_step_input_redoes_the_step(self):
+        self.lab._finish(self.step, self.key(), wall_s=1.0)
+        other = self.lab._key({"bin_length": "0.3"}, files=(self.variant,))
+        self.assertIsNone(self.lab._done(self.step, other))
+
+    def test_a_record_from_before_included_files_is_kept(self):
+        inputs, _ = self.key()
+        (self.step / "done.json").write_text(json.dumps({"inputs": inputs, "wall_s": 1.0}))
+        self.assertIsNotNone(self.lab._done(self.step, self.key()))
+
+
+if __name__ == "__main__":
+    unittest.main()
