@@ -1,0 +1,218 @@
+#!/usr/bin/python3
+"""Validation case 3 (README.md): the study wheels on DEM dry sand beside SCM, per wheel and slip:
+traction force T/R_eff, drawbar pull, sinkage and tractive efficiency, and the active domain's
+effect (the full-domain run of the same point) and the grain-size sensitivity.
+
+    compare.py RESULTS.csv [--scm RESULTS_SCM.csv] [--full-domain RESULTS_FULL.csv]
+               [--grain RESULTS_GRAIN.csv] [--md OUT.md] [--png OUT.png]
+
+Inputs are tables of `wheelsim-post curves --results` (docs/postprocess.md); the wheel and the soil
+of each row are the run file's folders (<out>/<wheel>/<soil>/s<slip>/run.h5, as wheel-sweep lays
+them out). Tractive efficiency TE = DP v / (T omega) = (DP / F_T) (1 - s). Exit 0, or 2 with one
+line naming the bad file or column.
+"""
+import argparse
+import csv
+import math
+import sys
+from pathlib import Path
+
+# the active domain's acceptance (issue 12 item 1): window means within 2 % of the full domain's
+ACTIVE_TOLERANCE = 0.02
+NEED = ("slip", "drawbar_pull_N", "drawbar_pull_sem_N", "driving_torque_Nm",
+        "driving_torque_sem_Nm", "traction_force_N", "traction_force_sem_N", "sinkage_m",
+        "sinkage_sem_m", "wall_s", "particles", "np", "target_slip", "health", "run_file")
+
+
+def fail(msg):
+    print(f"compare.py: error: {msg}", file=sys.stderr)
+    sys.exit(2)
+
+
+def num(v):
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def read(path):
+    """Rows of a results table, each with 'wheel' and 'soil' from its run file's folders."""
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    except OSError as e:
+        fail(f"{path}: {e.strerror}")
+    for i, r in enumerate(rows):
+        missing = [c for c in NEED if c not in r]
+        if missing:
+            fail(f"{path}: row {i + 1}: columns {missing} missing (expected a table of "
+                 "wheelsim-post curves --results)")
+        parts = Path(r["run_file"]).parts
+        if len(parts) < 4:
+            fail(f"{path}: row {i + 1}: run_file '{r['run_file']}' is not <out>/<wheel>/<soil>/"
+                 "s<slip>/run.h5")
+        r["wheel"], r["soil"] = parts[-4], parts[-3]
+        s = num(r["slip"])
+        r["te"] = num(r["drawbar_pull_N"]) / num(r["traction_force_N"]) * (1.0 - s) \
+            if num(r["traction_force_N"]) else math.nan
+    return rows
+
+
+def by_point(rows):
+    return {(r["wheel"], r["soil"], round(num(r["target_slip"]), 4)): r for r in rows}
+
+
+def pct(a, b):
+    """(a - b) / |b| in %."""
+    return (a - b) / abs(b) * 100.0 if b else math.nan
+
+
+def fmt(v, digits=3):
+    return "—" if not math.isfinite(v) else f"{v:.{digits}g}"
+
+
+def comparison_table(dem, scm):
+    """Markdown: per wheel and slip, DEM beside each SCM soil, SCM's difference in % of DEM."""
+    scm_soils = sorted({r["soil"] for r in scm})
+    out = []
+    for wheel in sorted({r["wheel"] for r in dem}):
+        out += [f"### {wheel}", ""]
+        head = ["slip", "DEM F_T [kN]", "DEM DP [kN]", "DEM sinkage [mm]", "DEM TE"]
+        for s in scm_soils:
+            head += [f"{s}: F_T [kN] (Δ %)", f"DP [kN] (Δ %)", "sinkage [mm] (Δ %)", "TE"]
+        out += ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+        scm_at = by_point(scm)
+        for r in sorted((r for r in dem if r["wheel"] == wheel), key=lambda r: num(r["slip"])):
+            ft, dp, z = (num(r["traction_force_N"]), num(r["drawbar_pull_N"]),
+                         num(r["sinkage_m"]))
+            cells = [f"{num(r['slip']):.3f}",
+                     f"{ft / 1e3:.2f} ± {num(r['traction_force_sem_N']) / 1e3:.2f}",
+                     f"{dp / 1e3:.2f} ± {num(r['drawbar_pull_sem_N']) / 1e3:.2f}",
+                     f"{z * 1e3:.1f} ± {num(r['sinkage_sem_m']) * 1e3:.1f}", fmt(r["te"], 2)]
+            for s in scm_soils:
+                m = scm_at.get((wheel, s, round(num(r["target_slip"]), 4)))
+                if m is None:
+                    cells += ["—"] * 4
+                    continue
+                mft, mdp, mz = (num(m["traction_force_N"]), num(m["drawbar_pull_N"]),
+                                num(m["sinkage_m"]))
+                cells += [f"{mft / 1e3:.2f} ({pct(mft, ft):+.0f})",
+                          f"{mdp / 1e3:.2f} ({pct(mdp, dp):+.0f})",
+                          f"{mz * 1e3:.1f} ({pct(mz, z):+.0f})", fmt(m["te"], 2)]
+            flag = "" if r["health"] == "ok" else f" (health: {r['health']})"
+            out.append("| " + " | ".join(cells) + " |" + flag)
+        out.append("")
+    return out
+
+
+def point_table(dem, other, other_name, tolerance=None):
+    """Markdown: each run of `other` against the DEM half's run of the same wheel and slip (a
+    sensitivity: another soil file or other deck variables), with the wall-time ratio. With a
+    tolerance (a fraction) each difference gets a verdict, also returned."""
+    dem_at = {(r["wheel"], round(num(r["target_slip"]), 4)): r for r in dem}
+    verdict_head = f" within {tolerance:.0%} |" if tolerance is not None else ""
+    out = [f"| point | quantity | sweep.toml | {other_name} | difference |{verdict_head}",
+           "|---|---|---|---|---|" + ("---|" if tolerance is not None else "")]
+    verdicts = []
+    for f in other:
+        key = (f["wheel"], round(num(f["target_slip"]), 4))
+        a = dem_at.get(key)
+        if a is None:
+            out.append(f"| {key[0]} s {key[1]} | no run of this point in sweep.toml | | | |")
+            continue
+        for col, sem, label, scale, unit in (
+                ("drawbar_pull_N", "drawbar_pull_sem_N", "drawbar pull", 1e-3, "kN"),
+                ("driving_torque_Nm", "driving_torque_sem_Nm", "torque", 1e-3, "kN m"),
+                ("sinkage_m", "sinkage_sem_m", "sinkage", 1e3, "mm")):
+            va, vf = num(a[col]), num(f[col])
+            d = pct(va, vf)
+            cells = (f"| {key[0]} s {key[1]} | {label} [{unit}] | {va * scale:.4g} ± "
+                     f"{num(a[sem]) * scale:.2g} | {vf * scale:.4g} ± {num(f[sem]) * scale:.2g} | "
+                     f"{d:+.2f} % |")
+            if tolerance is not None:
+                ok = abs(d) <= tolerance * 100.0
+                verdicts.append(ok)
+                cells += f" {'yes' if ok else 'NO'} |"
+            out.append(cells)
+        wa, wf = num(a["wall_s"]), num(f["wall_s"])
+        out.append(f"| {key[0]} s {key[1]} | wall time [min], particles | {wa / 60:.1f}, "
+                   f"{a['particles']} | {wf / 60:.1f}, {f['particles']} | ratio {wf / wa:.2f} |"
+                   + (" |" if tolerance is not None else ""))
+    return out, verdicts
+
+
+def plot(png, dem, scm):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    panels = (("traction_force_N", "traction force T/R$_{eff}$ [kN]", 1e-3),
+              ("drawbar_pull_N", "drawbar pull DP [kN]", 1e-3),
+              ("sinkage_m", "sinkage [mm]", 1e3),
+              ("te", "tractive efficiency", 1.0))
+    wheels = sorted({r["wheel"] for r in dem})
+    fig, axes = plt.subplots(len(wheels), len(panels), figsize=(3.6 * len(panels),
+                                                                 3.2 * len(wheels)),
+                             squeeze=False)
+    series = [("DEM " + s, [r for r in dem if r["soil"] == s], "o-")
+              for s in sorted({r["soil"] for r in dem})]
+    series += [("SCM " + s, [r for r in scm if r["soil"] == s], "s--")
+               for s in sorted({r["soil"] for r in scm})]
+    for row, wheel in zip(axes, wheels):
+        for ax, (col, label, scale) in zip(row, panels):
+            for name, rows, style in series:
+                rows = sorted((r for r in rows if r["wheel"] == wheel),
+                              key=lambda r: num(r["slip"]))
+                ax.plot([num(r["slip"]) for r in rows],
+                        [num(r[col]) * scale for r in rows], style, ms=4, lw=1, label=name)
+            ax.set_xlabel("slip")
+            ax.set_ylabel(label)
+            ax.set_title(wheel, fontsize=9)
+            ax.grid(True, lw=0.3)
+    axes[0][0].legend(fontsize=7)
+    fig.suptitle("study wheels, 13.2 kN, 1.05 rad/s: DEM dry sand (16-40 mm) and SCM", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("dem", help="the DEM half's results.csv")
+    ap.add_argument("--scm", help="the SCM half's results table")
+    ap.add_argument("--full-domain", help="the full-domain runs' results table")
+    ap.add_argument("--grain", help="the grain-size sensitivity's results table")
+    ap.add_argument("--md", help="write the comparison as Markdown")
+    ap.add_argument("--png", help="write the comparison plot")
+    ap.add_argument("--window", default="2-6",
+                    help="the tables' window in test-phase seconds, for the text (default 2-6)")
+    a = ap.parse_args()
+    dem = read(a.dem)
+    scm = read(a.scm) if a.scm else []
+    lines = ["# Validation case 3: comparison (written by compare.py)", "",
+             f"DEM: mean ± standard error over test-phase seconds {a.window}; SCM: the same window; Δ: "
+             "SCM against DEM in % of DEM. TE = (DP / F_T)(1 - s).", ""]
+    lines += comparison_table(dem, scm)
+    verdicts = []
+    if a.full_domain:
+        lines += ["## The active domain against the full domain", "",
+                  "The difference is sweep.toml's (active domain) against the full domain's.", ""]
+        t, verdicts = point_table(dem, read(a.full_domain), "full domain", ACTIVE_TOLERANCE)
+        lines += t + [""]
+    if a.grain:
+        lines += ["## Grain size: 16-40 mm (sweep.toml) against 12-30 mm (sweep_grain.toml)", ""]
+        lines += point_table(dem, read(a.grain), "12-30 mm grains")[0] + [""]
+    text = "\n".join(lines) + "\n"
+    if a.md:
+        Path(a.md).write_text(text, encoding="utf-8")
+    else:
+        print(text)
+    if a.png:
+        plot(a.png, dem, scm)
+    if verdicts:
+        print(f"compare.py: active domain within {ACTIVE_TOLERANCE:.0%} of the full domain: "
+              f"{sum(verdicts)} of {len(verdicts)} quantities")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

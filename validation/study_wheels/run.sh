@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# Validation case 3 — the reference study wheels at full size (README.md).
+#
+#   validation/study_wheels/run.sh [--smoke | --only PARTS] [--out-dir DIR] [--force] [--points GLOBS]
+#
+# PARTS (comma-separated, default dem,scm): dem — study wheels 1 and 5 at six slips on the tiled
+# DEM dry-sand bin (sweep.toml; prepares the bin once; about 1 h 40 min on 2 idle cores with the
+# active domain, README "Cost"); scm — the same wheels and slips on the fitted SCM soil and on SCM
+# dry sand of the tables (sweep_scm.toml; minutes); full_domain — wheel 1 at 20 % slip without the
+# active domain on the same bed (sweep_full_domain.toml; ~45 min; run dem first); grain — wheel 1
+# at 20 % slip on 12-30 mm grains (sweep_grain.toml, its own bin; ~1 h). Resumable: a re-run
+# skips finished points. Writes here results.csv (DEM), results_<part>.csv (the others),
+# comparison.md, comparison.png and provenance[_<part>].toml (git hash,
+# command, machine, wall time). Run it in the background: nohup ... &
+# --points GLOBS: only these points of each sweep (wheel-sweep --points, e.g. 'wheel1/*/s0.200').
+# --smoke: the CI version (sweep_smoke.toml: a 1.6 m bin, one slip, 0.2 s of test phase; about a
+#          minute): same pipeline, outputs into --out-dir only (nothing in this folder changes).
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+root=$(cd "$here/../.." && pwd)
+source "$root/validation/common/provenance.sh"
+build_dir=${WHEELSIM_BUILD_DIR:-$root/build}
+python=/usr/bin/python3
+smoke=0 only="dem,scm" out="" sweep_args=() args=("$@")
+while (($#)); do
+  case "$1" in
+    --smoke) smoke=1; shift ;;
+    --only) only=${2:-}; shift 2 ;;
+    --out-dir) out=$2; shift 2 ;;
+    --force) sweep_args+=(--force); shift ;;
+    --points) sweep_args+=(--points "${2:-}"); shift 2 ;;
+    -h|--help) sed -n '2,/^set -euo pipefail/{/^set -euo/!p}' "$0"; exit 0 ;;
+    *) echo "run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+for part in ${only//,/ }; do
+  case $part in dem|scm|full_domain|grain) ;;
+    *) echo "run.sh: --only: unknown part '$part' (expected dem, scm, full_domain, grain)" >&2; exit 2 ;;
+  esac
+done
+for w in wheel1 wheel5; do
+  [[ -f $build_dir/meshes/$w.stl ]] || {
+    echo "run.sh: $build_dir/meshes/$w.stl missing: build first (scripts/build.sh)" >&2; exit 2; }
+done
+# Window: test-phase seconds 2-6 (10 lug passes; the first 2 s are the approach to steady
+# sinkage at the new slip); smoke: the second half of its 0.2 s.
+window=(--window-start 2.0 --window-end 6.0)
+status=0
+
+# part CONFIG OUT RESULTS PROVENANCE: one sweep, its results table and provenance file
+part() {
+  local config=$1 dir=$2 results=$3 provenance=$4 t0 t0_utc runs
+  t0=$(date +%s); t0_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
+  "$root/scripts/wheel-sweep" "$here/$config" --out-dir "$dir" --build-dir "$build_dir" \
+    "${sweep_args[@]}" || status=1
+  # every finished point (a failed point is reported by wheel-sweep and left out)
+  mapfile -t runs < <(find "$dir" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" | sort)
+  ((${#runs[@]})) || { echo "run.sh: no finished run under $dir" >&2; status=1; return 0; }
+  "$root/postprocess/wheelsim-post" curves "${runs[@]}" "${window[@]}" --results "$results" \
+    --csv "$dir/curves.csv" || status=1
+  write_provenance "$provenance" validation/study_wheels \
+    "validation/study_wheels/run.sh${args[*]:+ }${args[*]}" "$t0_utc" "$t0" "$dir"
+}
+
+if ((smoke)); then
+  out=${out:-$root/runs/validation/study_wheels_smoke}
+  window=(--window-start 0.1 --window-end 0.2)
+  part sweep_smoke.toml "$out" "$out/results.csv" "$out/provenance.toml"
+  "$python" "$here/compare.py" "$out/results.csv" --md "$out/comparison.md" \
+    --png "$out/comparison.png" --window 0.1-0.2 || status=1
+  exit $status
+fi
+[[ -z $out ]] || { echo "run.sh: --out-dir is for --smoke only (the case's sweeps name their bed under runs/validation/study_wheels)" >&2; exit 2; }
+runs_dir=$root/runs/validation
+wanted() { [[ ,$only, == *,$1,* ]]; }
+if wanted full_domain && ! wanted dem; then
+  [[ -f $runs_dir/study_wheels/beds/dry_sand_coarse_bin/soilbin_dry_sand_coarse.restart ]] || {
+    echo "run.sh: full_domain runs on the DEM half's bed: run --only dem first" >&2; exit 2; }
+fi
+if wanted dem; then
+  part sweep.toml "$runs_dir/study_wheels" "$here/results.csv" "$here/provenance.toml"
+fi
+if wanted scm; then
+  part sweep_scm.toml "$runs_dir/study_wheels_scm" "$here/results_scm.csv" \
+    "$here/provenance_scm.toml"
+fi
+if wanted grain; then
+  part sweep_grain.toml "$runs_dir/study_wheels_grain" "$here/results_grain.csv" \
+    "$here/provenance_grain.toml"
+fi
+if wanted full_domain; then
+  part sweep_full_domain.toml "$runs_dir/study_wheels_full_domain" \
+    "$here/results_full_domain.csv" "$here/provenance_full_domain.toml"
+fi
+if [[ -f $here/results.csv ]]; then
+  extra=()
+  [[ -f $here/results_scm.csv ]] && extra+=(--scm "$here/results_scm.csv")
+  [[ -f $here/results_full_domain.csv ]] && extra+=(--full-domain "$here/results_full_domain.csv")
+  [[ -f $here/results_grain.csv ]] && extra+=(--grain "$here/results_grain.csv")
+  "$python" "$here/compare.py" "$here/results.csv" "${extra[@]}" \
+    --md "$here/comparison.md" --png "$here/comparison.png" || status=1
+fi
+exit $status
