@@ -32,6 +32,8 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from wheelsim_post.deck_files import deck_includes
+
 RELEASE_ACCEL_TIME_S = 0.1  # the rig reaches run.release_speed linearly over 0.1 s (rig-config.md)
 # After closing the gap the held spindle goes on sinking into the soil until the soil carries the
 # load; that depth is not known beforehand. Allowance: 0.15 x the wheel's outer radius (measured:
@@ -169,7 +171,9 @@ def soil_vars(liggghts, soil_file, inputs_dir):
     soil_dt [s], soil_density [kg/m^3], soil_dref [m], soil_multisphere, and the sieve classes
     soil_d<i> [m] and mass fractions soil_w<i> that the file defines. Runs liggghts-wheel once
     (serial, under a second)."""
-    text = Path(soil_file).read_text(errors="replace")
+    # the sieve classes may be defined in a file the soil file includes (a variant of a base soil)
+    files = [Path(soil_file)] + deck_includes(soil_file, {"inputs_dir": str(inputs_dir)})
+    text = "".join(f.read_text(errors="replace") for f in files)
     names = list(_SCALARS) + sorted(set(_VAR_NAME_RE.findall(text)))
     with tempfile.TemporaryDirectory(prefix="wheel-sweep-soil-") as tmp:
         deck = Path(tmp) / "in.soil_vars"

@@ -652,6 +652,19 @@ def case_estimate_example(a, work):
     check(any(line.startswith("estimate: sweep: 3 point(s)") and "= points" in line
               and "beds <=" in line for line in lines), "no sweep line")
     check(not out.exists(), "--estimate wrote the output directory")
+    # A variant soil whose sieve classes live in the base soil file it includes
+    # (dry_sand_coarse.in includes dry_sand.in): the recipe's count uses those classes, not one
+    # sphere of d_ref (which gave 4 074 for the 6 722 spheres LIGGGHTS inserted, 2026-11-26).
+    r = subprocess.run([a.sweep, str(repo / "validation" / "study_wheels" / "sweep_smoke.toml"),
+                        "--build-dir", a.build_dir, "--out-dir", str(out), "--estimate"],
+                       capture_output=True, text=True, timeout=60, env=env)
+    print(r.stdout, r.stderr)
+    bed = [line for line in r.stdout.splitlines() if line.startswith("estimate: bed ")]
+    m = re.search(r"particles ([0-9 ]+) \(recipe: .*\(4 sieve classes by mass fraction\)\)",
+                  bed[0] if bed else "")
+    check(m is not None, f"the coarse soil's bed is not counted from its 4 sieve classes: {bed}")
+    n = int(m.group(1).replace(" ", ""))
+    check(abs(n - 6722) <= 0.03 * 6722, f"particles {n}, expected 6 722 +- 3 %")
 
 
 BAD = [
