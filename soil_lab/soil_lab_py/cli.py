@@ -96,7 +96,7 @@ def _run(a):
     lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet)
     soil = lab.soil_info(soil_file)
     p = plan.make_plan(soil, tests, a.preset, stresses, bed_vars, widths, a.plate_bin,
-                       a.speed_check)
+                       a.speed_check, a.shear_travel)
     # The soil file as the checkout names it (inputs/soils/x.in), so results do not carry the
     # path of the machine that ran them; a file outside the checkout keeps its absolute path.
     soil_path = Path(soil.file).resolve()
@@ -167,6 +167,9 @@ def main(argv=None):
                    help="the two square plates' sides [m] (default 5 and 8 d_max; quick 2.5, 4)")
     r.add_argument("--plate-bin", type=float, metavar="SIDE",
                    help="the plate test's square bin side [m] (default 3 x the larger plate)")
+    r.add_argument("--shear-travel", type=float, metavar="FRACTION",
+                   help="shear box travel as a fraction of the box side (default 0.12; "
+                        "at most 0.5)")
     r.add_argument("--speed-check", action="store_true",
                    help="quasi-static check: also run the larger plate, the middle normal stress "
                         "and the repose test at half speed and report the differences")

@@ -69,11 +69,11 @@ def _f(x):
 
 
 def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None, bed_vars=None,
-              plate_widths_m=None, plate_bin_m=None, speed_check=False):
+              plate_widths_m=None, plate_bin_m=None, speed_check=False, shear_travel=None):
     """The beds and runs for `tests` on `soil`. Raises LabInputError for an unknown test or preset,
     plates that are not two different widths or do not fit their bin with a plate width of soil
     on every side, a normal stress outside what the box can hold, or a repose test on a
-    multisphere soil. speed_check: also the larger plate, the middle normal stress and the repose
+    multisphere soil, a shear travel (fraction of the box side) outside (0, 0.5]. speed_check: also the larger plate, the middle normal stress and the repose
     test at half speed (runs named <run>_half), for the quasi-static check."""
     tests = tuple(tests)
     for t in tests:
@@ -123,7 +123,8 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
 
     if "shear" in tests:
         # Square box of inner side L >= 10 d_max (ASTM D3080), soil height >= 6 d_max, the shear
-        # plane at mid-height; shear over 12 % of L.
+        # plane at mid-height; shear over 12 % of L (or shear_travel x L: coarse grains need more
+        # to reach their peak, docs/soil-lab.md).
         L = (8.0 if quick else 12.0) * d
         H = (5.0 if quick else 8.0) * d
         beds["shear"] = Bed("shear", L, L, H, bed_vars)
@@ -146,7 +147,11 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         lid_t = max(0.5 * d, 0.005)
         clear = 0.25 * soil.dmin_m
         speed = 0.01 if quick else 0.005
-        distance = 0.12 * L
+        travel = 0.12 if shear_travel is None else shear_travel
+        if not 0 < travel <= 0.5:
+            raise LabInputError(f"shear travel {travel:g} is outside (0, 0.5] (a fraction of the "
+                                f"box side: the upper frame must stay over the lower one)")
+        distance = travel * L
         for s in stresses:
             runs.append(Run(
                 name=f"shear_s{_f(s)}", test="shear", deck="in.lab_shear", bed="shear",

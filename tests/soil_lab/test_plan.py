@@ -39,12 +39,21 @@ class Plan(unittest.TestCase):
                                                plate_bin_m=0.2),
             "two different widths": dict(tests=("plate",), plate_widths_m=(0.05, 0.05)),
             "less than 2 grains": dict(tests=("plate",), plate_widths_m=(0.01, 0.05)),
+            "shear travel 0.6 is outside (0, 0.5]": dict(tests=("shear",), shear_travel=0.6),
+            "shear travel 0 is outside (0, 0.5]": dict(tests=("shear",), shear_travel=0.0),
         }
         for message, kwargs in cases.items():
             with self.subTest(message):
                 with self.assertRaises(LabInputError) as cm:
                     make_plan(SAND, **kwargs)
                 self.assertIn(message, str(cm.exception))
+
+    def test_shear_travel_is_a_fraction_of_the_box(self):
+        L = 12 * SAND.dmax_m
+        for travel, expected in ((None, 0.12 * L), (0.2, 0.2 * L)):
+            p = make_plan(SAND, ("shear",), shear_travel=travel)
+            for r in p.runs:
+                self.assertAlmostEqual(float(r.variables["shear_distance"]), expected)
 
     def test_repose_rejects_multisphere_soils(self):
         clumps = SoilInfo(**{**SAND.__dict__, "multisphere": True})
