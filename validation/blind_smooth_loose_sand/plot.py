@@ -9,9 +9,12 @@ Error bars are the tables' standard errors (batch means). Points whose run healt
 drawn hollow. Exit 0, or 2 with one line naming the bad file or column.
 """
 import argparse
-import csv
 import math
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
+from results_table import read_rows  # noqa: E402
 
 import matplotlib
 
@@ -25,24 +28,9 @@ PANELS = (  # (column, its SEM column, axis label, scale)
 )
 
 
-def fail(msg):
-    print(f"plot.py: error: {msg}", file=sys.stderr)
-    sys.exit(2)
-
-
 def read(path):
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
-    except OSError as e:
-        fail(f"{path}: {e.strerror}")
     need = ["slip", "slip_sem", "health"] + [c for p in PANELS for c in p[:2]]
-    for i, r in enumerate(rows):
-        missing = [c for c in need if c not in r]
-        if missing:
-            fail(f"{path}: row {i + 1}: columns {missing} missing (expected a table of "
-                 "wheelsim-post curves --results)")
-    return rows
+    return read_rows(path, need, "plot.py")
 
 
 def num(v):

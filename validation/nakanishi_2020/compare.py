@@ -10,15 +10,16 @@ points). The goal (issue 11): net within 25 % or 1 N (the larger) of Nakanishi a
 verdict (it is a report, not a test), 2 on bad input.
 """
 import argparse
-import csv
 import math
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
+from results_table import read_rows  # noqa: E402
 
 
 def read_csv(path):
-    with open(path, newline="", encoding="utf-8") as f:
-        rows = [line for line in f if not line.startswith("#")]
-    return list(csv.DictReader(rows))
+    return read_rows(path, prog="compare.py")
 
 
 def number(row, key, path):

@@ -12,10 +12,12 @@ them out). Tractive efficiency TE = DP v / (T omega) = (DP / F_T) (1 - s). Exit 
 line naming the bad file or column.
 """
 import argparse
-import csv
 import math
 import sys
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
+from results_table import read_rows  # noqa: E402
 
 # the active domain's acceptance (issue 12 item 1): window means within 2 % of the full domain's
 ACTIVE_TOLERANCE = 0.02
@@ -38,16 +40,8 @@ def num(v):
 
 def read(path):
     """Rows of a results table, each with 'wheel' and 'soil' from its run file's folders."""
-    try:
-        with open(path, newline="", encoding="utf-8") as f:
-            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
-    except OSError as e:
-        fail(f"{path}: {e.strerror}")
+    rows = read_rows(path, NEED, "compare.py")
     for i, r in enumerate(rows):
-        missing = [c for c in NEED if c not in r]
-        if missing:
-            fail(f"{path}: row {i + 1}: columns {missing} missing (expected a table of "
-                 "wheelsim-post curves --results)")
         parts = Path(r["run_file"]).parts
         if len(parts) < 4:
             fail(f"{path}: row {i + 1}: run_file '{r['run_file']}' is not <out>/<wheel>/<soil>/"
@@ -80,7 +74,7 @@ def comparison_table(dem, scm):
         out += [f"### {wheel}", ""]
         head = ["slip", "DEM F_T [kN]", "DEM DP [kN]", "DEM sinkage [mm]", "DEM TE"]
         for s in scm_soils:
-            head += [f"{s}: F_T [kN] (Δ %)", f"DP [kN] (Δ %)", "sinkage [mm] (Δ %)", "TE"]
+            head += [f"{s}: F_T [kN] (Δ %)", "DP [kN] (Δ %)", "sinkage [mm] (Δ %)", "TE"]
         out += ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
         scm_at = by_point(scm)
         for r in sorted((r for r in dem if r["wheel"] == wheel), key=lambda r: num(r["slip"])):
