@@ -751,6 +751,7 @@ def case_override_schema(a, work):
     stand_in.write_text(f"#!/bin/sh\ncat '{build / 'schema.json'}'\n")
     stand_in.chmod(0o755)
     sys.path.insert(0, str(Path(a.sweep).resolve().parent))
+    sys.path.insert(1, str(Path(a.sweep).resolve().parents[1] / "postprocess"))  # as wheel-sweep
     from wheelsim_sweep import config
     repo = Path(a.sweep).resolve().parents[1]
     sweep = config.load(work / "new_key.toml", repo, build)
