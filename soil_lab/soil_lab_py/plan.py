@@ -72,9 +72,10 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
               plate_widths_m=None, plate_bin_m=None, speed_check=False, shear_travel=None):
     """The beds and runs for `tests` on `soil`. Raises LabInputError for an unknown test or preset,
     plates that are not two different widths or do not fit their bin with a plate width of soil
-    on every side, a normal stress outside what the box can hold, or a repose test on a
-    multisphere soil, a shear travel (fraction of the box side) outside (0, 0.5]. speed_check: also the larger plate, the middle normal stress and the repose
-    test at half speed (runs named <run>_half), for the quasi-static check."""
+    on every side, a normal stress outside what the box can hold, a repose test on a multisphere
+    soil, or a shear travel (a fraction of the box side) outside (0, 0.5]. speed_check: also the
+    larger plate, the middle normal stress and the repose test at half speed (runs named
+    <run>_half), for the quasi-static check."""
     tests = tuple(tests)
     for t in tests:
         if t not in TEST_NAMES:
