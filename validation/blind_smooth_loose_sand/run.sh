@@ -13,11 +13,7 @@
 # --smoke: the CI version (a tiny bin, slip -0.5, 0.05 s of test phase; minutes): same
 #          pipeline, outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/../.." && pwd)
-source "$root/validation/common/provenance.sh"
-build_dir=${WHEELSIM_BUILD_DIR:-$root/build}
-python=/usr/bin/python3
+source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
 smoke=0 sensitivity=0 out="" sweep_args=() args=("$@")
 while (($#)); do
   case "$1" in

@@ -16,11 +16,7 @@
 # --smoke: the CI version (sweep_smoke.toml: a 1.6 m bin, one slip, 0.2 s of test phase; about a
 #          minute): same pipeline, outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/../.." && pwd)
-source "$root/validation/common/provenance.sh"
-build_dir=${WHEELSIM_BUILD_DIR:-$root/build}
-python=/usr/bin/python3
+source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
 smoke=0 only="dem,scm" out="" sweep_args=() args=("$@")
 while (($#)); do
   case "$1" in
