@@ -34,6 +34,8 @@ from pathlib import Path
 
 from wheelsim_post.deck_files import deck_includes
 
+from . import active_domain
+
 RELEASE_ACCEL_TIME_S = 0.1  # the rig reaches run.release_speed linearly over 0.1 s (rig-config.md)
 # After closing the gap the held spindle goes on sinking into the soil until the soil carries the
 # load; that depth is not known beforehand. Allowance: 0.15 x the wheel's outer radius (measured:
@@ -48,6 +50,12 @@ COSIM_OVERHEAD_S = 3.0
 RIG_DEFAULTS = {"release_gap": 0.002, "release_speed": 0.01, "settle_max_time": 5.0,
                 "ramp_time": 1.0}
 SOIL_QUERY_TIMEOUT_S = 30.0
+# With the active domain, a frozen particle's cost per step as a fraction of an active one's:
+# not only mask tests but LIGGGHTS' neighbour-list builds over every particle (with the frozen
+# pairs' exclusion test) and its per-particle passes. Measured at study scale, where it matters
+# (docs/sweeps.md "Cost estimate"): validation case 3's wheel1 point at 20 % slip, np 2, with and
+# without the active domain on the same bed.
+FROZEN_COST = 0.36
 
 
 class EstimateError(Exception):
@@ -275,6 +283,8 @@ class BedInfo:
     dt_source: str
     prepared: bool
     soil_name: str = ""
+    # the bed's box [m] (length, width, depth) for the active domain's share; None if unknown
+    box: tuple | None = None
     prep_steps: int = 0  # beds to prepare: an upper bound
     prep_parts: dict = field(default_factory=dict)  # [s] insertion, settle, compaction
     # tiled beds: the fraction of the bed's particles each part runs with (a part not named: 1)
@@ -317,9 +327,15 @@ def bed_info(soil, restart, query, soilbin):
     if restart.is_file() and vf.is_file():
         v = vars_file(vf)
         dt = float(v["bed_dt"]) if "bed_dt" in v else None
+        box = None
+        try:
+            box = tuple(float(v[k]) for k in ("bin_length", "bin_width", "bed_depth"))
+        except (KeyError, ValueError):
+            pass
         got = bed_log_spheres(restart)
         if got is not None:
-            return BedInfo(soil.label, got[0], f"bed log {got[1]}", dt, "bed_dt (.vars)", True)
+            return BedInfo(soil.label, got[0], f"bed log {got[1]}", dt, "bed_dt (.vars)", True,
+                           box=box)
         need = ("bulk_density", "bin_length", "bin_width", "bed_depth")
         if any(k not in v for k in need):
             raise EstimateError(f"bed {restart}: no in.soilbin log beside it and its .vars lacks "
@@ -330,7 +346,7 @@ def bed_info(soil, restart, query, soilbin):
         n = (float(v["bulk_density"]) * float(v["bin_length"]) * float(v["bin_width"])
              * float(v["bed_depth"]) / (sv["soil_density"] * vol))
         return BedInfo(soil.label, n, f"bed .vars bulk density / mean grain ({how}; estimate)",
-                       dt, "bed_dt (.vars)", True)
+                       dt, "bed_dt (.vars)", True, box=box)
     if soil.recipe is None:
         raise EstimateError(f"bed {restart} not found")
     sv = query(soil.dem_soil_file)
@@ -340,8 +356,10 @@ def bed_info(soil, restart, query, soilbin):
     dims = [_recipe_num(r, defaults, k) for k in ("bin_length", "bin_width", "fill_height",
                                                   "fill_solid_fraction")]
     n = math.prod(dims) / vol
+    # (the settled bed's depth is not known before it settles: the fill height stands for it)
     info = BedInfo(soil.label, n, f"recipe: bin x fill solid fraction / mean grain ({how})",
-                   sv["soil_dt"], "soil_dt (soil file)", False, soil_name=sv["soil_name"])
+                   sv["soil_dt"], "soil_dt (soil file)", False, soil_name=sv["soil_name"],
+                   box=(dims[0], dims[1], dims[2]))
     info.prep_parts = bed_prep_times(r, defaults, sv)
     dt = sv["soil_dt"]
     if "tile_length" in r:
@@ -411,6 +429,12 @@ class PointEstimate:
     steps: int
     wall: float
     finished: bool
+    active_share: float | None = None  # the active domain's mean share of the particles
+    active_note: str = ""  # how it was found, or why the active domain was left out
+    # measured / modelled wall of the finished points on the same bed (wall is scaled by it)
+    calibration: float | None = None
+    calibration_points: int = 0
+    model_wall: float | None = None  # the wall before that scaling
 
 
 @dataclass
@@ -459,12 +483,41 @@ def deck_chunk(deck, liggghts_args=()):
     return max(1, int(m.group(1))) if m else 1
 
 
+def active_share(point, info, active, x0, ph):
+    """(mean active share, how it was found) of a point run with the active domain `active`
+    (active_domain.ActiveSettings); (None, why) when it cannot be told (then the estimate counts
+    every particle as active)."""
+    w = point.rig.get("wheel", {})
+    scale = float(w.get("mesh_scale", 1.0)) if isinstance(w.get("mesh_scale"), (int, float)) \
+        else 1.0
+    mesh = getattr(getattr(point, "wheel", None), "mesh", None) or w.get("mesh")
+    ext = active_domain.mesh_extent(mesh, scale) if mesh else None
+    if ext is None:
+        return None, "active domain left out: the wheel mesh could not be read for its size"
+    if info.box is None:
+        return None, "active domain left out: the bed's size is not known"
+    length, width, depth = info.box
+    bounding, outer = ext
+    reach = active.reach(bounding)
+    zc = depth + outer - active.sinkage_allowance(bounding)
+    speed = active_domain.travel_speed(point.rig, getattr(point, "slip", None), outer)
+    xs = active_domain.wheel_path(ph, x0, speed, length)
+    share = active_domain.sphere_share(length, width, depth, reach, [(x, zc) for x in xs])
+    return share, (f"active domain: the soil within {reach:.3g} m of the wheel centre (bounding "
+                   f"radius {bounding:.3g} m) moves: {100 * share:.0f} % of the bed on average "
+                   f"from x0 {x0:g} m at {speed:.3g} m/s")
+
+
 def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: False, chunk=1,
-             overhead_s=COSIM_OVERHEAD_S):
+             overhead_s=COSIM_OVERHEAD_S, active=None, x0=0.0, measured_wall=lambda p: None):
     """The sweep's estimate. points: the sweep's points (each with .rig and .soil.label; a
     .wheel.mesh is used for the radius when the rig has no wheel.effective_radius); infos: soil
     label -> BedInfo; finished(p): True for a point that will be skipped; chunk: the deck's
-    chunk (deck_chunk); overhead_s: per point, beyond the rate's startup."""
+    chunk (deck_chunk); overhead_s: per point, beyond the rate's startup; active: the active
+    domain's settings (active_domain.settings; None: off) and x0 [m] the wheel's start: the
+    particles then cost as N x (share + FROZEN_COST x (1 - share)); measured_wall(p): the wall
+    time [s] a finished point took (None if not known): the points still to run on the same bed
+    are scaled by measured / estimated of its finished points (`calibration`)."""
     todo = [p for p in points if not finished(p)]
     at_once = max(1, min(jobs, len(todo)))
     over = oversubscription(at_once * np_, cores)
@@ -485,10 +538,25 @@ def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: F
         ph = phases(p.rig, wheel_radius(p.rig, mesh))
         sim = sum(ph.values())
         steps = math.ceil(math.ceil(sim / dt - 1e-9) / chunk) * chunk
-        wall = run_wall(info.particles, steps, np_, rate.rate_per_rank, rate.efficiency_np2,
+        share, note = active_share(p, info, active, x0, ph) if active else (None, "")
+        cost = info.particles * (1.0 if share is None else
+                                 share + FROZEN_COST * (1.0 - share))
+        wall = run_wall(cost, steps, np_, rate.rate_per_rank, rate.efficiency_np2,
                         rate.startup_s + overhead_s, over)
         out.append(PointEstimate(p, info.particles, info.particles_source, dt, dt_src, ph, sim,
-                                 steps, wall, finished(p)))
+                                 steps, wall, finished(p), share, note))
+    # the sweep's own measurements: measured / modelled wall of its finished points, per bed
+    sums = {}
+    for e in out:
+        got = measured_wall(e.point) if e.finished else None
+        if got is not None and got > 0:
+            m, w, n = sums.get(e.point.soil.label, (0.0, 0.0, 0))
+            sums[e.point.soil.label] = (m + got, w + e.wall, n + 1)
+    for e in out:
+        if e.point.soil.label in sums and not e.finished:
+            m, w, n = sums[e.point.soil.label]
+            e.calibration, e.calibration_points = m / w, n
+            e.model_wall, e.wall = e.wall, e.wall * m / w
     beds = []
     used = {p.soil.label for p in todo}
     for label, info in infos.items():
@@ -514,13 +582,16 @@ def summary_line(est):
     todo = est.todo
     if not todo:
         return "estimate: no point to run"
+    shares = [e.active_share for e in todo if e.active_share is not None]
+    active = (f"active domain {_range([100 * a for a in shares], lambda x: f'{x:.0f}')} % of "
+              "the particles; " if shares else "")
     beds = (f" (points {fmt_time(est.points_wall)} + {len(est.beds)} bed(s) to prepare <= "
             f"{fmt_time(est.beds_wall)})" if est.beds else "")
     return (f"estimate: {len(todo)} point(s) to run, "
             f"{_range([e.particles for e in todo], fmt_int)} particles, "
             f"dt {_range([e.dt for e in todo], lambda x: f'{x:.4g}')} s, "
             f"{_range([e.sim_time for e in todo], lambda x: f'{x:.3g}')} s simulated = "
-            f"{_range([e.steps for e in todo], fmt_int)} steps each; "
+            f"{_range([e.steps for e in todo], fmt_int)} steps each; " + active +
             f"{_range([e.wall for e in todo], fmt_time)} per point, "
             f"{fmt_time(est.total)} for the sweep{beds} ({est.jobs} at a time x {est.np} "
             f"rank(s) on {est.cores} core(s); rate {est.rate.source}; details: --estimate)")
@@ -543,6 +614,17 @@ def report(est, sweep_name):
             f" s = release {ph['release']:.4g} + settle <= {ph['settle']:.4g} + ramp "
             f"{ph['ramp']:.4g} + test {ph['test']:.4g}; steps {fmt_int(e.steps)}; wall "
             f"{fmt_time(e.wall)} ({e.wall:.0f} s)")
+        if e.calibration is not None:
+            lines.append(f"estimate:   scaled by {e.calibration:.3g}: the measured / estimated "
+                         f"wall of {e.calibration_points} finished point(s) on this bed (the "
+                         f"model alone: {fmt_time(e.model_wall)})")
+        if e.active_note:
+            cost = ""
+            if e.active_share is not None:
+                n_eff = e.particles * (e.active_share + FROZEN_COST * (1 - e.active_share))
+                cost = (f"; a frozen particle costs {FROZEN_COST:.3g} of an active one: the "
+                        f"point costs as {fmt_int(n_eff)} active particles")
+            lines.append(f"estimate:   {e.active_note}{cost}")
     for b in est.beds:
         w = b.info.prep_weights
         parts = " + ".join(f"{k} {v:.4g}" + (f" x {w[k]:.3g} of the particles" if k in w and

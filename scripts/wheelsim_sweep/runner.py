@@ -23,7 +23,7 @@ from pathlib import Path
 
 from wheelsim_post.deck_files import deck_includes
 
-from . import estimate, health, toml_out, watchdog
+from . import active_domain, estimate, health, toml_out, watchdog
 from .config import TILE_VARS
 
 RUN_FILE = "run.h5"
@@ -427,7 +427,21 @@ class Runner:
                                  self.sweep.bed_np, self.jobs, cores,
                                  finished=lambda p: p.index in done,
                                  chunk=estimate.deck_chunk(self.sweep.deck,
-                                                           self.sweep.liggghts_args))
+                                                           self.sweep.liggghts_args),
+                                 active=active_domain.settings(self.sweep.deck,
+                                                               self.sweep.liggghts_args),
+                                 x0=active_domain.start_x(self.sweep.deck,
+                                                          self.sweep.liggghts_args),
+                                 measured_wall=self.measured_wall)
+
+    def measured_wall(self, p):
+        """The wall time [s] a finished point took (its done.json), else None."""
+        try:
+            done = json.loads((self.point_dir(p) / DONE_FILE).read_text())
+        except (OSError, ValueError):
+            return None
+        w = done.get("wall_time_s")
+        return float(w) if isinstance(w, (int, float)) and not isinstance(w, bool) else None
 
     def _check_cost(self):
         """The estimate line at the start of a DEM sweep and the budget check: returns 2 (and

@@ -3,8 +3,8 @@
 
   test_sweep_unit.py CASE --sweep scripts/wheel-sweep --work DIR
 
-CASE: toml_roundtrip, cli, soil_names, tiled_recipe, estimate_arithmetic, rate_cache, budget,
-slip_control (see
+CASE: toml_roundtrip, cli, soil_names, tiled_recipe, estimate_arithmetic, estimate_active,
+rate_cache, budget, slip_control (see
 each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (a prerequisite missing).
 """
@@ -399,6 +399,83 @@ def case_estimate_arithmetic(a, work):
     _close(bi.particles, 1500 * 0.36 * 0.12 * 0.035 / (2500 * E.mean_grain_volume(ci)[0]),
            ".vars particles")
     check(bi.dt is None, "a .vars without bed_dt gave a dt")
+
+
+def case_estimate_active(a, work):
+    """The active domain in the estimate (scripts/wheelsim_sweep/active_domain.py): the share of a
+    bed inside the sphere of radius R + D against closed forms (a whole sphere, a half sphere at
+    the surface, within 1 %), the fix's defaults (D = 0.5 R + 2 z, z = R / 4: R + D = 2 R), the
+    deck's and liggghts_args' settings, the wheel's path (hold, ramp, constant speed; exact), the
+    point's cost N x (share + FROZEN_COST x (1 - share)) exactly, and the calibration by the
+    sweep's finished points (measured / modelled wall of that bed's points, exact)."""
+    from types import SimpleNamespace as NS
+    from wheelsim_sweep import active_domain as A
+    from wheelsim_sweep import estimate as E
+    # a sphere of 0.1 m about (0.5, 0, 0.5) in a 1 x 1 x 1 m bed: 4/3 pi r^3 of it
+    whole = 4.0 / 3.0 * math.pi * 0.1 ** 3
+    _close(A.sphere_share(1.0, 1.0, 1.0, 0.1, [(0.5, 0.5)]), whole, "whole sphere", rel=0.01)
+    # centred on the surface of a 0.5 m deep bed: half of it, of half the volume
+    _close(A.sphere_share(1.0, 1.0, 0.5, 0.1, [(0.5, 0.5)]), whole, "half sphere", rel=0.01)
+    # above the bed by more than its radius: nothing; a sphere holding the bed: all of it
+    check(A.sphere_share(1.0, 1.0, 0.5, 0.1, [(0.5, 0.61)]) == 0.0, "sphere above the bed")
+    _close(A.sphere_share(1.0, 1.0, 0.5, 2.0, [(0.5, 0.5)]), 1.0, "bed inside the sphere")
+    # the fix's defaults and keywords
+    check(A.ActiveSettings().reach(0.3) == 0.6, "default reach 2 R")
+    check(A.ActiveSettings(distance=0.1).reach(0.3) == 0.4, "distance")
+    _close(A.ActiveSettings(sinkage=0.05).reach(0.3), 0.3 + 0.15 + 0.1, "sinkage allowance")
+    deck = work / "in.deck"
+    deck.write_text("variable active_domain index 0\nvariable active_args index \"\"\n"
+                    "variable x0 index 0.25\n")
+    check(A.settings(deck) is None, "the deck's default is off")
+    s = A.settings(deck, ["-var", "active_domain", "1", "-var", "active_args",
+                          "distance 0.2 hysteresis 0.01 sinkage 0.03"])
+    check(s == A.ActiveSettings(distance=0.2, sinkage=0.03), f"settings {s}")
+    check(A.start_x(deck) == 0.25 and A.start_x(deck, ["-var", "x0", "1.5"]) == 1.5, "x0")
+    # the path: 1 s held, a 1 s ramp to 0.5 m/s (0.25 m), then 0.5 m/s; clipped at the far wall
+    ph = {"release": 0.6, "settle": 0.4, "ramp": 1.0, "test": 2.0}
+    xs = A.wheel_path(ph, 0.1, 0.5, 10.0, samples=4)  # t = 0.5, 1.5, 2.5, 3.5 s
+    for got, want in zip(xs, (0.1, 0.1 + 0.0625, 0.1 + 0.25 + 0.25, 0.1 + 0.25 + 0.75)):
+        _close(got, want, "wheel path")
+    check(A.wheel_path(ph, 0.1, 0.5, 0.4, samples=4)[-1] == 0.4, "path clipped to the bin")
+    _close(A.travel_speed({"motor": {"omega": 2.0}}, 0.25, 0.5), 0.75, "driving speed")
+    _close(A.travel_speed({"motor": {"omega": 2.0}}, -0.5, 0.5), 2.0, "skid speed")
+    check(A.travel_speed({"carriage": {"speed": 0.3}}, 0.2, 0.5) == 0.3, "imposed speed")
+    # an estimate with the active domain: a wheel of bounding radius 0.5 m (vertex (0.3, 0.4, 0)),
+    # outer radius 0.5 m; bed 4 x 1 x 0.3 m of 1e5 particles, the wheel held at x0 = 1 (no motor)
+    stl = work / "wheel.stl"
+    stl.write_text("solid w\nfacet normal 0 0 1\n outer loop\n  vertex 0.3 0 0.4\n"
+                   "  vertex 0 0.1 0.2\n  vertex 0.1 0 0\n endloop\nendfacet\nendsolid w\n")
+    check(A.mesh_extent(stl) == (0.5, 0.5), f"mesh extent {A.mesh_extent(stl)}")
+    soil = NS(label="bed")
+    rig = {"run": {"dt": 1e-4, "duration": 1.0, "settle_max_time": 0.5}, "motor": {"ramp_time": 0}}
+    pts = [NS(index=i, soil=soil, rig=rig, reldir=f"w/bed/s{i}", slip=0.2,
+              wheel=NS(mesh=stl)) for i in range(3)]
+    info = E.BedInfo("bed", 1e5, "test", 1e-4, "test", prepared=True, box=(4.0, 1.0, 0.3))
+    rate = E.Rate(2e6, 1.0, 0.0, 1e6, "test")
+    off = E.estimate(pts, {"bed": info}, rate, 1, 1, 1, 1, overhead_s=0.0)
+    on = E.estimate(pts, {"bed": info}, rate, 1, 1, 1, 1, overhead_s=0.0,
+                    active=A.ActiveSettings(), x0=1.0)
+    share = A.sphere_share(4.0, 1.0, 0.3, 1.0, [(1.0, 0.3 + 0.5 - 0.125)])
+    e = on.points[0]
+    _close(e.active_share, share, "active share")
+    _close(e.wall, off.points[0].wall * (share + E.FROZEN_COST * (1.0 - share)), "active wall")
+    check(0.05 < share < 0.5 and "1 m of the wheel centre" in e.active_note, e.active_note)
+    check(off.points[0].active_share is None and not off.points[0].active_note, "off")
+    # no bed size: the active domain is left out, and the printout says so
+    nobox = E.BedInfo("bed", 1e5, "test", 1e-4, "test", prepared=True)
+    left = E.estimate(pts, {"bed": nobox}, rate, 1, 1, 1, 1, overhead_s=0.0,
+                      active=A.ActiveSettings(), x0=1.0)
+    check(left.points[0].wall == off.points[0].wall
+          and "left out" in "\n".join(E.report(left, "s.toml")), "left out")
+    # calibration: point 0 finished in 3 x its modelled wall; the others are scaled by 3
+    cal = E.estimate(pts, {"bed": info}, rate, 1, 1, 1, 1, overhead_s=0.0,
+                     active=A.ActiveSettings(), x0=1.0, finished=lambda p: p.index == 0,
+                     measured_wall=lambda p: 3.0 * e.wall if p.index == 0 else None)
+    _close(cal.points[1].wall, 3.0 * e.wall, "calibrated wall")
+    check(cal.points[1].calibration_points == 1 and cal.points[0].calibration is None,
+          "calibration bookkeeping")
+    rep = "\n".join(E.report(cal, "s.toml"))
+    check("scaled by 3: the measured / estimated wall of 1 finished point(s)" in rep, rep)
 
 
 def _rate_entry(key, **kw):

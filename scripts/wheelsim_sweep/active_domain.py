@@ -1,0 +1,171 @@
+"""The active domain in the cost estimate (issue 12 items 1 and 4). Reference: docs/sweeps.md,
+"Cost estimate", and docs/fix-wheel-active.md.
+
+With `fix wheel/active` (the coupled deck's `-var active_domain 1`) only the soil within
+R + D of the wheel centre moves: R the wheel mesh's bounding radius (the sphere about the wheel
+centre holding the whole mesh, lugs and width included), D the fix's `distance` (default
+0.5 R + 2 z, z its `sinkage` allowance, default R / 4). A frozen particle still costs part of
+an active one's step (estimate.FROZEN_COST: neighbour-list builds, per-particle passes), so a
+point of N particles costs as N x (a + FROZEN_COST x (1 - a)) active ones, a the mean active
+share computed here.
+
+The active share is geometric: the volume of the bed (0 <= x <= bin length, |y| <= width / 2,
+0 <= z <= bed depth) inside the sphere of radius R + D about the wheel centre, divided by the
+bed's volume (the spheres fill it uniformly), averaged over the point's simulated time: the
+wheel at x0 through release and settle, then travelling at (1 - s) omega R_outer (s >= 0) or
+omega R_outer / (1 + s) (s < 0) through the ramp (half speed on average) and the test phase.
+Its centre is at z = bed depth + R_outer - z (the sinkage allowance; the real sinkage is not
+known beforehand), y = 0 (the bin is centred on y = 0).
+"""
+
+import math
+import re
+import shlex
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+GRID_X = 400  # cells along the bin (and 100 across it) for the share's volume integral
+GRID_Y = 100
+TIME_SAMPLES = 48  # positions of the wheel over the simulated time
+
+
+@dataclass
+class ActiveSettings:
+    """fix wheel/active's keywords as the deck passes them (None: the fix's default)."""
+    distance: float | None = None  # D [m]
+    sinkage: float | None = None  # z [m]
+
+    def reach(self, bounding_radius):
+        """R + D [m]: particles with their centre this close to the wheel centre move."""
+        r = bounding_radius
+        z = self.sinkage if self.sinkage is not None else 0.25 * r
+        d = self.distance if self.distance is not None else 0.5 * r + 2.0 * z
+        return r + d
+
+    def sinkage_allowance(self, bounding_radius):
+        return self.sinkage if self.sinkage is not None else 0.25 * bounding_radius
+
+
+def _deck_default(deck, name):
+    try:
+        m = re.search(rf"^\s*variable\s+{name}\s+index\s+(\"[^\"]*\"|\S+)",
+                      Path(deck).read_text(errors="replace"), re.M)
+    except (OSError, TypeError):
+        return None
+    return m.group(1).strip('"') if m else None
+
+
+def _arg(liggghts_args, name):
+    args = list(liggghts_args)
+    value = None
+    for i in range(len(args) - 2):
+        if args[i] == "-var" and args[i + 1] == name:
+            value = args[i + 2]  # the last one wins, as in LIGGGHTS
+    return value
+
+
+def settings(deck, liggghts_args=()):
+    """ActiveSettings when the point runs with the active domain (`-var active_domain N`, N > 0,
+    in liggghts_args, else the deck's `variable active_domain index N`), else None. Its keywords
+    come from `-var active_args "distance D sinkage Z ..."` (else the deck's default)."""
+    on = _arg(liggghts_args, "active_domain")
+    if on is None:
+        on = _deck_default(deck, "active_domain")
+    try:
+        if on is None or float(on) <= 0:
+            return None
+    except ValueError:
+        return None
+    text = _arg(liggghts_args, "active_args")
+    if text is None:
+        text = _deck_default(deck, "active_args") or ""
+    words = shlex.split(text)
+    out = ActiveSettings()
+    for key, value in zip(words[::2], words[1::2]):
+        if key in ("distance", "sinkage"):
+            try:
+                setattr(out, key, float(value))
+            except ValueError:
+                pass  # LIGGGHTS will say so at the run
+    return out
+
+
+def mesh_extent(mesh, scale=1.0):
+    """(bounding radius, outer radius) [m] of an ASCII STL wheel mesh in the wheel frame
+    (centre at the origin, axle along y): the largest vertex distance from the centre, and from
+    the axle; None if the mesh cannot be read."""
+    r2_centre = r2_axle = 0.0
+    try:
+        with open(mesh, errors="replace") as f:
+            for line in f:
+                t = line.split()
+                if len(t) == 4 and t[0] == "vertex":
+                    x, y, z = float(t[1]), float(t[2]), float(t[3])
+                    r2_axle = max(r2_axle, x * x + z * z)
+                    r2_centre = max(r2_centre, x * x + y * y + z * z)
+    except (OSError, TypeError, ValueError):
+        return None
+    if r2_centre <= 0:
+        return None
+    return math.sqrt(r2_centre) * scale, math.sqrt(r2_axle) * scale
+
+
+def sphere_share(length, width, depth, reach, centres):
+    """Mean share of the bed [0, length] x [-width/2, width/2] x [0, depth] inside a sphere of
+    radius `reach` about each of `centres` ((x, z) pairs, y = 0): a midpoint rule over the bed's
+    footprint of the sphere's chord clipped to [0, depth]."""
+    dx, dy = length / GRID_X, width / GRID_Y
+    x = (np.arange(GRID_X) + 0.5) * dx
+    y = (np.arange(GRID_Y) + 0.5) * dy - 0.5 * width
+    shares = []
+    for xc, zc in centres:
+        r2 = (x[:, None] - xc) ** 2 + y[None, :] ** 2
+        half = np.sqrt(np.clip(reach * reach - r2, 0.0, None))
+        chord = np.clip(zc + half, 0.0, depth) - np.clip(zc - half, 0.0, depth)
+        shares.append(float(chord.sum()) * dx * dy / (length * width * depth))
+    return float(np.mean(shares))
+
+
+def wheel_path(phases, x0, speed, length, samples=TIME_SAMPLES):
+    """The wheel centre's x at `samples` instants spread evenly over the simulated time: x0
+    through release and settle, then accelerating linearly to `speed` [m/s] over the ramp and
+    keeping it through the test; clipped to the bin."""
+    t_hold = phases["release"] + phases["settle"]
+    ramp, total = phases["ramp"], sum(phases.values())
+    out = []
+    for k in range(samples):
+        t = (k + 0.5) * total / samples
+        if t <= t_hold:
+            s = 0.0
+        elif t <= t_hold + ramp:
+            s = 0.5 * speed * (t - t_hold) ** 2 / ramp if ramp > 0 else speed * (t - t_hold)
+        else:
+            s = 0.5 * speed * ramp + speed * (t - t_hold - ramp)
+        out.append(min(max(x0 + s, 0.0), length))
+    return out
+
+
+def travel_speed(rig, slip, outer_radius):
+    """The wheel's forward speed [m/s] at `slip` for a rig driven at motor.omega: (1 - s) omega
+    R (s >= 0), omega R / (1 + s) (s < 0); an imposed carriage.speed wins. 0 if unknown."""
+    carriage = rig.get("carriage", {})
+    if isinstance(carriage.get("speed"), (int, float)) and not isinstance(carriage["speed"], bool):
+        return abs(float(carriage["speed"]))
+    omega = rig.get("motor", {}).get("omega")
+    if not isinstance(omega, (int, float)) or isinstance(omega, bool) or slip is None:
+        return 0.0
+    v = abs(omega) * outer_radius
+    return v * (1.0 - slip) if slip >= 0 else v / (1.0 + slip) if slip > -1 else 0.0
+
+
+def start_x(deck, liggghts_args=()):
+    """The wheel centre's x at the start [m]: `-var x0` in liggghts_args, else the deck's
+    `variable x0 index X`, else 0."""
+    for v in (_arg(liggghts_args, "x0"), _deck_default(deck, "x0")):
+        try:
+            return float(v)
+        except (TypeError, ValueError):
+            continue
+    return 0.0
