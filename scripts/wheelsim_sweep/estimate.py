@@ -55,7 +55,7 @@ SOIL_QUERY_TIMEOUT_S = 30.0
 # pairs' exclusion test) and its per-particle passes. Measured at study scale, where it matters
 # (docs/sweeps.md "Cost estimate"): validation case 3's wheel1 point at 20 % slip, np 2, with and
 # without the active domain on the same bed.
-FROZEN_COST = 0.36
+FROZEN_COST = 0.23
 
 
 class EstimateError(Exception):
