@@ -1,10 +1,12 @@
 #!/usr/bin/python3
 """Validation case 3 (README.md): the study wheels on DEM dry sand beside SCM, per wheel and slip:
 traction force T/R_eff, drawbar pull, sinkage and tractive efficiency, and the active domain's
-effect (the full-domain run of the same point) and the grain-size sensitivity.
+effect (the full-domain run of the same point), its run-to-run scatter (the same point on another
+ranks' grid) and the grain-size sensitivity.
 
     compare.py RESULTS.csv [--scm RESULTS_SCM.csv] [--full-domain RESULTS_FULL.csv]
-               [--grain RESULTS_GRAIN.csv] [--md OUT.md] [--png OUT.png]
+               [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--md OUT.md]
+               [--png OUT.png]
 
 Inputs are tables of `wheelsim-post curves --results` (docs/postprocess.md); the wheel and the soil
 of each row are the run file's folders (<out>/<wheel>/<soil>/s<slip>/run.h5, as wheel-sweep lays
@@ -175,6 +177,8 @@ def main():
     ap.add_argument("--scm", help="the SCM half's results table")
     ap.add_argument("--full-domain", help="the full-domain runs' results table")
     ap.add_argument("--grain", help="the grain-size sensitivity's results table")
+    ap.add_argument("--repeat", help="the repeat of the active domain's point on another ranks' "
+                    "grid (the run-to-run scatter)")
     ap.add_argument("--md", help="write the comparison as Markdown")
     ap.add_argument("--png", help="write the comparison plot")
     ap.add_argument("--window", default="2-6",
@@ -192,6 +196,11 @@ def main():
                   "The difference is sweep.toml's (active domain) against the full domain's.", ""]
         t, verdicts = point_table(dem, read(a.full_domain), "full domain", ACTIVE_TOLERANCE)
         lines += t + [""]
+    if a.repeat:
+        lines += ["## Run-to-run scatter: the same point, ranks cut along the bin", "",
+                  "sweep.toml's point (ranks across the width) against sweep_repeat.toml's (the "
+                  "same inputs, procs_x 2): another trajectory of the same experiment.", ""]
+        lines += point_table(dem, read(a.repeat), "repeat (procs_x 2)")[0] + [""]
     if a.grain:
         lines += ["## Grain size: 16-40 mm (sweep.toml) against 12-30 mm (sweep_grain.toml)", ""]
         lines += point_table(dem, read(a.grain), "12-30 mm grains")[0] + [""]

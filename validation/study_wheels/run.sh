@@ -8,7 +8,9 @@
 # active domain, README "Cost"); scm — the same wheels and slips on the fitted SCM soil and on SCM
 # dry sand of the tables (sweep_scm.toml; minutes); full_domain — wheel 1 at 20 % slip without the
 # active domain on the same bed (sweep_full_domain.toml; ~45 min; run dem first); grain — wheel 1
-# at 20 % slip on 12-30 mm grains (sweep_grain.toml, its own bin; ~1 h). Resumable: a re-run
+# at 20 % slip on 12-30 mm grains (sweep_grain.toml, its own bin; ~1 h); repeat — the active
+# domain's point again with the ranks cut along the bin (sweep_repeat.toml; ~40 min): the
+# run-to-run scatter the full_domain comparison reads against. Resumable: a re-run
 # skips finished points. Writes here results.csv (DEM), results_<part>.csv (the others),
 # comparison.md, comparison.png and provenance[_<part>].toml (git hash,
 # command, machine, wall time). Run it in the background: nohup ... &
@@ -30,8 +32,9 @@ while (($#)); do
   esac
 done
 for part in ${only//,/ }; do
-  case $part in dem|scm|full_domain|grain) ;;
-    *) echo "run.sh: --only: unknown part '$part' (expected dem, scm, full_domain, grain)" >&2; exit 2 ;;
+  case $part in dem|scm|full_domain|grain|repeat) ;;
+    *) echo "run.sh: --only: unknown part '$part' (expected dem, scm, full_domain, grain, repeat)" >&2
+       exit 2 ;;
   esac
 done
 for w in wheel1 wheel5; do
@@ -69,10 +72,12 @@ fi
 [[ -z $out ]] || { echo "run.sh: --out-dir is for --smoke only (the case's sweeps name their bed under runs/validation/study_wheels)" >&2; exit 2; }
 runs_dir=$root/runs/validation
 wanted() { [[ ,$only, == *,$1,* ]]; }
-if wanted full_domain && ! wanted dem; then
-  [[ -f $runs_dir/study_wheels/beds/dry_sand_coarse_bin/soilbin_dry_sand_coarse.restart ]] || {
-    echo "run.sh: full_domain runs on the DEM half's bed: run --only dem first" >&2; exit 2; }
-fi
+for p in full_domain repeat; do
+  if wanted $p && ! wanted dem; then
+    [[ -f $runs_dir/study_wheels/beds/dry_sand_coarse_bin/soilbin_dry_sand_coarse.restart ]] || {
+      echo "run.sh: $p runs on the DEM half's bed: run --only dem first" >&2; exit 2; }
+  fi
+done
 if wanted dem; then
   part sweep.toml "$runs_dir/study_wheels" "$here/results.csv" "$here/provenance.toml"
 fi
@@ -88,11 +93,16 @@ if wanted full_domain; then
   part sweep_full_domain.toml "$runs_dir/study_wheels_full_domain" \
     "$here/results_full_domain.csv" "$here/provenance_full_domain.toml"
 fi
+if wanted repeat; then
+  part sweep_repeat.toml "$runs_dir/study_wheels_repeat" "$here/results_repeat.csv" \
+    "$here/provenance_repeat.toml"
+fi
 if [[ -f $here/results.csv ]]; then
   extra=()
   [[ -f $here/results_scm.csv ]] && extra+=(--scm "$here/results_scm.csv")
   [[ -f $here/results_full_domain.csv ]] && extra+=(--full-domain "$here/results_full_domain.csv")
   [[ -f $here/results_grain.csv ]] && extra+=(--grain "$here/results_grain.csv")
+  [[ -f $here/results_repeat.csv ]] && extra+=(--repeat "$here/results_repeat.csv")
   "$python" "$here/compare.py" "$here/results.csv" "${extra[@]}" \
     --md "$here/comparison.md" --png "$here/comparison.png" || status=1
 fi
