@@ -91,7 +91,9 @@ fi
 np=${WHEELSIM_NP:-${SLURM_NTASKS:-1}}
 [[ $np =~ ^[1-9][0-9]*$ ]] || die "WHEELSIM_NP: expected a positive integer, got '$np'"
 # wheel-cosim passes --oversubscribe (for small machines): on a cluster, more ranks than tasks
-# would share cores silently.
+# would share cores silently. It also passes --bind-to none (two small jobs on one machine would
+# otherwise share core 0, docs/coupled-runs.md "MPI launch"); a node of its own wants binding:
+export WHEELSIM_MPI_BIND=${WHEELSIM_MPI_BIND:-core}
 if [[ -n ${SLURM_NTASKS:-} && $np -gt $SLURM_NTASKS ]]; then
   die "WHEELSIM_NP=$np exceeds the job's $SLURM_NTASKS task(s): ask sbatch for more (--ntasks or -N/--ntasks-per-node)"
 fi

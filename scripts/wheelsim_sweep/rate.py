@@ -27,6 +27,7 @@ import tomllib
 from pathlib import Path
 
 import tomli_w
+from wheelsim_post import mpi_launch
 
 from .estimate import Rate, EstimateError
 
@@ -149,12 +150,7 @@ def lookup(path, key):
 
 # ---- the benchmark ------------------------------------------------------------------------------
 def _launch(np_):
-    if np_ <= 1:
-        return []
-    cmd = ["mpirun", "-np", str(np_)]
-    if os.geteuid() == 0:
-        cmd.append("--allow-run-as-root")
-    return cmd + ["--oversubscribe"]
+    return [] if np_ <= 1 else mpi_launch.mpirun(np_)
 
 
 def _loop(text, what):

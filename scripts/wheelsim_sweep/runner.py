@@ -21,6 +21,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
 from pathlib import Path
 
+from wheelsim_post import mpi_launch
 from wheelsim_post.deck_files import deck_includes
 
 from . import active_domain, estimate, health, toml_out, watchdog
@@ -525,10 +526,8 @@ class Runner:
             part = bdir / f"{restart.stem}.part.restart"
             for f in (part, Path(f"{part}.vars")):
                 f.unlink(missing_ok=True)
-            cmd = ["mpirun", "-np", str(self.sweep.bed_np)]
-            if os.geteuid() == 0:
-                cmd.append("--allow-run-as-root")
-            cmd += ["--oversubscribe", str(self.build / "bin" / "liggghts-wheel"),
+            cmd = mpi_launch.mpirun(self.sweep.bed_np)
+            cmd += [str(self.build / "bin" / "liggghts-wheel"),
                     "-in", str(self.repo / "inputs" / "in.soilbin"),
                     "-var", "inputs_dir", str(self.repo / "inputs")]
             for k, v in soil.recipe.items():

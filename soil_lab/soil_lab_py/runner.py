@@ -19,6 +19,7 @@ import sys
 import time
 from pathlib import Path
 
+from wheelsim_post import mpi_launch
 from wheelsim_post.deck_files import deck_includes
 
 from .plan import LabInputError, SoilInfo
@@ -73,10 +74,7 @@ class Lab:
             print(f"soil-lab: {msg}", flush=True)
 
     def _mpirun(self):
-        cmd = ["mpirun", "-np", str(self.np), "--oversubscribe"]
-        if os.geteuid() == 0:
-            cmd.append("--allow-run-as-root")
-        return cmd
+        return mpi_launch.mpirun(self.np)
 
     def _liggghts(self, deck, variables, log, cwd):
         cmd = self._mpirun() + [str(self.liggghts), "-in", str(deck), "-log", "none",
