@@ -50,8 +50,7 @@ def git_hash():
 def launcher(a):
     if a.np == 1:
         return [a.exe]
-    return [a.mpiexec, "-n", str(a.np), "--oversubscribe", "--bind-to", "none", "--allow-run-as-root",
-            a.exe]
+    return [a.mpiexec, "-n", str(a.np), "--oversubscribe", "--allow-run-as-root", a.exe]
 
 
 def make_bed(a, length):

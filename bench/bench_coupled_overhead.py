@@ -50,7 +50,7 @@ def main():
         sys.exit("bench: coupled run failed:\n" + coupled.stdout[-2000:] + coupled.stderr[-2000:])
     t_coupled, n = loop_time(open(os.path.join(a.work, "coupled", "liggghts.log")).read())
     dt = re.search(r"dt (\S+) s", coupled.stdout).group(1)
-    launch = ["mpirun", "-np", str(a.np), "--oversubscribe", "--bind-to", "none"]
+    launch = ["mpirun", "-np", str(a.np), "--oversubscribe"]
     if os.geteuid() == 0:
         launch.append("--allow-run-as-root")
     prescribed = subprocess.run(

@@ -45,7 +45,7 @@ def run_bed(a, mode, out):
     out.mkdir(parents=True, exist_ok=True)
     cmd = []
     if a.np > 1:
-        cmd = ["mpirun", "-np", str(a.np), "--oversubscribe", "--bind-to", "none"]
+        cmd = ["mpirun", "-np", str(a.np), "--oversubscribe"]
         if os.geteuid() == 0:
             cmd.append("--allow-run-as-root")
     cmd += [a.exe, "-in", str(Path(a.inputs) / "in.soilbin"), "-echo", "none", "-log",

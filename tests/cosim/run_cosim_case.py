@@ -49,8 +49,7 @@ def rig_config(a, name, **changes):
 
 
 def mpirun(a):
-    # --bind-to none: as wheelsim's launchers (postprocess/wheelsim_post/mpi_launch.py)
-    cmd = ["mpirun", "-np", str(a.np), "--oversubscribe", "--bind-to", "none"]
+    cmd = ["mpirun", "-np", str(a.np), "--oversubscribe"]
     if os.geteuid() == 0:
         cmd.append("--allow-run-as-root")
     return cmd
