@@ -27,3 +27,19 @@ def deck_includes(deck, variables):
             found.append(f)
             todo.append(f)
     return found
+
+
+def deck_variable(deck, name, liggghts_args=()):
+    """The value (a string) LIGGGHTS gives the index variable `name` of input `deck` run with
+    `liggghts_args`: the first `-var NAME VALUE` there (LIGGGHTS keeps an index variable's first
+    definition), else the deck's first `variable NAME index VALUE` (quotes removed), else None."""
+    args = list(liggghts_args)
+    for i in range(len(args) - 2):
+        if args[i] == "-var" and args[i + 1] == name:
+            return args[i + 2]
+    try:
+        text = Path(deck).read_text(errors="replace")
+    except (OSError, TypeError):
+        return None
+    m = re.search(rf"^\s*variable\s+{re.escape(name)}\s+index\s+(\"[^\"]*\"|\S+)", text, re.M)
+    return m.group(1).strip('"') if m else None

@@ -52,6 +52,17 @@ def signed_slip(v, rim_speed):
     return _result(value, v, rim_speed)
 
 
+def forward_speed(rim_speed, slip):
+    """The forward speed v [m/s] at which a wheel of rim speed ω R_eff has the signed slip `slip`
+    (the inverse of signed_slip for forward travel): (1 − s) ω R_eff for s ≥ 0, ω R_eff / (1 + s)
+    for −1 < s < 0; NaN for s ≤ −1 (a locked wheel's speed is not set by its rim)."""
+    r_a, s_a = np.broadcast_arrays(np.asarray(rim_speed, dtype=float), np.asarray(slip, dtype=float))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        skid = np.where(s_a > -1.0, r_a / np.where(s_a > -1.0, 1.0 + s_a, 1.0), np.nan)
+        value = np.where(s_a >= 0.0, (1.0 - s_a) * r_a, skid)
+    return _result(value, rim_speed, slip)
+
+
 #: name -> function(v, rim_speed), in the order of the CSV columns.
 CONVENTIONS = {
     "slip": driving_slip,

@@ -19,12 +19,13 @@ known beforehand), y = 0 (the bin is centred on y = 0).
 """
 
 import math
-import re
 import shlex
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
+
+from wheelsim_post.deck_files import deck_variable
+from wheelsim_post.slip import forward_speed
 
 GRID_X = 400  # cells along the bin (and 100 across it) for the share's volume integral
 GRID_Y = 100
@@ -48,40 +49,17 @@ class ActiveSettings:
         return self.sinkage if self.sinkage is not None else 0.25 * bounding_radius
 
 
-def _deck_default(deck, name):
-    try:
-        m = re.search(rf"^\s*variable\s+{name}\s+index\s+(\"[^\"]*\"|\S+)",
-                      Path(deck).read_text(errors="replace"), re.M)
-    except (OSError, TypeError):
-        return None
-    return m.group(1).strip('"') if m else None
-
-
-def _arg(liggghts_args, name):
-    args = list(liggghts_args)
-    value = None
-    for i in range(len(args) - 2):
-        if args[i] == "-var" and args[i + 1] == name:
-            value = args[i + 2]  # the last one wins, as in LIGGGHTS
-    return value
-
-
 def settings(deck, liggghts_args=()):
     """ActiveSettings when the point runs with the active domain (`-var active_domain N`, N > 0,
     in liggghts_args, else the deck's `variable active_domain index N`), else None. Its keywords
     come from `-var active_args "distance D sinkage Z ..."` (else the deck's default)."""
-    on = _arg(liggghts_args, "active_domain")
-    if on is None:
-        on = _deck_default(deck, "active_domain")
+    on = deck_variable(deck, "active_domain", liggghts_args)
     try:
         if on is None or float(on) <= 0:
             return None
     except ValueError:
         return None
-    text = _arg(liggghts_args, "active_args")
-    if text is None:
-        text = _deck_default(deck, "active_args") or ""
-    words = shlex.split(text)
+    words = shlex.split(deck_variable(deck, "active_args", liggghts_args) or "")
     out = ActiveSettings()
     for key, value in zip(words[::2], words[1::2]):
         if key in ("distance", "sinkage"):
@@ -95,7 +73,7 @@ def settings(deck, liggghts_args=()):
 def mesh_extent(mesh, scale=1.0):
     """(bounding radius, outer radius) [m] of an ASCII STL wheel mesh in the wheel frame
     (centre at the origin, axle along y): the largest vertex distance from the centre, and from
-    the axle; None if the mesh cannot be read."""
+    the axle; None if the mesh cannot be read or has no extent off the axle."""
     r2_centre = r2_axle = 0.0
     try:
         with open(mesh, errors="replace") as f:
@@ -107,7 +85,7 @@ def mesh_extent(mesh, scale=1.0):
                     r2_centre = max(r2_centre, x * x + y * y + z * z)
     except (OSError, TypeError, ValueError):
         return None
-    if r2_centre <= 0:
+    if r2_axle <= 0:
         return None
     return math.sqrt(r2_centre) * scale, math.sqrt(r2_axle) * scale
 
@@ -148,24 +126,22 @@ def wheel_path(phases, x0, speed, length, samples=TIME_SAMPLES):
 
 
 def travel_speed(rig, slip, outer_radius):
-    """The wheel's forward speed [m/s] at `slip` for a rig driven at motor.omega: (1 - s) omega
-    R (s >= 0), omega R / (1 + s) (s < 0); an imposed carriage.speed wins. 0 if unknown."""
+    """The wheel's forward speed [m/s] at `slip` for a rig driven at motor.omega (the rim speed
+    omega R, wheelsim_post.slip.forward_speed); an imposed carriage.speed wins. 0 if unknown."""
     carriage = rig.get("carriage", {})
     if isinstance(carriage.get("speed"), (int, float)) and not isinstance(carriage["speed"], bool):
         return abs(float(carriage["speed"]))
     omega = rig.get("motor", {}).get("omega")
     if not isinstance(omega, (int, float)) or isinstance(omega, bool) or slip is None:
         return 0.0
-    v = abs(omega) * outer_radius
-    return v * (1.0 - slip) if slip >= 0 else v / (1.0 + slip) if slip > -1 else 0.0
+    v = forward_speed(abs(omega) * outer_radius, slip)
+    return v if math.isfinite(v) else 0.0
 
 
 def start_x(deck, liggghts_args=()):
     """The wheel centre's x at the start [m]: `-var x0` in liggghts_args, else the deck's
     `variable x0 index X`, else 0."""
-    for v in (_arg(liggghts_args, "x0"), _deck_default(deck, "x0")):
-        try:
-            return float(v)
-        except (TypeError, ValueError):
-            continue
-    return 0.0
+    try:
+        return float(deck_variable(deck, "x0", liggghts_args))
+    except (TypeError, ValueError):
+        return 0.0

@@ -32,7 +32,7 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from wheelsim_post.deck_files import deck_includes
+from wheelsim_post.deck_files import deck_includes, deck_variable
 
 from . import active_domain
 
@@ -123,25 +123,21 @@ def release_time(gap, speed, accel_time=RELEASE_ACCEL_TIME_S):
     return accel_time + (gap - d_accel) / speed
 
 
+def wheel_extent(rig, mesh=None):
+    """(bounding radius, outer radius) [m] of the wheel mesh `mesh` (else the rig's wheel.mesh;
+    ascii STL, as LIGGGHTS reads) x wheel.mesh_scale (active_domain.mesh_extent), else None."""
+    w = rig.get("wheel", {})
+    return active_domain.mesh_extent(mesh or w.get("mesh"), float(w.get("mesh_scale", 1.0)))
+
+
 def wheel_radius(rig, mesh=None):
     """The wheel's outer radius [m]: wheel.effective_radius, else the largest distance of the
-    mesh's vertices from the axle (y; ascii STL, as LIGGGHTS reads; mesh units x
-    wheel.mesh_scale), else None."""
+    mesh's vertices from the axle (y; wheel_extent), else None."""
     w = rig.get("wheel", {})
     if isinstance(w.get("effective_radius"), (int, float)):
         return float(w["effective_radius"])
-    mesh = mesh or w.get("mesh")
-    try:
-        r2 = 0.0
-        with open(mesh, errors="replace") as f:
-            for line in f:
-                t = line.split()
-                if len(t) == 4 and t[0] == "vertex":
-                    r2 = max(r2, float(t[1]) ** 2 + float(t[3]) ** 2)
-    except (OSError, TypeError, ValueError):
-        return None
-    scale = w.get("mesh_scale", 1.0)
-    return math.sqrt(r2) * float(scale) if r2 > 0 else None
+    ext = wheel_extent(rig, mesh)
+    return ext[1] if ext else None
 
 
 def phases(rig, radius=None):
@@ -434,7 +430,6 @@ class PointEstimate:
     # measured / modelled wall of the finished points on the same bed (wall is scaled by it)
     calibration: float | None = None
     calibration_points: int = 0
-    model_wall: float | None = None  # the wall before that scaling
 
 
 @dataclass
@@ -469,29 +464,17 @@ class SweepEstimate:
 def deck_chunk(deck, liggghts_args=()):
     """The steps LIGGGHTS runs between checks of the rig's end (`chunk` of the coupled deck,
     `-var chunk N` in liggghts_args wins): steps are run in whole chunks. 1 if not known."""
-    args = list(liggghts_args)
-    for i in range(len(args) - 2):
-        if args[i] == "-var" and args[i + 1] == "chunk":
-            try:
-                return max(1, int(args[i + 2]))
-            except ValueError:
-                return 1
     try:
-        m = re.search(r"^\s*variable\s+chunk\s+index\s+(\d+)", Path(deck).read_text(), re.M)
-    except (OSError, TypeError):
+        return max(1, int(deck_variable(deck, "chunk", liggghts_args)))
+    except (TypeError, ValueError):
         return 1
-    return max(1, int(m.group(1))) if m else 1
 
 
 def active_share(point, info, active, x0, ph):
     """(mean active share, how it was found) of a point run with the active domain `active`
     (active_domain.ActiveSettings); (None, why) when it cannot be told (then the estimate counts
     every particle as active)."""
-    w = point.rig.get("wheel", {})
-    scale = float(w.get("mesh_scale", 1.0)) if isinstance(w.get("mesh_scale"), (int, float)) \
-        else 1.0
-    mesh = getattr(getattr(point, "wheel", None), "mesh", None) or w.get("mesh")
-    ext = active_domain.mesh_extent(mesh, scale) if mesh else None
+    ext = wheel_extent(point.rig, getattr(getattr(point, "wheel", None), "mesh", None))
     if ext is None:
         return None, "active domain left out: the wheel mesh could not be read for its size"
     if info.box is None:
@@ -556,7 +539,7 @@ def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: F
         if e.point.soil.label in sums and not e.finished:
             m, w, n = sums[e.point.soil.label]
             e.calibration, e.calibration_points = m / w, n
-            e.model_wall, e.wall = e.wall, e.wall * m / w
+            e.wall *= m / w
     beds = []
     used = {p.soil.label for p in todo}
     for label, info in infos.items():
@@ -617,7 +600,7 @@ def report(est, sweep_name):
         if e.calibration is not None:
             lines.append(f"estimate:   scaled by {e.calibration:.3g}: the measured / estimated "
                          f"wall of {e.calibration_points} finished point(s) on this bed (the "
-                         f"model alone: {fmt_time(e.model_wall)})")
+                         f"model alone: {fmt_time(e.wall / e.calibration)})")
         if e.active_note:
             cost = ""
             if e.active_share is not None:

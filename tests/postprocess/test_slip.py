@@ -11,7 +11,7 @@ import numpy as np
 import synthetic as syn
 from helpers import TempDirTestCase, run_cli
 from wheelsim_post.runfile import RunFile
-from wheelsim_post.slip import driving_slip, signed_slip, skid_slip
+from wheelsim_post.slip import driving_slip, forward_speed, signed_slip, skid_slip
 from wheelsim_post.steady import DEFAULT_WINDOW, steady_state
 
 
@@ -73,6 +73,17 @@ def locked_run(path, v=0.05, n_test=1000, dt=0.001):
     time, phase, series = syn.steady_run_series(n_test, dt, 0.0, 0.0, -30.0, -3.0, load=50.0)
     series["carriage/velocity"] = (np.full(len(time), v), "m/s")
     syn.write_run(path, time, phase, series)
+
+
+class ForwardSpeedTest(unittest.TestCase):
+    def test_inverse_of_the_signed_slip(self):
+        # rim speed 0.5 m/s: driving s 0.2 -> 0.4 m/s, free rolling, skid s -0.5 -> 1.0 m/s
+        rim = 0.5
+        for s, v in ((0.2, 0.4), (0.0, 0.5), (-0.5, 1.0), (0.9, 0.05)):
+            self.assertAlmostEqual(forward_speed(rim, s), v, places=15)
+            self.assertAlmostEqual(signed_slip(forward_speed(rim, s), rim), s, places=12)
+        self.assertTrue(math.isnan(forward_speed(rim, -1.0)))  # locked: v not set by the rim
+        np.testing.assert_allclose(forward_speed(rim, np.array([0.2, -0.5])), [0.4, 1.0])
 
 
 class SlipInRunsTest(TempDirTestCase):
