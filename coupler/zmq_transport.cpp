@@ -5,6 +5,7 @@
 #include <zmq.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cerrno>
 #include <cstdio>
 #include <sys/stat.h>
@@ -215,9 +216,12 @@ bool ZmqTransport::send_nowait(const Bytes &message) noexcept {
 }
 
 Bytes ZmqTransport::receive(std::chrono::milliseconds timeout, const std::string &awaiting) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  using std::chrono::steady_clock;
+  const auto deadline = steady_clock::now() + timeout;
   // The full timeout on the first try keeps the socket option unchanged between calls (no
-  // setsockopt per exchange); after an EINTR only the rest of the time is waited.
+  // setsockopt per exchange). ZeroMQ times out on its own millisecond clock, which can end up to
+  // a millisecond before ours: an early timeout, like an EINTR, waits for the rest of the time
+  // (rounded up to a whole millisecond), so the wait is never shorter than `timeout`.
   for (auto remaining = timeout;;) {
     const int timeout_ms = static_cast<int>(std::max<std::int64_t>(remaining.count(), 0));
     if (timeout_ms != impl_->receive_timeout_ms) {
@@ -226,19 +230,20 @@ Bytes ZmqTransport::receive(std::chrono::milliseconds timeout, const std::string
     }
     try {
       zmq::message_t message;
-      if (!impl_->socket.recv(message, zmq::recv_flags::none)) {
+      if (impl_->socket.recv(message, zmq::recv_flags::none)) {
+        const auto *data = static_cast<const std::uint8_t *>(message.data());
+        return Bytes(data, data + message.size());
+      }
+      if (steady_clock::now() >= deadline) {
         throw receive_timeout(awaiting, peer_name(), timeout);
       }
-      const auto *data = static_cast<const std::uint8_t *>(message.data());
-      return Bytes(data, data + message.size());
     } catch (const zmq::error_t &e) {
       if (e.num() != EINTR) {
         throw CouplingError("receiving " + awaiting + " from " + peer_name() +
                             " failed: " + e.what());
       }
-      remaining = std::chrono::duration_cast<std::chrono::milliseconds>(
-          deadline - std::chrono::steady_clock::now());
     }
+    remaining = std::chrono::ceil<std::chrono::milliseconds>(deadline - steady_clock::now());
   }
 }
 
