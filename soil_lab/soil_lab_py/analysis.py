@@ -8,6 +8,7 @@ mohr_coulomb.png, repose.png (for the tests that ran). docs/soil-lab.md, "Output
 
 import csv
 import json
+import re
 import tomllib
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -88,6 +89,41 @@ def plate_end_pressure(plate):
     return float(np.mean(p[z >= 0.8 * z.max()]))
 
 
+#: A shear box that has lost more than this share of its particles (over the upper frame's
+#: overhang, which has no floor) by the peak, or by the end, is reported (docs/soil-lab.md).
+SHEAR_LOSS_WARNING = 0.01
+_SHEAR_THERMO_HEADER = re.compile(r"^\s*Step\s+Atoms\s+j\s+tau\b", re.M)
+
+
+def shear_particle_counts(log_text):
+    """(j [m], particles) of the shear run's thermo rows (in.lab_shear's `thermo_style custom
+    step atoms v_j ...`), or None when the log has none."""
+    m = _SHEAR_THERMO_HEADER.search(log_text)
+    if m is None:
+        return None
+    j, n = [], []
+    for line in log_text[m.end():].splitlines()[1:]:
+        cols = line.split()
+        try:
+            n_i, j_i = int(cols[1]), float(cols[2])
+        except (IndexError, ValueError):
+            break  # the end of the thermo block
+        n.append(n_i)
+        j.append(j_i)
+    return (np.array(j), np.array(n)) if n else None
+
+
+def shear_particle_loss(counts, j_peak_m):
+    """{particles, lost_by_peak, lost_at_end} (fractions of the particles at the start of the
+    shear) from shear_particle_counts, or None."""
+    if counts is None:
+        return None
+    j, n = counts
+    at_peak = n[np.searchsorted(j, j_peak_m)] if j_peak_m <= j[-1] else n[-1]
+    return {"particles": int(n[0]), "lost_by_peak": float(1.0 - at_peak / n[0]),
+            "lost_at_end": float(1.0 - n[-1] / n[0])}
+
+
 def read_shear(run, done):
     t = _table(run / "shear.csv", ("time_s", "displacement_m", "shear_force_N", "tau_Pa",
                                    "sigma_Pa", "lid_z_m", "phase"))
@@ -97,9 +133,33 @@ def read_shear(run, done):
     # DEM signal's noise); the residual and Janosi fits use the raw curve.
     w = max(1, len(tau) // 20)
     smooth = np.convolve(tau, np.ones(w) / w, mode="same") if len(tau) > w else tau
+    peak = fits.peak_and_residual(j, smooth)
+    log = run / "liggghts.log"
+    counts = shear_particle_counts(log.read_text(errors="replace")) if log.is_file() else None
     return {"sigma_Pa": float(np.mean(sigma)), "sigma_target_Pa": done["meta"]["normal_stress_Pa"],
-            "j": j, "tau": tau, "peak": fits.peak_and_residual(j, smooth),
-            "janosi": fits.fit_janosi(j, tau), "done": done}
+            "j": j, "tau": tau, "peak": peak, "janosi": fits.fit_janosi(j, tau),
+            "loss": shear_particle_loss(counts, peak.j_peak_m), "done": done}
+
+
+def shear_loss_warnings(shears):
+    """A line for each shear box that lost more than SHEAR_LOSS_WARNING of its particles."""
+    out = []
+    for s in shears:
+        loss = s.get("loss")
+        if loss is None:
+            continue
+        at = f"shear box at {s['sigma_Pa'] / 1e3:.3g} kPa: "
+        if loss["lost_by_peak"] > SHEAR_LOSS_WARNING:
+            out.append(at + f"{100 * loss['lost_by_peak']:.1f} % of its {loss['particles']} "
+                       f"particles had left the box by the peak (j {s['peak'].j_peak_m:.3g} m, over "
+                       "the upper frame's overhang): the peak is not that of the full sample; "
+                       "shorten --shear-travel")
+        elif loss["lost_at_end"] > SHEAR_LOSS_WARNING:
+            out.append(at + f"{100 * loss['lost_at_end']:.1f} % of its {loss['particles']} "
+                       "particles had left the box by the end (over the upper frame's overhang, "
+                       f"after the peak at j {s['peak'].j_peak_m:.3g} m): the residual strength "
+                       "is that of a thinning sample")
+    return out
 
 
 def read_repose(run, done, dmax):
@@ -230,7 +290,14 @@ def summary(r: Results):
              "tau_peak_Pa": s["peak"].tau_peak_Pa, "j_peak_m": s["peak"].j_peak_m,
              "tau_residual_Pa": s["peak"].tau_residual_Pa,
              "janosi_K_m": s["janosi"].K_m, "janosi_tau_max_Pa": s["janosi"].tau_max_Pa,
-             "janosi_rms_Pa": s["janosi"].rms_Pa} for s in r.shears]}
+             "janosi_rms_Pa": s["janosi"].rms_Pa,
+             **({} if s.get("loss") is None else {
+                 "particles": s["loss"]["particles"],
+                 "particles_lost_by_peak": s["loss"]["lost_by_peak"],
+                 "particles_lost_at_end": s["loss"]["lost_at_end"]})} for s in r.shears]}
+        warnings = shear_loss_warnings(r.shears)
+        if warnings:
+            out["shear"]["warnings"] = warnings
         if r.mc_peak:
             out["shear"].update({
                 "cohesion_Pa": r.mc_peak.cohesion_Pa, "friction_deg": r.mc_peak.friction_deg,

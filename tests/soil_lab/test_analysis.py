@@ -86,6 +86,34 @@ class Analysis(unittest.TestCase):
         src = data["source"]["mohr_coulomb"]["cohesion"]
         self.assertIn("intercept was -300 Pa (< 0: no cohesion), so c = 0", src)
 
+    def test_particles_lost_from_the_shear_box_are_counted_and_reported(self):
+        # A log as in.lab_shear writes it: an earlier thermo block (the consolidation's settle),
+        # then the shear's, then LIGGGHTS' loop summary.
+        rows = "\n".join(f"{100 * i:8d} {n:8d} {j:12.6g} 1000 5000 0.3"
+                          for i, (n, j) in enumerate(zip([1000] * 6 + [995, 990, 960, 900],
+                                                         np.linspace(0.0, 0.09, 10))))
+        log = ("    Step    Atoms        soil_ke       ke_ratio\n       0     1000  1e-3  0.5\n"
+               "Loop time of 1.0 on 1 procs for 0 steps with 1000 atoms\n"
+               "    Step    Atoms              j            tau          sigma          lid_z \n"
+               f"{rows}\nLoop time of 2.0 on 1 procs for 900 steps with 900 atoms\n")
+        counts = analysis.shear_particle_counts(log)
+        self.assertEqual(len(counts[0]), 10)
+        early = analysis.shear_particle_loss(counts, 0.04)  # the peak before any loss
+        self.assertEqual((early["particles"], early["lost_by_peak"]), (1000, 0.0))
+        self.assertAlmostEqual(early["lost_at_end"], 0.1)
+        late = analysis.shear_particle_loss(counts, 0.07)  # the row at j = 0.07: 990 left
+        self.assertAlmostEqual(late["lost_by_peak"], 0.01)
+        self.assertIsNone(analysis.shear_particle_counts("no thermo here\n"))
+
+        def box(loss, j_peak=0.05):
+            return {"sigma_Pa": 1e4, "loss": loss, "peak": SimpleNamespace(j_peak_m=j_peak)}
+        warn = analysis.shear_loss_warnings([box(early), box(None),
+                                             box({**late, "lost_by_peak": 0.02}, 0.07)])
+        self.assertEqual(len(warn), 2)
+        self.assertIn("10.0 % of its 1000 particles had left the box by the end", warn[0])
+        self.assertIn("2.0 % of its 1000 particles had left the box by the peak (j 0.07 m", warn[1])
+        self.assertEqual(analysis.shear_loss_warnings([box({**early, "lost_at_end": 0.005})]), [])
+
 
 if __name__ == "__main__":
     unittest.main()
