@@ -68,6 +68,9 @@ def main():
     # ci: sliding friction 0.5 and rolling friction 0.1 between glass-like spheres: a loose
     # granular packing's internal friction angle lies well inside 15..45 deg.
     check(15 < shear.get("friction_deg", 0) < 45, f"friction angle {shear.get('friction_deg')} deg")
+    lost = [s.get("particles_lost_at_end") for s in shear.get("stresses", [])]
+    check(len(lost) == 3 and all(x == 0.0 for x in lost),
+          f"no grain leaves the shear boxes (lost fractions {lost})")
     check(len(res.get("cost", {})) == 9, f"cost of 9 runs recorded ({len(res.get('cost', {}))})")
     total = res.get("cost_total", {})
     check(len(total.get("beds", {})) == 3 and total.get("lab_wall_s", 0) > total.get("runs_wall_s", 0) > 0,

@@ -55,6 +55,18 @@ class Plan(unittest.TestCase):
             for r in p.runs:
                 self.assertAlmostEqual(float(r.variables["shear_distance"]), expected)
 
+    def test_the_soil_carried_over_the_lower_frame_stays_on_it_and_in_the_domain(self):
+        # The upper frame ends `distance` beyond the lower one: the lower frame's rim must be
+        # wider than that (plus a grain) and the domain must reach past the upper frame's hole.
+        L, d = 12 * SAND.dmax_m, SAND.dmax_m
+        for travel in (0.12, 0.25, 0.5):
+            for r in make_plan(SAND, ("shear",), shear_travel=travel).runs:
+                distance = float(r.variables["shear_distance"])
+                rim = float(r.meshes["frame_low_mesh"][3])
+                self.assertGreaterEqual(rim, distance + d, f"travel {travel}")
+                self.assertGreaterEqual(float(r.variables["shear_xhi"]), L + distance + 2 * d)
+                self.assertLess(float(r.meshes["frame_up_mesh"][3]), d)  # the upper frame: thin
+
     def test_repose_rejects_multisphere_soils(self):
         clumps = SoilInfo(**{**SAND.__dict__, "multisphere": True})
         with self.assertRaisesRegex(LabInputError, "multisphere"):
