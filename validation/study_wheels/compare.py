@@ -5,8 +5,8 @@ effect (the full-domain run of the same point), its run-to-run scatter (the same
 ranks' grid) and the grain-size sensitivity.
 
     compare.py RESULTS.csv [--scm RESULTS_SCM.csv] [--full-domain RESULTS_FULL.csv]
-               [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--md OUT.md]
-               [--png OUT.png]
+               [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--label CONFIG]
+               [--md OUT.md] [--png OUT.png]
 
 Inputs are tables of `wheelsim-post curves --results` (docs/postprocess.md); the wheel and the soil
 of each row are the run file's folders (<out>/<wheel>/<soil>/s<slip>/run.h5, as wheel-sweep lays
@@ -102,20 +102,20 @@ def comparison_table(dem, scm):
     return out
 
 
-def point_table(dem, other, other_name, tolerance=None):
+def point_table(dem, other, other_name, tolerance=None, ref="sweep.toml"):
     """Markdown: each run of `other` against the DEM half's run of the same wheel and slip (a
     sensitivity: another soil file or other deck variables), with the wall-time ratio. With a
     tolerance (a fraction) each difference gets a verdict, also returned."""
     dem_at = {(r["wheel"], round(num(r["target_slip"]), 4)): r for r in dem}
     verdict_head = f" within {tolerance:.0%} |" if tolerance is not None else ""
-    out = [f"| point | quantity | sweep.toml | {other_name} | difference |{verdict_head}",
+    out = [f"| point | quantity | {ref} | {other_name} | difference |{verdict_head}",
            "|---|---|---|---|---|" + ("---|" if tolerance is not None else "")]
     verdicts = []
     for f in other:
         key = (f["wheel"], round(num(f["target_slip"]), 4))
         a = dem_at.get(key)
         if a is None:
-            out.append(f"| {key[0]} s {key[1]} | no run of this point in sweep.toml | | | |")
+            out.append(f"| {key[0]} s {key[1]} | no run of this point in {ref} | | | |")
             continue
         for col, sem, label, scale, unit in (
                 ("drawbar_pull_N", "drawbar_pull_sem_N", "drawbar pull", 1e-3, "kN"),
@@ -179,6 +179,9 @@ def main():
     ap.add_argument("--grain", help="the grain-size sensitivity's results table")
     ap.add_argument("--repeat", help="the repeat of the active domain's point on another ranks' "
                     "grid (the run-to-run scatter)")
+    ap.add_argument("--label", default="sweep.toml",
+                    help="the sweep config the positional table comes from, for the text (default "
+                    "sweep.toml; the active-domain check: sweep_active_domain.toml)")
     ap.add_argument("--md", help="write the comparison as Markdown")
     ap.add_argument("--png", help="write the comparison plot")
     ap.add_argument("--window", default="2-6",
@@ -193,17 +196,18 @@ def main():
     verdicts = []
     if a.full_domain:
         lines += ["## The active domain against the full domain", "",
-                  "The difference is sweep.toml's (active domain) against the full domain's.", ""]
-        t, verdicts = point_table(dem, read(a.full_domain), "full domain", ACTIVE_TOLERANCE)
+                  f"The difference is {a.label}'s (active domain) against the full domain's.", ""]
+        t, verdicts = point_table(dem, read(a.full_domain), "full domain", ACTIVE_TOLERANCE,
+                                  ref=a.label)
         lines += t + [""]
     if a.repeat:
         lines += ["## Run-to-run scatter: the same point, ranks cut along the bin", "",
-                  "sweep.toml's point (ranks across the width) against sweep_repeat.toml's (the "
+                  f"{a.label}'s point (ranks across the width) against sweep_repeat.toml's (the "
                   "same inputs, procs_x 2): another trajectory of the same experiment.", ""]
-        lines += point_table(dem, read(a.repeat), "repeat (procs_x 2)")[0] + [""]
+        lines += point_table(dem, read(a.repeat), "repeat (procs_x 2)", ref=a.label)[0] + [""]
     if a.grain:
-        lines += ["## Grain size: 16-40 mm (sweep.toml) against 12-30 mm (sweep_grain.toml)", ""]
-        lines += point_table(dem, read(a.grain), "12-30 mm grains")[0] + [""]
+        lines += [f"## Grain size: 16-40 mm ({a.label}) against 12-30 mm (sweep_grain.toml)", ""]
+        lines += point_table(dem, read(a.grain), "12-30 mm grains", ref=a.label)[0] + [""]
     text = "\n".join(lines) + "\n"
     if a.md:
         Path(a.md).write_text(text, encoding="utf-8")

@@ -4,16 +4,18 @@
 #   validation/study_wheels/run.sh [--smoke | --only PARTS] [--out-dir DIR] [--force] [--points GLOBS]
 #
 # PARTS (comma-separated, default dem,scm): dem — study wheels 1 and 5 at six slips on the tiled
-# DEM dry-sand bin (sweep.toml; prepares the bin once; about 1 h 40 min on 2 idle cores with the
-# active domain, README "Cost"); scm — the same wheels and slips on the fitted SCM soil and on SCM
-# dry sand of the tables (sweep_scm.toml; minutes); full_domain — wheel 1 at 20 % slip without the
-# active domain on the same bed (sweep_full_domain.toml; ~45 min; run dem first); grain — wheel 1
-# at 20 % slip on 12-30 mm grains (sweep_grain.toml, its own bin; ~1 h); repeat — the active
-# domain's point again with the ranks cut along the bin (sweep_repeat.toml; ~40 min): the
-# run-to-run scatter the full_domain comparison reads against. Resumable: a re-run
-# skips finished points. Writes here results.csv (DEM), results_<part>.csv (the others),
-# comparison.md, comparison.png and provenance[_<part>].toml (git hash,
-# command, machine, wall time). Run it in the background: nohup ... &
+# DEM dry-sand bin, 0.8 m deep (sweep.toml; prepares the bin once; ~1 h 5 min per point estimated
+# on 2 idle cores with the active domain, README "Cost"); scm — the same wheels and slips on the
+# fitted SCM soil and on SCM dry sand of the tables (sweep_scm.toml; minutes); grain — wheel 1 at
+# 20 % slip on 12-30 mm grains (sweep_grain.toml, its own bin); and issue 12's active-domain check,
+# on the first (0.40 m) bin of the soil before its calibration (dry_sand_coarse_mur0.3.in, a bed of
+# its own): active_domain — wheel 1 at 20 % with the active domain (sweep_active_domain.toml;
+# ~40 min); full_domain — the same without it (sweep_full_domain.toml; ~75 min); repeat — the
+# active-domain point on another ranks' grid (sweep_repeat.toml; ~40 min): the run-to-run scatter
+# the full_domain comparison reads against. Resumable: a re-run skips finished points. Writes here
+# results.csv (DEM), results_<part>.csv (the others), comparison.md and comparison.png (the case),
+# comparison_active_domain.md (the check) and provenance[_<part>].toml (git hash, command,
+# machine, wall time). Run it in the background: nohup ... &
 # --points GLOBS: only these points of each sweep (wheel-sweep --points, e.g. 'wheel1/*/s0.200').
 # --smoke: the CI version (sweep_smoke.toml: a 1.6 m bin, one slip, 0.2 s of test phase; about a
 #          minute): same pipeline, outputs into --out-dir only (nothing in this folder changes).
@@ -32,8 +34,8 @@ while (($#)); do
   esac
 done
 for part in ${only//,/ }; do
-  case $part in dem|scm|full_domain|grain|repeat) ;;
-    *) echo "run.sh: --only: unknown part '$part' (expected dem, scm, full_domain, grain, repeat)" >&2
+  case $part in dem|scm|grain|active_domain|full_domain|repeat) ;;
+    *) echo "run.sh: --only: unknown part '$part' (expected dem, scm, grain, active_domain, full_domain, repeat)" >&2
        exit 2 ;;
   esac
 done
@@ -72,12 +74,6 @@ fi
 [[ -z $out ]] || { echo "run.sh: --out-dir is for --smoke only (the case's sweeps name their bed under runs/validation/study_wheels)" >&2; exit 2; }
 runs_dir=$root/runs/validation
 wanted() { [[ ,$only, == *,$1,* ]]; }
-for p in full_domain repeat; do
-  if wanted $p && ! wanted dem; then
-    [[ -f $runs_dir/study_wheels/beds/dry_sand_coarse_bin/soilbin_dry_sand_coarse.restart ]] || {
-      echo "run.sh: $p runs on the DEM half's bed: run --only dem first" >&2; exit 2; }
-  fi
-done
 if wanted dem; then
   part sweep.toml "$runs_dir/study_wheels" "$here/results.csv" "$here/provenance.toml"
 fi
@@ -88,6 +84,10 @@ fi
 if wanted grain; then
   part sweep_grain.toml "$runs_dir/study_wheels_grain" "$here/results_grain.csv" \
     "$here/provenance_grain.toml"
+fi
+if wanted active_domain; then
+  part sweep_active_domain.toml "$runs_dir/study_wheels_active_domain" \
+    "$here/results_active_domain.csv" "$here/provenance_active_domain.toml"
 fi
 if wanted full_domain; then
   part sweep_full_domain.toml "$runs_dir/study_wheels_full_domain" \
@@ -100,10 +100,15 @@ fi
 if [[ -f $here/results.csv ]]; then
   extra=()
   [[ -f $here/results_scm.csv ]] && extra+=(--scm "$here/results_scm.csv")
-  [[ -f $here/results_full_domain.csv ]] && extra+=(--full-domain "$here/results_full_domain.csv")
   [[ -f $here/results_grain.csv ]] && extra+=(--grain "$here/results_grain.csv")
-  [[ -f $here/results_repeat.csv ]] && extra+=(--repeat "$here/results_repeat.csv")
   "$python" "$here/compare.py" "$here/results.csv" "${extra[@]}" \
     --md "$here/comparison.md" --png "$here/comparison.png" || status=1
+fi
+if [[ -f $here/results_active_domain.csv ]]; then
+  extra=()
+  [[ -f $here/results_full_domain.csv ]] && extra+=(--full-domain "$here/results_full_domain.csv")
+  [[ -f $here/results_repeat.csv ]] && extra+=(--repeat "$here/results_repeat.csv")
+  "$python" "$here/compare.py" "$here/results_active_domain.csv" "${extra[@]}" \
+    --label sweep_active_domain.toml --md "$here/comparison_active_domain.md" || status=1
 fi
 exit $status
