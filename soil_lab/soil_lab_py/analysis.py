@@ -89,8 +89,9 @@ def plate_end_pressure(plate):
     return float(np.mean(p[z >= 0.8 * z.max()]))
 
 
-#: A shear box that has lost more than this share of its particles (over the upper frame's
-#: overhang, which has no floor) by the peak, or by the end, is reported (docs/soil-lab.md).
+#: A shear box that has lost more than this share of its particles by the peak, or by the end, is
+#: reported (docs/soil-lab.md). Boxes run before 2026-11-26 lost grains over the upper frame's
+#: overhang; since then the lower frame's rim and a wider domain keep them, and this is a check.
 SHEAR_LOSS_WARNING = 0.01
 _SHEAR_THERMO_HEADER = re.compile(r"^\s*Step\s+Atoms\s+j\s+tau\b", re.M)
 
@@ -153,7 +154,7 @@ def shear_loss_warnings(shears):
             out.append(at + f"{100 * loss['lost_by_peak']:.1f} % of its {loss['particles']} "
                        f"particles had left the box by the peak (j {s['peak'].j_peak_m:.3g} m, over "
                        "the upper frame's overhang): the peak is not that of the full sample; "
-                       "shorten --shear-travel")
+                       "re-run the box (the lower frame's rim keeps them since 2026-11-26)")
         elif loss["lost_at_end"] > SHEAR_LOSS_WARNING:
             out.append(at + f"{100 * loss['lost_at_end']:.1f} % of its {loss['particles']} "
                        "particles had left the box by the end (over the upper frame's overhang, "
