@@ -50,6 +50,9 @@ def main(argv=None):
                     help="list the points, whether each is finished, and the commands; "
                          "write nothing")
     ap.add_argument("--force", action="store_true", help="re-run finished points too")
+    ap.add_argument("--beds-only", action="store_true",
+                    help="DEM: prepare (or reuse) the beds of the sweep's points, then stop: run "
+                         "no point (e.g. a cluster's bed job before the point jobs)")
     ap.add_argument("--points", metavar="GLOBS",
                     help="only the points whose folder (WHEEL/SOIL/sSLIP, e.g. wheel1/*/s0.200) "
                          "matches one of these comma-separated shell patterns")
@@ -79,6 +82,8 @@ def main(argv=None):
         ap.error(f"--budget must be a number of hours > 0, got {a.budget:g}")
     if a.config is None and not a.measure_rate:
         ap.error("the following arguments are required: config")
+    if a.beds_only and (a.dry_run or a.estimate):
+        ap.error("--beds-only prepares beds: not with --dry-run or --estimate")
     build = Path(a.build_dir or os.environ.get("WHEELSIM_BUILD_DIR") or REPO / "build").resolve()
     liggghts = build / "bin" / "liggghts-wheel"
     if a.measure_rate:
@@ -98,6 +103,10 @@ def main(argv=None):
                   f"{', '.join(p.reldir for p in sweep.points)}", file=sys.stderr)
             return EXIT_USAGE
         sweep.points = chosen
+    if a.beds_only and sweep.terrain != "dem":
+        print(f"wheel-sweep: error: --beds-only: {a.config} is an {sweep.terrain.upper()} sweep; "
+              "only DEM sweeps have beds", file=sys.stderr)
+        return EXIT_USAGE
     needed = [build / "bin" / "wheel-rig"]
     if sweep.terrain == "dem":
         needed += [REPO / "scripts" / "wheel-cosim", build / "bin" / "liggghts-wheel"]
@@ -120,7 +129,7 @@ def main(argv=None):
     cost = {"rate": machine_rate, "cores": cores, "yes": a.yes,
             "budget_h": a.budget if a.budget is not None else sweep.budget_h}
     r = runner.Runner(sweep, out, REPO, build, jobs, force=a.force, dry_run=a.dry_run,
-                      cost=cost)
+                      cost=cost, beds_only=a.beds_only)
     if a.estimate:
         return print_estimate(r, sweep, cost)
     try:

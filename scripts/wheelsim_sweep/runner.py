@@ -97,8 +97,9 @@ class Interrupted(Exception):
 
 class Runner:
     def __init__(self, sweep, out_dir, repo, build_dir, jobs, force=False, dry_run=False,
-                 cost=None):
+                 cost=None, beds_only=False):
         self.sweep = sweep
+        self.beds_only = beds_only  # DEM: prepare the points' beds, run no point (cli --beds-only)
         # DEM cost check before running (cli.py): {"rate": callable -> estimate.Rate, "cores",
         # "budget_h" (None: no budget), "yes"}; None: no estimate line
         self.cost = cost
@@ -585,7 +586,7 @@ class Runner:
         if self.dry_run:
             return self._dry_run(todo)
 
-        if sw.terrain == "dem" and todo and self.cost is not None:
+        if sw.terrain == "dem" and todo and self.cost is not None and not self.beds_only:
             refuse = self._check_cost()
             if refuse is not None:
                 return refuse
@@ -612,13 +613,17 @@ class Runner:
             for p, why in again:
                 self.say(f"    {self.describe(p)} ({why})")
         try:
-            if sw.terrain == "dem" and todo:
+            if sw.terrain == "dem" and (todo or self.beds_only):
                 try:
                     self.prepare_beds()
                 except RuntimeError as e:
                     self.say(f"wheel-sweep: error: {e}")
                     self.write_manifest()
                     return 1
+            if self.beds_only:
+                self.say(f"wheel-sweep: --beds-only: the beds are ready; {len(todo)} point(s) "
+                         "left to run")
+                return 0
             self._run_points(todo)
         except Interrupted:
             pass

@@ -536,8 +536,8 @@ liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
 def case_dem_tiled_bed(a, work):
     """A tiled DEM bin recipe (tile_length; docs/soil-bins.md "Tiled beds"): ci, 0.12 x 0.08 m
     in 3 blocks of 0.04 m (short settling and relaxation bounds: the test is about the driver).
-    wheel-sweep prepares it (the bed log says tiles = 3, its .vars records tile_length 0.04),
-    one coupled point (150 steps, 1 rank) runs on it; a re-run skips the point, --force re-runs
+    wheel-sweep --beds-only prepares it alone (the bed log says tiles = 3, its .vars records
+    tile_length 0.04; no point runs), then one coupled point (150 steps, 1 rank) runs on it; a re-run skips the point, --force re-runs
     it on the same bed (reused, untouched); a changed tile_length (0.06: 2 blocks) re-prepares the bed, says which key changed,
     and re-runs the point; a changed non-tile key is still an error."""
     if shutil.which("mpirun") is None:
@@ -582,8 +582,13 @@ liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
         check(done["exit_status"] == 0, f"the point failed: {done} (log {pdir / 'run.log'})")
 
     write(0.04)
+    r = run("--beds-only")  # the bed job of a cluster's one-job-per-point layout
+    check(r.returncode == 0 and f"bed ci: preparing {bed}" in r.stdout and bed.is_file()
+          and "--beds-only: the beds are ready; 1 point(s) left to run" in r.stdout
+          and not pdir.exists(), "--beds-only did not prepare the bed alone")
     r = run()
-    check(r.returncode == 0 and f"bed ci: preparing {bed}" in r.stdout, "the bed was not prepared")
+    check(r.returncode == 0 and f"bed ci: reusing {bed}" in r.stdout,
+          "the bed --beds-only prepared was not reused")
     check_bed("0.04", 3)
     r = run()
     check(r.returncode == 0 and "skipping 1 finished point(s)" in r.stdout,

@@ -119,6 +119,14 @@ def case_cli(a, work):
     check(r.returncode == 2 and "--jobs must be >= 1" in r.stderr, "--jobs 0: expected exit 2")
     r = _run(a)
     check(r.returncode == 2 and "config" in r.stderr, "no config: expected exit 2")
+    r = _run(a, str(cfg), "--beds-only", "--dry-run")
+    check(r.returncode == 2 and "--beds-only prepares beds: not with --dry-run" in r.stderr,
+          "--beds-only --dry-run: expected exit 2")
+    scm = Path(a.sweep).resolve().parents[1] / "inputs" / "sweeps" / "demo_scm.toml"
+    r = _run(a, str(scm), "--beds-only", "--out-dir", str(work / "out"))
+    check(r.returncode == 2 and "only DEM sweeps have beds" in r.stderr,
+          f"--beds-only on an SCM sweep: expected exit 2 naming it, got {r.returncode}: "
+          f"{r.stderr!r}")
     check(not (work / "out").exists(), "bad usage wrote output")
 
 
