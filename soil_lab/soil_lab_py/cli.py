@@ -130,10 +130,10 @@ def _report(directory, quiet=False):
                           + ", ".join(f"{k} {v:.4g}" for k, v in vals.items()))
         if r.repose_error:
             print(f"soil-lab: warning: repose: {r.repose_error}")
-        for w in analysis.shear_loss_warnings(r.shears):
+        for w in s.get("shear", {}).get("warnings", []):
             print(f"soil-lab: warning: {w}")
         if r.costs or r.bed_costs:
-            c = analysis.summary(r)["cost_total"]
+            c = s["cost_total"]
             print(f"soil-lab: cost: beds {c['beds_wall_s']:.0f} s + runs {c['runs_wall_s']:.0f} s "
                   f"= {c['lab_wall_s'] / 60:.1f} min of wall time")
         for w, e in sorted(r.unload_errors.items()):
