@@ -5,8 +5,8 @@
 #include <zmq.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <sys/stat.h>
 #include <sys/un.h>
