@@ -4,8 +4,9 @@ docs/sweeps.md, "Cost estimate".
 
 The cache is a TOML file (`cache_path()`: $WHEELSIM_RATE_CACHE, else
 $XDG_CACHE_HOME/wheelsim/dem_rate.toml, else ~/.cache/wheelsim/dem_rate.toml) with one
-[[rate]] table per host and CPU model. An entry whose liggghts-wheel version differs from the
-build's is stale: the estimate then uses the defaults below and says so.
+[[rate]] table per host and CPU model. An entry of another commit of the same liggghts-wheel
+release is used and the estimate says so; an entry of another release is stale: the estimate then
+uses the defaults below and says so.
 
 The benchmark (`measure`): prepares a ci bed of BENCH_BIN (about 14 000 spheres) with
 inputs/in.soilbin on one rank (the bed rate: particle-steps per second of LIGGGHTS' loop while
@@ -74,6 +75,12 @@ def liggghts_version(liggghts):
     return line
 
 
+def release(liggghts_version_text):
+    """The release part of a `liggghts-wheel --version` line, without its commit:
+    'liggghts-wheel 0.1.0 (git 968c6fe30faf)' -> 'liggghts-wheel 0.1.0'."""
+    return liggghts_version_text.split(" (git", 1)[0].strip()
+
+
 def machine_key(liggghts_version_text):
     return {"host": platform.node(), "cpu": cpu_model(), "liggghts_wheel": liggghts_version_text}
 
@@ -129,14 +136,23 @@ def lookup(path, key):
     entries = read_cache(path)
     same_machine = [e for e in entries if (e.get("host"), e.get("cpu")) == (key["host"],
                                                                               key["cpu"])]
+    def measured(e, note=""):
+        load = e.get("load_average_1min")
+        return Rate(**_entry_rate(e, path),
+                    source=f"measured {e.get('measured_at', '?')} on {key['host']}"
+                    + (f" (load average {load:.1f} on {e.get('cores', '?')} cores)"
+                       if isinstance(load, (int, float)) else "") + note + f" [{path}]")
+
     for e in same_machine:
         if e.get("liggghts_wheel") == key["liggghts_wheel"]:
-            v = _entry_rate(e, path)
-            load = e.get("load_average_1min")
-            src = (f"measured {e.get('measured_at', '?')} on {key['host']}"
-                   + (f" (load average {load:.1f} on {e.get('cores', '?')} cores)"
-                      if isinstance(load, (int, float)) else "") + f" [{path}]")
-            return Rate(**v, source=src)
+            return measured(e)
+    # Another commit of the same release: the rate of LIGGGHTS' loop on this machine barely
+    # moves between commits, and a developer's cache would otherwise never match. Used, and said.
+    for e in same_machine:
+        if release(e.get("liggghts_wheel", "")) == release(key["liggghts_wheel"]):
+            return measured(e, f" with {e.get('liggghts_wheel')}, this build is "
+                            f"{key['liggghts_wheel']}: re-measure (--measure-rate) if the fix "
+                            "or the build flags changed")
     if same_machine:
         why = (f"the cached rate ({path}) is for {same_machine[0].get('liggghts_wheel')}, this "
                f"build is {key['liggghts_wheel']}")

@@ -496,8 +496,8 @@ def _rate_entry(key, **kw):
 
 def case_rate_cache(a, work):
     """The rate cache: a missing file gives the defaults and says so; a written entry is read
-    back for the same host, CPU and liggghts-wheel version; another version is stale (defaults,
-    naming both versions); writing replaces the entry of the same host and CPU and keeps other
+    back for the same host, CPU and liggghts-wheel version, and for another commit of the same
+    release (saying so); another release is stale (defaults, naming both versions); writing replaces the entry of the same host and CPU and keeps other
     machines'; a damaged file is an error naming it."""
     from wheelsim_sweep import rate as R
     from wheelsim_sweep.estimate import EstimateError
@@ -515,10 +515,14 @@ def case_rate_cache(a, work):
     r = R.lookup(path, key)
     check((r.rate_per_rank, r.efficiency_np2, r.startup_s, r.bed_rate_per_rank)
           == (1.5e6, 0.8, 1.0, 1.2e6) and "measured 2026-01-01" in r.source, f"cached: {r}")
-    stale = R.machine_key("liggghts-wheel 0.1.0 (git bbbb)")
+    commit = R.machine_key("liggghts-wheel 0.1.0 (git cccc)")
+    r = R.lookup(path, commit)
+    check(r.rate_per_rank == 1.5e6 and "git aaaa" in r.source and "git cccc" in r.source
+          and "re-measure" in r.source, f"another commit of the release: {r.source}")
+    stale = R.machine_key("liggghts-wheel 0.2.0 (git bbbb)")
     r = R.lookup(path, stale)
-    check(r.rate_per_rank == R.DEFAULT["rate_per_rank"] and "git aaaa" in r.source
-          and "git bbbb" in r.source, f"stale version not reported: {r.source}")
+    check(r.rate_per_rank == R.DEFAULT["rate_per_rank"] and "0.1.0 (git aaaa)" in r.source
+          and "0.2.0 (git bbbb)" in r.source, f"stale version not reported: {r.source}")
     R.write_cache(path, _rate_entry(stale, rate_per_rank=2.5e6))  # re-measured: replaces
     entries = R.read_cache(path)
     check(len(entries) == 2 and {e["host"] for e in entries} == {key["host"], "elsewhere"},
