@@ -7,7 +7,9 @@
 # DEM dry-sand bin, 0.8 m deep (sweep.toml; prepares the bin once; ~1 h 5 min per point estimated
 # on 2 idle cores with the active domain, README "Cost"); scm — the same wheels and slips on the
 # fitted SCM soil and on SCM dry sand of the tables (sweep_scm.toml; minutes); grain — wheel 1 at
-# 20 % slip on 12-30 mm grains (sweep_grain.toml, its own bin); and issue 12's active-domain check,
+# 20 % slip on 12-30 mm grains (sweep_grain.toml, its own bin); goal — issue 12's goal point: wheel 1
+# at 20 % on 20-50 mm grains, time step scaled with the grain (sweep_goal.toml, its own bin;
+# ~23 min + a ~3 min bed); and issue 12's active-domain check,
 # on the first (0.40 m) bin of the soil before its calibration (dry_sand_coarse_mur0.3.in, a bed of
 # its own): active_domain — wheel 1 at 20 % with the active domain (sweep_active_domain.toml;
 # ~40 min); full_domain — the same without it (sweep_full_domain.toml; ~75 min); repeat — the
@@ -34,8 +36,8 @@ while (($#)); do
   esac
 done
 for part in ${only//,/ }; do
-  case $part in dem|scm|grain|active_domain|full_domain|repeat) ;;
-    *) echo "run.sh: --only: unknown part '$part' (expected dem, scm, grain, active_domain, full_domain, repeat)" >&2
+  case $part in dem|scm|grain|goal|active_domain|full_domain|repeat) ;;
+    *) echo "run.sh: --only: unknown part '$part' (expected dem, scm, grain, goal, active_domain, full_domain, repeat)" >&2
        exit 2 ;;
   esac
 done
@@ -85,6 +87,10 @@ if wanted grain; then
   part sweep_grain.toml "$runs_dir/study_wheels_grain" "$here/results_grain.csv" \
     "$here/provenance_grain.toml"
 fi
+if wanted goal; then
+  part sweep_goal.toml "$runs_dir/study_wheels_goal" "$here/results_goal.csv" \
+    "$here/provenance_goal.toml"
+fi
 if wanted active_domain; then
   part sweep_active_domain.toml "$runs_dir/study_wheels_active_domain" \
     "$here/results_active_domain.csv" "$here/provenance_active_domain.toml"
@@ -101,6 +107,7 @@ if [[ -f $here/results.csv ]]; then
   extra=()
   [[ -f $here/results_scm.csv ]] && extra+=(--scm "$here/results_scm.csv")
   [[ -f $here/results_grain.csv ]] && extra+=(--grain "$here/results_grain.csv")
+  [[ -f $here/results_goal.csv ]] && extra+=(--goal "$here/results_goal.csv")
   "$python" "$here/compare.py" "$here/results.csv" "${extra[@]}" \
     --md "$here/comparison.md" --png "$here/comparison.png" || status=1
 fi
