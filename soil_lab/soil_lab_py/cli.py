@@ -96,7 +96,7 @@ def _run(a):
     lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet)
     soil = lab.soil_info(soil_file)
     p = plan.make_plan(soil, tests, a.preset, stresses, bed_vars, widths, a.plate_bin,
-                       a.speed_check, a.shear_travel)
+                       a.speed_check, a.shear_travel, a.plate_speed, a.shear_speed)
     # The soil file as the checkout names it (inputs/soils/x.in), so results do not carry the
     # path of the machine that ran them; a file outside the checkout keeps its absolute path.
     soil_path = Path(soil.file).resolve()
@@ -172,6 +172,10 @@ def main(argv=None):
     r.add_argument("--shear-travel", type=float, metavar="FRACTION",
                    help="shear box travel as a fraction of the box side (default 0.12; "
                         "at most 0.5)")
+    r.add_argument("--plate-speed", type=float, metavar="M_S",
+                   help="the plates' speed [m/s] (default 0.02; quick 0.04)")
+    r.add_argument("--shear-speed", type=float, metavar="M_S",
+                   help="the shear box's speed [m/s] (default 0.005; quick 0.01)")
     r.add_argument("--speed-check", action="store_true",
                    help="quasi-static check: also run the larger plate, the middle normal stress "
                         "and the repose test at half speed and report the differences")

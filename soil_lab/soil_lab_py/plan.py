@@ -68,12 +68,31 @@ def _f(x):
     return f"{x:.6g}"
 
 
+# Tool speeds [m/s]: the defaults (docs/soil-lab.md) and the accepted range of --plate-speed and
+# --shear-speed (a faster tool is no longer a quasi-static soil test; a value above it is most
+# likely a unit slip, e.g. mm/s).
+PLATE_SPEED = {"standard": 0.02, "quick": 0.04}
+SHEAR_SPEED = {"standard": 0.005, "quick": 0.01}
+MAX_TOOL_SPEED = 0.1
+
+
+def _speed(value, default, option):
+    if value is None:
+        return default
+    if not 0 < value <= MAX_TOOL_SPEED:
+        raise LabInputError(f"{option} {value:g} m/s is outside (0, {MAX_TOOL_SPEED:g}] m/s (a "
+                            f"quasi-static tool speed in m/s; default {default:g})")
+    return value
+
+
 def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None, bed_vars=None,
-              plate_widths_m=None, plate_bin_m=None, speed_check=False, shear_travel=None):
+              plate_widths_m=None, plate_bin_m=None, speed_check=False, shear_travel=None,
+              plate_speed=None, shear_speed=None):
     """The beds and runs for `tests` on `soil`. Raises LabInputError for an unknown test or preset,
     plates that are not two different widths or do not fit their bin with a plate width of soil
     on every side, a normal stress outside what the box can hold, a repose test on a multisphere
-    soil, or a shear travel (a fraction of the box side) outside (0, 0.5]. speed_check: also the
+    soil, a shear travel (a fraction of the box side) outside (0, 0.5], or a plate or shear speed
+    [m/s] (default PLATE_SPEED, SHEAR_SPEED) outside (0, MAX_TOOL_SPEED]. speed_check: also the
     larger plate, the middle normal stress and the repose test at half speed (runs named
     <run>_half), for the quasi-static check."""
     tests = tuple(tests)
@@ -83,6 +102,8 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
     if preset not in PRESETS:
         raise LabInputError(f"unknown preset '{preset}' (expected one of {', '.join(PRESETS)})")
     quick = preset == "quick"
+    plate_speed = _speed(plate_speed, PLATE_SPEED[preset], "--plate-speed")
+    shear_speed = _speed(shear_speed, SHEAR_SPEED[preset], "--shear-speed")
     d = soil.dmax_m
     bed_vars = dict(bed_vars or {})
     beds: Dict[str, Bed] = {}
@@ -111,7 +132,7 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         beds["plate"] = Bed("plate", side, side, depth, bed_vars)
         if "plate" in tests:
             depth1, unload, depth2 = (1.0 * d, 0.25 * d, 1.5 * d) if quick else (2.0 * d, 0.5 * d, 3.0 * d)
-            speed = 0.04 if quick else 0.02
+            speed = plate_speed
             thickness = max(0.5 * d, 0.005)
             for b in (b1, b2):
                 runs.append(Run(
@@ -147,7 +168,7 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         up_h = 0.5 * H + 3.0 * d  # room for the lid above the soil
         lid_t = max(0.5 * d, 0.005)
         clear = 0.25 * soil.dmin_m
-        speed = 0.01 if quick else 0.005
+        speed = shear_speed
         travel = 0.12 if shear_travel is None else shear_travel
         if not 0 < travel <= 0.5:
             raise LabInputError(f"shear travel {travel:g} is outside (0, 0.5] (a fraction of the "

@@ -41,6 +41,8 @@ class Plan(unittest.TestCase):
             "less than 2 grains": dict(tests=("plate",), plate_widths_m=(0.01, 0.05)),
             "shear travel 0.6 is outside (0, 0.5]": dict(tests=("shear",), shear_travel=0.6),
             "shear travel 0 is outside (0, 0.5]": dict(tests=("shear",), shear_travel=0.0),
+            "--plate-speed 0 m/s is outside (0, 0.1] m/s": dict(tests=("plate",), plate_speed=0.0),
+            "--shear-speed 5 m/s is outside (0, 0.1] m/s": dict(tests=("shear",), shear_speed=5.0),
         }
         for message, kwargs in cases.items():
             with self.subTest(message):
@@ -54,6 +56,20 @@ class Plan(unittest.TestCase):
             p = make_plan(SAND, ("shear",), shear_travel=travel)
             for r in p.runs:
                 self.assertAlmostEqual(float(r.variables["shear_distance"]), expected)
+
+    def test_tool_speeds_default_or_as_given(self):
+        for kwargs, plate, shear in (({}, 0.02, 0.005), (dict(preset="quick"), 0.04, 0.01),
+                                     (dict(plate_speed=0.01, shear_speed=0.01), 0.01, 0.01)):
+            p = make_plan(SAND, ("plate", "shear"), **kwargs)
+            for r in p.runs:
+                want = plate if r.test == "plate" else shear
+                var = "plate_speed" if r.test == "plate" else "shear_speed"
+                self.assertAlmostEqual(float(r.variables[var]), want, msg=str(kwargs))
+                self.assertAlmostEqual(r.meta["speed_m_s"], want, msg=str(kwargs))
+        # the quasi-static check halves the speed given
+        p = make_plan(SAND, ("shear",), shear_speed=0.01, speed_check=True)
+        half = [r for r in p.runs if r.name.endswith("_half")]
+        self.assertAlmostEqual(float(half[0].variables["shear_speed"]), 0.005)
 
     def test_the_soil_carried_over_the_lower_frame_stays_on_it_and_in_the_domain(self):
         # The upper frame ends `distance` beyond the lower one: the lower frame's rim must be
