@@ -85,7 +85,7 @@ public:
 private:
   void parse_arguments(int narg, char **arg);
   void read_materials();
-  void check_timestep();
+  void check_timestep(bool set_up); // set_up: the first init or a new dt (errors only)
   void compute_contacts(bool update_history);
   void contact_particle(int i, wheelsim::ContactPass &pass); // one owned particle
   // The candidate list (docs/fix-wheel-cosim.md, "Candidate list")
