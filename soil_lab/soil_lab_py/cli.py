@@ -178,7 +178,8 @@ def main(argv=None):
                    help="the shear box's speed [m/s] (default 0.005; quick 0.01)")
     r.add_argument("--speed-check", action="store_true",
                    help="quasi-static check: also run the larger plate, the middle normal stress "
-                        "and the repose test at half speed and report the differences")
+                        "and the repose test (not in the quick preset) at half speed and report "
+                        "the differences")
     r.add_argument("--bed-var", action="append", metavar="NAME=VALUE",
                    help="an inputs/in.soilbin variable for every bed (e.g. compaction=plate)")
     r.add_argument("--build-dir", metavar="D", help="build directory (default: <repo>/build)")

@@ -100,6 +100,10 @@ class Plan(unittest.TestCase):
             self.assertAlmostEqual(float(r.variables[var]),
                                    float(full[name[:-5]].variables[var]) / 2)
             self.assertEqual(r.meshes, full[name[:-5]].meshes)
+        # quick: no half-speed repose (its small heap's angle is noise at the check's tolerance)
+        quick = make_plan(SAND, ("plate", "shear", "repose"), preset="quick", speed_check=True)
+        self.assertEqual(sorted(r.name for r in quick.runs if r.name.endswith("_half")),
+                         ["plate_b0.032_half", "shear_s6000_half"])
 
 
 if __name__ == "__main__":
