@@ -10,6 +10,8 @@ ProgressLine::ProgressLine(double interval_s, std::FILE *out)
 void ProgressLine::update(const RigSimulation &sim, const RigOutputs &out) {
   if (interval_s_ <= 0.0)
     return;
+  if (last_step_ < 0)
+    last_step_ = out.step; // the first step this process runs (not 0 after a resume)
   const auto now = Clock::now();
   if (std::chrono::duration<double>(now - last_).count() >= interval_s_)
     print(sim, out);
@@ -20,7 +22,8 @@ void ProgressLine::finish(const RigSimulation &sim, const RigOutputs &out) { pri
 void ProgressLine::print(const RigSimulation &sim, const RigOutputs &out) {
   const auto now = Clock::now();
   const double since_last = std::chrono::duration<double>(now - last_).count();
-  const double rate = since_last > 0.0 ? (out.step - last_step_) / since_last : 0.0;
+  const double rate =
+      since_last > 0.0 && last_step_ >= 0 ? (out.step - last_step_) / since_last : 0.0;
   char eta[64] = "after the settle phase";
   if (!std::isnan(sim.test_start_s()) && rate > 0.0) {
     const double left_s = sim.test_start_s() + sim.config().run.duration_s - out.time_s;

@@ -1,0 +1,41 @@
+// wheel-rig's progress line (wheel_dynamics/app/progress.cpp): the steps-per-second rate counts
+// only the steps this process ran, so a run resumed from a checkpoint at step N does not report
+// N steps in its first interval (it printed "1155 steps/s, ETA 00:01:31" for a point that had
+// 50 min left, 2026-11-26).
+#include "progress.h"
+#include "wheelsim/rig/rig_config.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+namespace wheelsim::rig {
+namespace {
+
+std::string read_all(std::FILE *f) {
+  std::rewind(f);
+  std::string text;
+  char buf[512];
+  while (std::fgets(buf, sizeof(buf), f))
+    text += buf;
+  return text;
+}
+
+TEST(ProgressLine, FirstLineAfterAResumeCountsOnlyItsOwnSteps) {
+  const RigSimulation sim(load_rig_config(RIG_EXAMPLE_CONFIG));
+  std::FILE *f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  ProgressLine line(1e-9, f); // a line at every update
+  RigOutputs o;
+  o.step = 66903; // the checkpoint's step: the first this process runs
+  o.time_s = 2.94;
+  line.update(sim, o);
+  const std::string text = read_all(f);
+  std::fclose(f);
+  EXPECT_NE(text.find("t = 2.9400 s"), std::string::npos) << text;
+  EXPECT_NE(text.find(", 0 steps/s,"), std::string::npos) << text;
+}
+
+} // namespace
+} // namespace wheelsim::rig
