@@ -467,8 +467,10 @@ void FixWheelCosim::init() {
     s_->motion_variable[k] = ivar;
   }
   read_materials();
+  // A run resumed from a checkpoint ('resume') was set up by the run it continues: its first
+  // init is checked as a later run's, with the grains' speeds at the checkpoint.
   if (s_->check_timestep)
-    check_timestep(!s_->timestep_checked);
+    check_timestep(!s_->timestep_checked && s_->resume_path.empty());
   s_->timestep_checked = true;
 }
 
