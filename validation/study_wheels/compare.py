@@ -207,13 +207,15 @@ def main():
                   f"{a.label}'s point (ranks across the width) against sweep_repeat.toml's (the "
                   "same inputs, procs_x 2): another trajectory of the same experiment.", ""]
         lines += point_table(dem, read(a.repeat), "repeat (procs_x 2)", ref=a.label)[0] + [""]
-    if a.grain:
-        lines += [f"## Grain size: 16-40 mm ({a.label}) against 12-30 mm (sweep_grain.toml)", ""]
-        lines += point_table(dem, read(a.grain), "12-30 mm grains", ref=a.label)[0] + [""]
-    if a.goal:
-        lines += [f"## Issue 12's goal: 16-40 mm ({a.label}) against 21-52 mm (sweep_goal.toml, "
-                  "time step x 1.3)", ""]
-        lines += point_table(dem, read(a.goal), "21-52 mm grains", ref=a.label)[0] + [""]
+    # the same point on other grains: (table, heading after the case's own grain, column name)
+    for table, heading, name in (
+            (a.grain, "Grain size: 16-40 mm ({}) against 12-30 mm (sweep_grain.toml)",
+             "12-30 mm grains"),
+            (a.goal, "Issue 12's goal: 16-40 mm ({}) against 21-52 mm (sweep_goal.toml, time step "
+             "x 1.3)", "21-52 mm grains")):
+        if table:
+            lines += ["## " + heading.format(a.label), ""]
+            lines += point_table(dem, read(table), name, ref=a.label)[0] + [""]
     text = "\n".join(lines) + "\n"
     if a.md:
         Path(a.md).write_text(text, encoding="utf-8")

@@ -9,7 +9,7 @@
 # fitted SCM soil and on SCM dry sand of the tables (sweep_scm.toml; minutes); grain — wheel 1 at
 # 20 % slip on 12-30 mm grains (sweep_grain.toml, its own bin); goal — issue 12's goal point: wheel 1
 # at 20 % on 21-52 mm grains, time step scaled with the grain (sweep_goal.toml, its own bin;
-# ~23 min + a ~3 min bed); and issue 12's active-domain check,
+# measured 23 min + a 4 min bed); and issue 12's active-domain check,
 # on the first (0.40 m) bin of the soil before its calibration (dry_sand_coarse_mur0.3.in, a bed of
 # its own): active_domain — wheel 1 at 20 % with the active domain (sweep_active_domain.toml;
 # ~40 min); full_domain — the same without it (sweep_full_domain.toml; ~75 min); repeat — the
