@@ -42,8 +42,7 @@ install(FILES "${_src}/meshes/catalog.toml" DESTINATION ${_share}/meshes)
 install(DIRECTORY "${WHEELSIM_MESH_DIR}/" DESTINATION ${_share}/build/meshes
         FILES_MATCHING PATTERN "*.obj" PATTERN "*.stl" PATTERN "*.props.toml"
         PATTERN "CMakeFiles" EXCLUDE)
-file(CONFIGURE OUTPUT "${CMAKE_BINARY_DIR}/generated/VERSION"
-     CONTENT "${PROJECT_VERSION} ${WHEELSIM_GIT_REVISION}\n")
+# generated/VERSION: written with wheelsim_version.h at every build (cmake/WheelsimGitRevision.cmake)
 install(FILES "${CMAKE_BINARY_DIR}/generated/VERSION" DESTINATION ${_share})
 
 # --- documentation and licence ---
