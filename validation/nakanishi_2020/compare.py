@@ -1,13 +1,16 @@
 #!/usr/bin/python3
 """Validation case 1 (Nakanishi et al. 2020): our results.csv against the published curves.
 
-    compare.py RESULTS.csv REFERENCE.csv --r-eff 0.11 [--png comparison.png] [--md comparison.md]
+    compare.py RESULTS.csv REFERENCE.csv --r-eff 0.11 [--scm RESULTS_SCM.csv]
+               [--png comparison.png] [--md comparison.md]
 
 Net traction = drawbar pull; gross traction = driving torque / R_eff; motion resistance = net -
 gross. Each of our rows is matched to the reference row of the same slip (within 0.5 percentage
 points). The goal (issue 11): net within 25 % or 1 N (the larger) of Nakanishi at every slip from
 13 % to 78 %, gross within 20 %. Prints one line per slip and the verdict; exit 0 whatever the
-verdict (it is a report, not a test), 2 on bad input.
+verdict (it is a report, not a test), 2 on bad input. --scm: also the SCM half (the same rig on
+the SCM soil fitted to the DEM soil, matched by target slip): a table of DEM against SCM and SCM's
+curves in the plot.
 """
 import argparse
 import math
@@ -34,6 +37,7 @@ def main():
     ap.add_argument("results")
     ap.add_argument("reference")
     ap.add_argument("--r-eff", type=float, required=True, help="R_eff [m] for the gross traction")
+    ap.add_argument("--scm", help="the SCM half's results table (run.sh --scm)")
     ap.add_argument("--png")
     ap.add_argument("--md")
     a = ap.parse_args()
@@ -85,6 +89,20 @@ def main():
     verdict = (f"goal (net within 25 % or 1 N, gross within 20 %, slips 13-78 %): "
                f"{sum(t['net_ok'] for t in goal_rows)}/{len(goal_rows)} net, "
                f"{sum(t['gross_ok'] for t in goal_rows)}/{len(goal_rows)} gross")
+    scm = scm_rows(a.scm, ours, a.r_eff) if a.scm else []
+    if scm:
+        lines += ["", "DEM against SCM on the same soil (SCM: the soil lab's fit to the DEM soil; "
+                  "Δ = SCM − DEM):", "",
+                  "| slip [%] | net DEM [N] | net SCM [N] | Δ net [N] | gross DEM [N] | "
+                  "gross SCM [N] | Δ gross [%] | sinkage DEM [mm] | sinkage SCM [mm] | "
+                  "Δ sinkage [%] |", "|---|---|---|---|---|---|---|---|---|---|"]
+        for m in scm:
+            lines.append(
+                f"| {m['slip']:.2f} | {m['net']:.2f} | {m['scm_net']:.2f} | "
+                f"{m['scm_net'] - m['net']:+.2f} | {m['gross']:.2f} | {m['scm_gross']:.2f} | "
+                f"{100 * (m['scm_gross'] - m['gross']) / m['gross']:+.1f} | "
+                f"{1000 * m['sinkage']:.1f} | {1000 * m['scm_sinkage']:.1f} | "
+                f"{100 * (m['scm_sinkage'] - m['sinkage']) / m['sinkage']:+.1f} |")
     text = "\n".join(lines + ["", verdict])
     print(text)
     if a.md:
@@ -108,6 +126,12 @@ def main():
         ax.errorbar(s, [t["gross"] for t in table],
                     yerr=[0 if math.isnan(t["gross_sem"]) else t["gross_sem"] for t in table],
                     fmt="o--", color="C1", mfc="white", capsize=3, label="gross T/R_eff, wheelsim")
+        if scm:
+            ss = [m["slip"] for m in scm]
+            ax.plot(ss, [m["scm_net"] for m in scm], "x-.", color="C0",
+                    label="net, wheelsim SCM (soil fitted to the DEM soil)")
+            ax.plot(ss, [m["scm_gross"] for m in scm], "x-.", color="C1",
+                    label="gross, wheelsim SCM")
         ax.set_xlabel("slip [%]")
         ax.set_ylabel("traction [N]")
         ax.set_title("Nakanishi et al. 2020 lugged wheel: wheelsim DEM vs published DEM")
@@ -117,6 +141,26 @@ def main():
         fig.tight_layout(rect=(0, 0.03, 1, 1))
         fig.savefig(a.png, dpi=120)
     return 0
+
+
+def scm_rows(path, ours, r_eff):
+    """The SCM rows matched to our DEM rows by target slip: net, gross = T / R_eff and sinkage of
+    both, sorted by slip; a DEM slip without an SCM row is left out (named on stderr)."""
+    scm = {round(number(r, "target_slip", path), 4): r for r in read_csv(path)}
+    rows = []
+    for r in ours:
+        m = scm.get(round(number(r, "target_slip", "DEM results"), 4))
+        if m is None:
+            print(f"compare.py: {path}: no SCM row at slip {r['target_slip']}", file=sys.stderr)
+            continue
+        rows.append(dict(slip=100.0 * number(r, "slip", "DEM results"),
+                         net=number(r, "drawbar_pull_N", "DEM results"),
+                         gross=number(r, "driving_torque_Nm", "DEM results") / r_eff,
+                         sinkage=number(r, "sinkage_m", "DEM results"),
+                         scm_net=number(m, "drawbar_pull_N", path),
+                         scm_gross=number(m, "driving_torque_Nm", path) / r_eff,
+                         scm_sinkage=number(m, "sinkage_m", path)))
+    return sorted(rows, key=lambda t: t["slip"])
 
 
 if __name__ == "__main__":

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Validation case 1 — Nakanishi et al. 2020 lugged wheel, DEM code-to-code (README.md).
 #
-#   validation/nakanishi_2020/run.sh [--smoke | --sensitivity [--only NAMES]] [--out-dir DIR]
-#                                    [--jobs N] [--force]
+#   validation/nakanishi_2020/run.sh [--smoke | --sensitivity [--only NAMES] | --scm]
+#                                    [--out-dir DIR] [--jobs N] [--force]
 #
 # Full case: prepares the 80 000-sphere bin once, runs the 8 published slips through wheel-sweep
 # (resumable: a re-run skips finished points), then writes into this folder results.csv,
@@ -15,15 +15,19 @@
 #          own bed (sweep_mur.toml); writes results_<name>.csv, comparison_<name>.md and
 #          provenance_<name>.toml here. --only NAMES: just these, comma-separated from bed_repeat,
 #          dt_0.6e-4, window_3.25, mur (mur prepares its own beds: it needs no main bed).
+# --scm: the SCM half (sweep_scm.toml: the same rig on the SCM soil the soil lab fitted to the DEM
+#          soil, inputs/scm_soils/from_dem/nakanishi_2020.toml; seconds per point): writes
+#          results_scm.csv, comparison_scm.md/png (DEM against SCM) and provenance_scm.toml here.
 # --smoke: the CI version (a 0.40 m bin, one slip, 0.3 s of test phase; minutes): same pipeline,
 #          outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
-smoke=0 sensitivity=0 only="bed_repeat,dt_0.6e-4,window_3.25,mur" out="" sweep_args=() args=("$@")
+smoke=0 sensitivity=0 scm=0 only="bed_repeat,dt_0.6e-4,window_3.25,mur" out="" sweep_args=() args=("$@")
 while (($#)); do
   case "$1" in
     --smoke) smoke=1; shift ;;
     --sensitivity) sensitivity=1; shift ;;
+    --scm) scm=1; shift ;;
     --only) only=${2:-}; shift 2 ;;
     --out-dir) out=$2; shift 2 ;;
     --jobs|-j) sweep_args+=(--jobs "$2"); shift 2 ;;
@@ -32,7 +36,7 @@ while (($#)); do
     *) echo "run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-((smoke && sensitivity)) && { echo "run.sh: --smoke and --sensitivity exclude each other" >&2; exit 2; }
+((smoke + sensitivity + scm > 1)) && { echo "run.sh: --smoke, --sensitivity and --scm exclude each other" >&2; exit 2; }
 if ((smoke)); then config=$here/sweep_smoke.toml; out=${out:-$root/runs/validation/nakanishi_2020_smoke}
 else config=$here/sweep.toml; out=${out:-$root/runs/validation/nakanishi_2020}; fi
 [[ -f $build_dir/meshes/nakanishi_2020.stl ]] || {
@@ -41,6 +45,23 @@ else config=$here/sweep.toml; out=${out:-$root/runs/validation/nakanishi_2020}; 
 start=$(date +%s)
 started_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 status=0
+if ((scm)); then
+  soil=$root/inputs/scm_soils/from_dem/nakanishi_2020.toml
+  [[ -f $soil ]] || { echo "run.sh: --scm needs $soil: soil_lab/soil-lab run nakanishi_2020 ... then soil-lab scm (README.md \"DEM against SCM on the same soil\")" >&2; exit 2; }
+  [[ -f $here/results.csv ]] || { echo "run.sh: --scm compares with the DEM half's $here/results.csv: run the case first" >&2; exit 2; }
+  out=${out:-$root/runs/validation/nakanishi_2020_scm}
+  "$root/scripts/wheel-sweep" "$here/sweep_scm.toml" --out-dir "$out" --build-dir "$build_dir" \
+    "${sweep_args[@]}" || status=$?
+  mapfile -t runs < <(find "$out" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
+  ((${#runs[@]})) || { echo "run.sh: no finished run under $out" >&2; exit 1; }
+  "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start 1.0 --window-end 2.4 \
+    --results "$here/results_scm.csv" --csv "$out/curves.csv"
+  "$python" "$here/compare.py" "$here/results.csv" "$here/reference.csv" --r-eff 0.11 \
+    --scm "$here/results_scm.csv" --png "$here/comparison_scm.png" --md "$here/comparison_scm.md"
+  write_provenance "$here/provenance_scm.toml" validation/nakanishi_2020 \
+    "validation/nakanishi_2020/run.sh --scm" "$started_utc" "$start" "$out"
+  exit $status
+fi
 if ((sensitivity)); then
   # sens NAME CONFIG WINDOW_START WINDOW_END: one sensitivity sweep into $out/sensitivity/NAME and
   # its results_NAME.csv / comparison_NAME.md / provenance_NAME.toml here (window in test-phase
