@@ -124,7 +124,13 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
                 raise LabInputError(f"plate width {b1:g} m is less than 2 grains (d_max "
                                     f"{d:g} m): a plate must span several grains")
         side = plate_bin_m if plate_bin_m is not None else (2.5 if quick else 3.0) * b2
-        if side < 2.5 * b2:
+        # The bulk density is measured on this bed; without plates a narrower bin is allowed (a
+        # cheap bulk probe), down to the 8 d_max that leave the core cell 6 d_max across.
+        if side < 8.0 * d:
+            raise LabInputError(f"the plate bin (side {side:g} m) is narrower than 8 grains (d_max "
+                                f"{d:g} m): the bulk density's core cell keeps d_max from each "
+                                f"wall; use --plate-bin >= {8.0 * d:g}")
+        if "plate" in tests and side < 2.5 * b2:
             raise LabInputError(f"plate {b2:g} m is too wide for the plate bin (side {side:g} m): "
                                 f"the bin needs at least {2.5 * b2:g} m (the plate and 3/4 of its "
                                 f"width of soil on each side), or use narrower plates")

@@ -37,6 +37,9 @@ class Plan(unittest.TestCase):
                                                    normal_stresses_Pa=(-5, 1e3, 2e3)),
             "too wide for the plate bin": dict(tests=("plate",), plate_widths_m=(0.04, 0.1),
                                                plate_bin_m=0.2),
+            "too wide for the plate bin (side 0.1 m)": dict(tests=("bulk", "plate"),
+                                                            plate_bin_m=0.1),
+            "narrower than 8 grains": dict(tests=("bulk",), plate_bin_m=0.06),
             "two different widths": dict(tests=("plate",), plate_widths_m=(0.05, 0.05)),
             "less than 2 grains": dict(tests=("plate",), plate_widths_m=(0.01, 0.05)),
             "shear travel 0.6 is outside (0, 0.5]": dict(tests=("shear",), shear_travel=0.6),
@@ -49,6 +52,16 @@ class Plan(unittest.TestCase):
                 with self.assertRaises(LabInputError) as cm:
                     make_plan(SAND, **kwargs)
                 self.assertIn(message, str(cm.exception))
+
+    def test_bulk_alone_may_use_a_narrow_bin(self):
+        # no plates: the bin only has to hold the core cell (>= 8 d_max), the depth stays the
+        # plate bed's so the bed is the same recipe with or without plates
+        d = SAND.dmax_m
+        p = make_plan(SAND, ("bulk",), plate_bin_m=10 * d)
+        self.assertAlmostEqual(p.beds["plate"].length_m, 10 * d)
+        self.assertAlmostEqual(p.beds["plate"].fill_height_m,
+                               make_plan(SAND, ("bulk",)).beds["plate"].fill_height_m)
+        self.assertEqual(p.runs, [])
 
     def test_shear_travel_is_a_fraction_of_the_box(self):
         L = 12 * SAND.dmax_m
