@@ -17,8 +17,6 @@ void ProgressLine::update(const RigSimulation &sim, const RigOutputs &out) {
     print(sim, out);
 }
 
-void ProgressLine::finish(const RigSimulation &sim, const RigOutputs &out) { print(sim, out); }
-
 void ProgressLine::print(const RigSimulation &sim, const RigOutputs &out) {
   const auto now = Clock::now();
   const double since_last = std::chrono::duration<double>(now - last_).count();

@@ -15,8 +15,6 @@ public:
   ProgressLine(double interval_s, std::FILE *out);
   /// Prints a line if the interval has passed (call every step: cheap otherwise).
   void update(const RigSimulation &sim, const RigOutputs &out);
-  /// Prints the closing line unconditionally.
-  void finish(const RigSimulation &sim, const RigOutputs &out);
 
 private:
   void print(const RigSimulation &sim, const RigOutputs &out);
