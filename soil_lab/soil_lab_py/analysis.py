@@ -142,6 +142,32 @@ def read_shear(run, done):
             "loss": shear_particle_loss(counts, peak.j_peak_m), "done": done}
 
 
+# A shear box whose smoothed shear stress falls below -UNSTABLE_SHEAR_FRACTION x its peak pulls
+# the soil backwards: not a quasi-static test (nakanishi_2020 at its own time step, E 5e5 Pa:
+# -2.4 kPa against a 1.2 kPa peak), so its peak and fits are no soil property.
+UNSTABLE_SHEAR_FRACTION = 0.25
+
+
+def shear_stability_errors(shears):
+    """A line for each shear box whose curve is not a resisting soil's: a fitted Janosi tau_max
+    <= 0, or a smoothed shear stress below -UNSTABLE_SHEAR_FRACTION x the peak."""
+    out = []
+    for s in shears:
+        if s.get("tau") is None or s.get("janosi") is None:
+            continue  # a summary without its curve (nothing to check)
+        tau = np.asarray(s["tau"], dtype=float)
+        w = max(1, len(tau) // 50)
+        smooth = np.convolve(tau, np.ones(w) / w, mode="valid") if len(tau) > w else tau
+        low, peak = float(np.min(smooth)), s["peak"].tau_peak_Pa
+        at = f"shear box at {s['sigma_Pa'] / 1e3:.3g} kPa: "
+        if s["janosi"].tau_max_Pa <= 0 or low < -UNSTABLE_SHEAR_FRACTION * abs(peak):
+            out.append(at + f"unstable: the shear stress reached {low:.4g} Pa (peak {peak:.4g} "
+                       f"Pa, Janosi tau_max {s['janosi'].tau_max_Pa:.4g} Pa): a resisting soil "
+                       "cannot pull the frame; the run is not quasi-static (time step or speed too "
+                       "large for these grains), so its peak and fits are not the soil's")
+    return out
+
+
 def shear_loss_warnings(shears):
     """A line for each shear box that lost more than SHEAR_LOSS_WARNING of its particles."""
     out = []
@@ -296,7 +322,7 @@ def summary(r: Results):
                  "particles": s["loss"]["particles"],
                  "particles_lost_by_peak": s["loss"]["lost_by_peak"],
                  "particles_lost_at_end": s["loss"]["lost_at_end"]})} for s in r.shears]}
-        warnings = shear_loss_warnings(r.shears)
+        warnings = shear_stability_errors(r.shears) + shear_loss_warnings(r.shears)
         if warnings:
             out["shear"]["warnings"] = warnings
         if r.mc_peak:
@@ -386,6 +412,10 @@ def write_scm(r: Results, path, name=None):
         raise LabResultError(f"{r.directory}: no plate's unloading branch could be fitted for the "
                              "elastic stiffness: " + "; ".join(
                                  f"b = {w:.3g} m: {e}" for w, e in sorted(r.unload_errors.items())))
+    unstable = shear_stability_errors(r.shears)
+    if unstable:
+        raise LabResultError(f"{r.directory}: no SCM file from unstable shear boxes: "
+                             + "; ".join(unstable))
     b_large = max(r.unload)  # the largest plate whose unloading branch was fitted
     ke = r.unload[b_large]
     sigmas = ", ".join(f"{s['sigma_Pa'] / 1e3:.3g}" for s in r.shears)

@@ -114,6 +114,22 @@ class Analysis(unittest.TestCase):
         self.assertIn("2.0 % of its 1000 particles had left the box by the peak (j 0.07 m", warn[1])
         self.assertEqual(analysis.shear_loss_warnings([box({**early, "lost_at_end": 0.005})]), [])
 
+    def test_an_unstable_shear_box_is_named(self):
+        j = np.linspace(0.0, 0.008, 400)
+        good = 1000.0 * (1.0 - np.exp(-j / 0.002))
+        bad = good - 2400.0 * np.sin(j / 0.008 * 3 * np.pi) ** 2  # swings to -1.4 kPa
+
+        def box(tau, tau_max):
+            return {"sigma_Pa": 2.5e3, "tau": tau,
+                    "peak": SimpleNamespace(tau_peak_Pa=float(np.max(tau))),
+                    "janosi": SimpleNamespace(tau_max_Pa=tau_max)}
+        self.assertEqual(analysis.shear_stability_errors([box(good, 1000.0)]), [])
+        err = analysis.shear_stability_errors([box(good, 1000.0), box(bad, 800.0),
+                                               box(good, -400.0)])
+        self.assertEqual(len(err), 2)
+        self.assertIn("shear box at 2.5 kPa: unstable: the shear stress reached -1", err[0])
+        self.assertIn("Janosi tau_max -400 Pa", err[1])
+
 
 if __name__ == "__main__":
     unittest.main()
