@@ -38,6 +38,7 @@ while (($#)); do
 done
 ((smoke + sensitivity + scm > 1)) && { echo "run.sh: --smoke, --sensitivity and --scm exclude each other" >&2; exit 2; }
 if ((smoke)); then config=$here/sweep_smoke.toml; out=${out:-$root/runs/validation/nakanishi_2020_smoke}
+elif ((scm)); then config=$here/sweep_scm.toml; out=${out:-$root/runs/validation/nakanishi_2020_scm}
 else config=$here/sweep.toml; out=${out:-$root/runs/validation/nakanishi_2020}; fi
 [[ -f $build_dir/meshes/nakanishi_2020.stl ]] || {
   echo "run.sh: $build_dir/meshes/nakanishi_2020.stl missing: build first (scripts/build.sh)" >&2; exit 2; }
@@ -49,8 +50,7 @@ if ((scm)); then
   soil=$root/inputs/scm_soils/from_dem/nakanishi_2020.toml
   [[ -f $soil ]] || { echo "run.sh: --scm needs $soil: soil_lab/soil-lab run nakanishi_2020 ... then soil-lab scm (README.md \"DEM against SCM on the same soil\")" >&2; exit 2; }
   [[ -f $here/results.csv ]] || { echo "run.sh: --scm compares with the DEM half's $here/results.csv: run the case first" >&2; exit 2; }
-  out=${out:-$root/runs/validation/nakanishi_2020_scm}
-  "$root/scripts/wheel-sweep" "$here/sweep_scm.toml" --out-dir "$out" --build-dir "$build_dir" \
+  "$root/scripts/wheel-sweep" "$config" --out-dir "$out" --build-dir "$build_dir" \
     "${sweep_args[@]}" || status=$?
   mapfile -t runs < <(find "$out" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
   ((${#runs[@]})) || { echo "run.sh: no finished run under $out" >&2; exit 1; }
