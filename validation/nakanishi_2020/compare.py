@@ -72,7 +72,8 @@ def main():
             gross_err_pc=100.0 * (gross - ref_gross) / ref_gross,
             gross_ok=abs(gross - ref_gross) <= 0.2 * abs(ref_gross),
             in_goal=in_goal_range,
-            sinkage=float(r.get("sinkage_m") or "nan")))
+            sinkage=float(r.get("sinkage_m") or "nan"),
+            target=round(number(r, "target_slip", a.results), 4)))
     table.sort(key=lambda t: t["slip"])
     lines = ["| slip [%] | net ours [N] | Nakanishi | Yade | net error [N] | gross ours [N] "
              "| Nakanishi | gross error [%] | resistance ours [N] | Nakanishi | sinkage [mm] "
@@ -89,7 +90,7 @@ def main():
     verdict = (f"goal (net within 25 % or 1 N, gross within 20 %, slips 13-78 %): "
                f"{sum(t['net_ok'] for t in goal_rows)}/{len(goal_rows)} net, "
                f"{sum(t['gross_ok'] for t in goal_rows)}/{len(goal_rows)} gross")
-    scm = scm_rows(a.scm, ours, a.r_eff) if a.scm else []
+    scm = scm_rows(a.scm, table, a.r_eff) if a.scm else []
     if scm:
         lines += ["", "DEM against SCM on the same soil (SCM: the soil lab's fit to the DEM soil; "
                   "Δ = SCM − DEM):", "",
@@ -143,24 +144,21 @@ def main():
     return 0
 
 
-def scm_rows(path, ours, r_eff):
-    """The SCM rows matched to our DEM rows by target slip: net, gross = T / R_eff and sinkage of
-    both, sorted by slip; a DEM slip without an SCM row is left out (named on stderr)."""
+def scm_rows(path, table, r_eff):
+    """Our DEM rows (`table`, by slip) with the SCM row of the same target slip: its net, gross
+    = T / R_eff and sinkage added as scm_*; a DEM slip without an SCM row is left out (named on
+    stderr)."""
     scm = {round(number(r, "target_slip", path), 4): r for r in read_csv(path)}
     rows = []
-    for r in ours:
-        m = scm.get(round(number(r, "target_slip", "DEM results"), 4))
+    for t in table:
+        m = scm.get(t["target"])
         if m is None:
-            print(f"compare.py: {path}: no SCM row at slip {r['target_slip']}", file=sys.stderr)
+            print(f"compare.py: {path}: no SCM row at slip {t['target']}", file=sys.stderr)
             continue
-        rows.append(dict(slip=100.0 * number(r, "slip", "DEM results"),
-                         net=number(r, "drawbar_pull_N", "DEM results"),
-                         gross=number(r, "driving_torque_Nm", "DEM results") / r_eff,
-                         sinkage=number(r, "sinkage_m", "DEM results"),
-                         scm_net=number(m, "drawbar_pull_N", path),
+        rows.append(dict(t, scm_net=number(m, "drawbar_pull_N", path),
                          scm_gross=number(m, "driving_torque_Nm", path) / r_eff,
                          scm_sinkage=number(m, "sinkage_m", path)))
-    return sorted(rows, key=lambda t: t["slip"])
+    return rows
 
 
 if __name__ == "__main__":

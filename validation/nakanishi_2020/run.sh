@@ -46,21 +46,10 @@ else config=$here/sweep.toml; out=${out:-$root/runs/validation/nakanishi_2020}; 
 start=$(date +%s)
 started_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 status=0
-if ((scm)); then
+if ((scm)); then  # the SCM half runs the main path below with its own outputs (tag _scm)
   soil=$root/inputs/scm_soils/from_dem/nakanishi_2020.toml
   [[ -f $soil ]] || { echo "run.sh: --scm needs $soil: soil_lab/soil-lab run nakanishi_2020 ... then soil-lab scm (README.md \"DEM against SCM on the same soil\")" >&2; exit 2; }
   [[ -f $here/results.csv ]] || { echo "run.sh: --scm compares with the DEM half's $here/results.csv: run the case first" >&2; exit 2; }
-  "$root/scripts/wheel-sweep" "$config" --out-dir "$out" --build-dir "$build_dir" \
-    "${sweep_args[@]}" || status=$?
-  mapfile -t runs < <(find "$out" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
-  ((${#runs[@]})) || { echo "run.sh: no finished run under $out" >&2; exit 1; }
-  "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start 1.0 --window-end 2.4 \
-    --results "$here/results_scm.csv" --csv "$out/curves.csv"
-  "$python" "$here/compare.py" "$here/results.csv" "$here/reference.csv" --r-eff 0.11 \
-    --scm "$here/results_scm.csv" --png "$here/comparison_scm.png" --md "$here/comparison_scm.md"
-  write_provenance "$here/provenance_scm.toml" validation/nakanishi_2020 \
-    "validation/nakanishi_2020/run.sh --scm" "$started_utc" "$start" "$out"
-  exit $status
 fi
 if ((sensitivity)); then
   # sens NAME CONFIG WINDOW_START WINDOW_END: one sensitivity sweep into $out/sensitivity/NAME and
@@ -110,13 +99,16 @@ mapfile -t runs < <(find "$out" -mindepth 4 -maxdepth 4 -name run.h5 -not -path 
 ((${#runs[@]})) || { echo "run.sh: no finished run under $out" >&2; exit 1; }
 # Window: test-phase seconds 1.0 .. end (the first second is the approach to steady sinkage, as
 # the published runs average after 1 s of driving); smoke: the second half of its 0.3 s.
-if ((smoke)); then window=(--window-start 0.15 --window-end 0.3); dest=$out
+# --scm: the same window; its tables are results_scm.csv etc. beside the DEM half's results.csv,
+# its curves stay with its runs.
+tag="" mode="" curves_dir=$here extra=()
+if ((smoke)); then window=(--window-start 0.15 --window-end 0.3); dest=$out curves_dir=$out mode=" --smoke"
 else window=(--window-start 1.0 --window-end 2.4); dest=$here; fi
-"$root/postprocess/wheelsim-post" curves "${runs[@]}" "${window[@]}" --results "$dest/results.csv" \
-  --csv "$dest/curves.csv"
-"$python" "$here/compare.py" "$dest/results.csv" "$here/reference.csv" --r-eff 0.11 \
-  --png "$dest/comparison.png" --md "$dest/comparison.md"
-write_provenance "$dest/provenance.toml" validation/nakanishi_2020 \
-  "validation/nakanishi_2020/run.sh$( ((smoke)) && echo " --smoke" )" \
-  "$started_utc" "$start" "$out"
+if ((scm)); then tag=_scm mode=" --scm" curves_dir=$out extra=(--scm "$here/results_scm.csv"); fi
+"$root/postprocess/wheelsim-post" curves "${runs[@]}" "${window[@]}" \
+  --results "$dest/results$tag.csv" --csv "$curves_dir/curves.csv"
+"$python" "$here/compare.py" "$dest/results.csv" "$here/reference.csv" --r-eff 0.11 "${extra[@]}" \
+  --png "$dest/comparison$tag.png" --md "$dest/comparison$tag.md"
+write_provenance "$dest/provenance$tag.toml" validation/nakanishi_2020 \
+  "validation/nakanishi_2020/run.sh$mode" "$started_utc" "$start" "$out"
 exit $status

@@ -5,7 +5,7 @@
 namespace wheelsim::rig {
 
 ProgressLine::ProgressLine(double interval_s, std::FILE *out)
-    : interval_s_(interval_s), out_(out), start_(Clock::now()), last_(start_) {}
+    : interval_s_(interval_s), out_(out), last_(Clock::now()) {}
 
 void ProgressLine::update(const RigSimulation &sim, const RigOutputs &out) {
   if (interval_s_ <= 0.0)
@@ -20,8 +20,7 @@ void ProgressLine::update(const RigSimulation &sim, const RigOutputs &out) {
 void ProgressLine::print(const RigSimulation &sim, const RigOutputs &out) {
   const auto now = Clock::now();
   const double since_last = std::chrono::duration<double>(now - last_).count();
-  const double rate =
-      since_last > 0.0 && last_step_ >= 0 ? (out.step - last_step_) / since_last : 0.0;
+  const double rate = since_last > 0.0 ? (out.step - last_step_) / since_last : 0.0;
   char eta[64] = "after the settle phase";
   if (!std::isnan(sim.test_start_s()) && rate > 0.0) {
     const double left_s = sim.test_start_s() + sim.config().run.duration_s - out.time_s;

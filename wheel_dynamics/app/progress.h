@@ -21,7 +21,7 @@ private:
   using Clock = std::chrono::steady_clock;
   double interval_s_;
   std::FILE *out_;
-  Clock::time_point start_, last_;
+  Clock::time_point last_;
   long long last_step_ = -1; // the step of the last line; -1: none yet (taken from the first
                              // update, so a resumed run's first rate counts only its own steps)
 };
