@@ -204,8 +204,9 @@ def main():
         lines += t + [""]
     if a.repeat:
         lines += ["## Run-to-run scatter: the same point, ranks cut along the bin", "",
-                  f"{a.label}'s point (ranks across the width) against sweep_repeat.toml's (the "
-                  "same inputs, procs_x 2): another trajectory of the same experiment.", ""]
+                  f"{a.label}'s point (ranks across the width) against "
+                  f"{Path(a.repeat).name.replace('results_', 'sweep_').replace('.csv', '.toml')}'s "
+                  "(the same inputs, procs_x 2): another trajectory of the same experiment.", ""]
         lines += point_table(dem, read(a.repeat), "repeat (procs_x 2)", ref=a.label)[0] + [""]
     # the same point on other grains: (table, heading after the case's own grain, column name)
     for table, heading, name in (

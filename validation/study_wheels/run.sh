@@ -14,7 +14,10 @@
 # its own): active_domain — wheel 1 at 20 % with the active domain (sweep_active_domain.toml;
 # ~40 min); full_domain — the same without it (sweep_full_domain.toml; ~75 min); repeat — the
 # active-domain point on another ranks' grid (sweep_repeat.toml; ~40 min): the run-to-run scatter
-# the full_domain comparison reads against. Resumable: a re-run skips finished points. Writes here
+# the full_domain comparison reads against; and the same check on the goal's 0.76 m bed: goal_full
+# — the goal point without the active domain (sweep_goal_full.toml; ~45 min), goal_repeat — the
+# goal point on another ranks' grid (sweep_goal_repeat.toml; ~25 min), compared in
+# comparison_goal_active_domain.md. Resumable: a re-run skips finished points. Writes here
 # results.csv (DEM), results_<part>.csv (the others), comparison.md and comparison.png (the case),
 # comparison_active_domain.md (the check) and provenance[_<part>].toml (git hash, command,
 # machine, wall time). Run it in the background: nohup ... &
@@ -36,8 +39,8 @@ while (($#)); do
   esac
 done
 for part in ${only//,/ }; do
-  case $part in dem|scm|grain|goal|active_domain|full_domain|repeat) ;;
-    *) echo "run.sh: --only: unknown part '$part' (expected dem, scm, grain, goal, active_domain, full_domain, repeat)" >&2
+  case $part in dem|scm|grain|goal|active_domain|full_domain|repeat|goal_full|goal_repeat) ;;
+    *) echo "run.sh: --only: unknown part '$part' (expected dem, scm, grain, goal, active_domain, full_domain, repeat, goal_full, goal_repeat)" >&2
        exit 2 ;;
   esac
 done
@@ -79,30 +82,11 @@ wanted() { [[ ,$only, == *,$1,* ]]; }
 if wanted dem; then
   part sweep.toml "$runs_dir/study_wheels" "$here/results.csv" "$here/provenance.toml"
 fi
-if wanted scm; then
-  part sweep_scm.toml "$runs_dir/study_wheels_scm" "$here/results_scm.csv" \
-    "$here/provenance_scm.toml"
-fi
-if wanted grain; then
-  part sweep_grain.toml "$runs_dir/study_wheels_grain" "$here/results_grain.csv" \
-    "$here/provenance_grain.toml"
-fi
-if wanted goal; then
-  part sweep_goal.toml "$runs_dir/study_wheels_goal" "$here/results_goal.csv" \
-    "$here/provenance_goal.toml"
-fi
-if wanted active_domain; then
-  part sweep_active_domain.toml "$runs_dir/study_wheels_active_domain" \
-    "$here/results_active_domain.csv" "$here/provenance_active_domain.toml"
-fi
-if wanted full_domain; then
-  part sweep_full_domain.toml "$runs_dir/study_wheels_full_domain" \
-    "$here/results_full_domain.csv" "$here/provenance_full_domain.toml"
-fi
-if wanted repeat; then
-  part sweep_repeat.toml "$runs_dir/study_wheels_repeat" "$here/results_repeat.csv" \
-    "$here/provenance_repeat.toml"
-fi
+# the other parts: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
+for p in scm grain goal active_domain full_domain repeat goal_full goal_repeat; do
+  wanted $p && part sweep_$p.toml "$runs_dir/study_wheels_$p" "$here/results_$p.csv" \
+    "$here/provenance_$p.toml"
+done
 if [[ -f $here/results.csv ]]; then
   extra=()
   [[ -f $here/results_scm.csv ]] && extra+=(--scm "$here/results_scm.csv")
@@ -117,5 +101,12 @@ if [[ -f $here/results_active_domain.csv ]]; then
   [[ -f $here/results_repeat.csv ]] && extra+=(--repeat "$here/results_repeat.csv")
   "$python" "$here/compare.py" "$here/results_active_domain.csv" "${extra[@]}" \
     --label sweep_active_domain.toml --md "$here/comparison_active_domain.md" || status=1
+fi
+if [[ -f $here/results_goal.csv && ( -f $here/results_goal_full.csv || -f $here/results_goal_repeat.csv ) ]]; then
+  extra=()
+  [[ -f $here/results_goal_full.csv ]] && extra+=(--full-domain "$here/results_goal_full.csv")
+  [[ -f $here/results_goal_repeat.csv ]] && extra+=(--repeat "$here/results_goal_repeat.csv")
+  "$python" "$here/compare.py" "$here/results_goal.csv" "${extra[@]}" \
+    --label sweep_goal.toml --md "$here/comparison_goal_active_domain.md" || status=1
 fi
 exit $status
