@@ -39,8 +39,8 @@ while (($#)); do
   esac
 done
 for part in ${only//,/ }; do
-  case $part in dem|scm|grain|goal|active_domain|full_domain|repeat|goal_full|goal_repeat) ;;
-    *) echo "run.sh: --only: unknown part '$part' (expected dem, scm, grain, goal, active_domain, full_domain, repeat, goal_full, goal_repeat)" >&2
+  case $part in dem|scm|grain|goal|active_domain|full_domain|repeat|goal_full|goal_repeat|goal_wide) ;;
+    *) echo "run.sh: --only: unknown part '$part' (expected dem, scm, grain, goal, active_domain, full_domain, repeat, goal_full, goal_repeat, goal_wide)" >&2
        exit 2 ;;
   esac
 done
@@ -83,7 +83,7 @@ if wanted dem; then
   part sweep.toml "$runs_dir/study_wheels" "$here/results.csv" "$here/provenance.toml"
 fi
 # the other parts: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
-for p in scm grain goal active_domain full_domain repeat goal_full goal_repeat; do
+for p in scm grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide; do
   wanted $p && part sweep_$p.toml "$runs_dir/study_wheels_$p" "$here/results_$p.csv" \
     "$here/provenance_$p.toml"
 done
