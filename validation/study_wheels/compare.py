@@ -103,6 +103,11 @@ def comparison_table(dem, scm):
     return out
 
 
+def sweep_name(results):
+    """The sweep config a run.sh results table comes from: results_<part>.csv -> sweep_<part>.toml."""
+    return Path(results).name.replace("results_", "sweep_").replace(".csv", ".toml")
+
+
 def point_table(dem, other, other_name, tolerance=None, ref="sweep.toml"):
     """Markdown: each run of `other` against the DEM half's run of the same wheel and slip (a
     sensitivity: another soil file or other deck variables), with the wall-time ratio. With a
@@ -179,6 +184,8 @@ def main():
     ap.add_argument("--full-domain", help="the full-domain runs' results table")
     ap.add_argument("--grain", help="the grain-size sensitivity's results table")
     ap.add_argument("--goal", help="issue 12's goal point's results table (21-52 mm grains)")
+    ap.add_argument("--wide", help="the active domain's point with a larger distance (its sinkage "
+                    "allowance raised), compared with --full-domain's")
     ap.add_argument("--repeat", help="the repeat of the active domain's point on another ranks' "
                     "grid (the run-to-run scatter)")
     ap.add_argument("--label", default="sweep.toml",
@@ -202,10 +209,19 @@ def main():
         t, verdicts = point_table(dem, read(a.full_domain), "full domain", ACTIVE_TOLERANCE,
                                   ref=a.label)
         lines += t + [""]
+    wide_verdicts = []
+    if a.wide and a.full_domain:
+        wide = sweep_name(a.wide)
+        lines += ["## A wider active domain against the full domain", "",
+                  f"{wide}'s point (the active domain with its sinkage allowance raised) against "
+                  "the full domain's.", ""]
+        t, wide_verdicts = point_table(read(a.wide), read(a.full_domain), "full domain",
+                                       ACTIVE_TOLERANCE, ref=wide)
+        lines += t + [""]
     if a.repeat:
         lines += ["## Run-to-run scatter: the same point, ranks cut along the bin", "",
                   f"{a.label}'s point (ranks across the width) against "
-                  f"{Path(a.repeat).name.replace('results_', 'sweep_').replace('.csv', '.toml')}'s "
+                  f"{sweep_name(a.repeat)}'s "
                   "(the same inputs, procs_x 2): another trajectory of the same experiment.", ""]
         lines += point_table(dem, read(a.repeat), "repeat (procs_x 2)", ref=a.label)[0] + [""]
     # the same point on other grains: (table, heading after the case's own grain, column name)
@@ -224,9 +240,10 @@ def main():
         print(text)
     if a.png:
         plot(a.png, dem, scm)
-    if verdicts:
-        print(f"compare.py: active domain within {ACTIVE_TOLERANCE:.0%} of the full domain: "
-              f"{sum(verdicts)} of {len(verdicts)} quantities")
+    for name, v in (("active domain", verdicts), ("wider active domain", wide_verdicts)):
+        if v:
+            print(f"compare.py: {name} within {ACTIVE_TOLERANCE:.0%} of the full domain: "
+                  f"{sum(v)} of {len(v)} quantities")
     return 0
 
 

@@ -106,6 +106,7 @@ if [[ -f $here/results_goal.csv && ( -f $here/results_goal_full.csv || -f $here/
   extra=()
   [[ -f $here/results_goal_full.csv ]] && extra+=(--full-domain "$here/results_goal_full.csv")
   [[ -f $here/results_goal_repeat.csv ]] && extra+=(--repeat "$here/results_goal_repeat.csv")
+  [[ -f $here/results_goal_wide.csv ]] && extra+=(--wide "$here/results_goal_wide.csv")
   "$python" "$here/compare.py" "$here/results_goal.csv" "${extra[@]}" \
     --label sweep_goal.toml --md "$here/comparison_goal_active_domain.md" || status=1
 fi
