@@ -486,9 +486,16 @@ def active_share(point, info, active, x0, ph):
     speed = active_domain.travel_speed(point.rig, getattr(point, "slip", None), outer)
     xs = active_domain.wheel_path(ph, x0, speed, length)
     share = active_domain.sphere_share(length, width, depth, reach, [(x, zc) for x in xs])
-    return share, (f"active domain: the soil within {reach:.3g} m of the wheel centre (bounding "
-                   f"radius {bounding:.3g} m) moves: {100 * share:.0f} % of the bed on average "
-                   f"from x0 {x0:g} m at {speed:.3g} m/s")
+    note = (f"active domain: the soil within {reach:.3g} m of the wheel centre (bounding "
+            f"radius {bounding:.3g} m) moves: {100 * share:.0f} % of the bed on average "
+            f"from x0 {x0:g} m at {speed:.3g} m/s")
+    if active.distance is None and active.sinkage is None:
+        # the default allowance under-reached a soft soil (docs/fix-wheel-active.md, "On the
+        # goal's deep bed": drawbar pull -39 %)
+        note += (f"; the distance assumes the default sinkage allowance R/4 = "
+                 f"{active.sinkage_allowance(bounding):.3g} m: if the wheel sinks deeper, set "
+                 f"-var active_args \"sinkage Z\" (docs/fix-wheel-active.md)")
+    return share, note
 
 
 def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: False, chunk=1,
