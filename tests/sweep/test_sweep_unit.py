@@ -468,6 +468,12 @@ def case_estimate_active(a, work):
     _close(e.active_share, share, "active share")
     _close(e.wall, off.points[0].wall * (share + E.FROZEN_COST * (1.0 - share)), "active wall")
     check(0.05 < share < 0.5 and "1 m of the wheel centre" in e.active_note, e.active_note)
+    # the default sinkage allowance is named with how to set it; an explicit one is not
+    check("default sinkage allowance R/4 = 0.125 m" in e.active_note
+          and 'active_args "sinkage Z"' in e.active_note, e.active_note)
+    own = E.estimate(pts, {"bed": info}, rate, 1, 1, 1, 1, overhead_s=0.0,
+                     active=A.ActiveSettings(sinkage=0.2), x0=1.0)
+    check("default sinkage" not in own.points[0].active_note, own.points[0].active_note)
     check(off.points[0].active_share is None and not off.points[0].active_note, "off")
     # no bed size: the active domain is left out, and the printout says so
     nobox = E.BedInfo("bed", 1e5, "test", 1e-4, "test", prepared=True)
