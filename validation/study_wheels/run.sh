@@ -38,11 +38,11 @@ while (($#)); do
     *) echo "run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
+# the parts besides dem: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
+parts=(scm grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide)
 for part in ${only//,/ }; do
-  case $part in dem|scm|grain|goal|active_domain|full_domain|repeat|goal_full|goal_repeat|goal_wide) ;;
-    *) echo "run.sh: --only: unknown part '$part' (expected dem, scm, grain, goal, active_domain, full_domain, repeat, goal_full, goal_repeat, goal_wide)" >&2
-       exit 2 ;;
-  esac
+  [[ " dem ${parts[*]} " == *" $part "* ]] || {
+    echo "run.sh: --only: unknown part '$part' (expected dem ${parts[*]})" >&2; exit 2; }
 done
 for w in wheel1 wheel5; do
   [[ -f $build_dir/meshes/$w.stl ]] || {
@@ -82,10 +82,10 @@ wanted() { [[ ,$only, == *,$1,* ]]; }
 if wanted dem; then
   part sweep.toml "$runs_dir/study_wheels" "$here/results.csv" "$here/provenance.toml"
 fi
-# the other parts: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
-for p in scm grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide; do
-  wanted $p && part sweep_$p.toml "$runs_dir/study_wheels_$p" "$here/results_$p.csv" \
-    "$here/provenance_$p.toml"
+for p in "${parts[@]}"; do
+  if wanted "$p"; then
+    part "sweep_$p.toml" "$runs_dir/study_wheels_$p" "$here/results_$p.csv" "$here/provenance_$p.toml"
+  fi
 done
 if [[ -f $here/results.csv ]]; then
   extra=()
