@@ -12,7 +12,7 @@ from pathlib import Path
 
 from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 
-from . import config, estimate, rate, runner
+from . import accept, config, estimate, rate, runner
 
 REPO = Path(__file__).resolve().parents[2]  # the source tree, or <prefix>/share/wheelsim
 # Default outputs: <repo>/runs, or ./runs when installed (docs/building.md, "Install").
@@ -56,6 +56,13 @@ def main(argv=None):
     ap.add_argument("--points", metavar="GLOBS",
                     help="only the points whose folder (WHEEL/SOIL/sSLIP, e.g. wheel1/*/s0.200) "
                          "matches one of these comma-separated shell patterns")
+    ap.add_argument("--accept-change", action="append", metavar="FILE",
+                    help="DEM: an edit of FILE, a file the deck, soil file or in.soilbin "
+                         "include, changes no result: record its new hash in the finished "
+                         "points and beds (with --reason, kept in their records) instead of "
+                         "re-running them; runs nothing (repeatable)")
+    ap.add_argument("--reason", metavar="TEXT",
+                    help="why the --accept-change edit changes no result (required with it)")
     ap.add_argument("--build-dir", metavar="D",
                     help="build directory (default: $WHEELSIM_BUILD_DIR, else <repo>/build)")
     cost = ap.add_argument_group("DEM cost estimate (docs/sweeps.md, \"Cost estimate\")")
@@ -84,6 +91,17 @@ def main(argv=None):
         ap.error("the following arguments are required: config")
     if a.beds_only and (a.dry_run or a.estimate):
         ap.error("--beds-only prepares beds: not with --dry-run or --estimate")
+    if a.accept_change:
+        if not (a.reason or "").strip():
+            ap.error("--accept-change needs --reason TEXT: why the edit changes no result")
+        if a.dry_run or a.estimate or a.beds_only or a.force or a.measure_rate:
+            ap.error("--accept-change runs nothing: not with --dry-run, --estimate, "
+                     "--beds-only, --force or --measure-rate")
+        missing = [f for f in a.accept_change if not Path(f).is_file()]
+        if missing:
+            ap.error(f"--accept-change {missing[0]}: no such file")
+    elif a.reason is not None:
+        ap.error("--reason goes with --accept-change")
     build = Path(a.build_dir or os.environ.get("WHEELSIM_BUILD_DIR") or REPO / "build").resolve()
     liggghts = build / "bin" / "liggghts-wheel"
     if a.measure_rate:
@@ -111,7 +129,7 @@ def main(argv=None):
     if sweep.terrain == "dem":
         needed += [REPO / "scripts" / "wheel-cosim", build / "bin" / "liggghts-wheel"]
     for f in needed:
-        if not os.access(f, os.X_OK) and not a.dry_run:
+        if not os.access(f, os.X_OK) and not (a.dry_run or a.accept_change):
             print(f"wheel-sweep: error: {f} not found or not executable (build it, or pass "
                   "--build-dir)", file=sys.stderr)
             return EXIT_USAGE
@@ -132,6 +150,8 @@ def main(argv=None):
                       cost=cost, beds_only=a.beds_only)
     if a.estimate:
         return print_estimate(r, sweep, cost)
+    if a.accept_change:
+        return accept.accept_changes(r, a.accept_change, a.reason.strip())
     try:
         return r.run()
     except RuntimeError as e:

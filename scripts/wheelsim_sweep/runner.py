@@ -69,6 +69,9 @@ def _same_bed_inputs(inputs_file, inputs):
         recorded = json.loads(inputs_file.read_text())
     except (OSError, ValueError):
         return False
+    if not isinstance(recorded, dict):
+        return False
+    recorded.pop("accepted_changes", None)  # wheel-sweep --accept-change's notes (accept.py)
     if "included_sha256" not in recorded:
         inputs = {k: v for k, v in inputs.items() if k != "included_sha256"}
     return recorded == inputs
@@ -306,6 +309,23 @@ class Runner:
             out.update((str(f), self.file_hash(f)) for f in self._includes[str(r)])
         return out
 
+    def bed_inputs_file(self, soil):
+        """A recipe bed's record of the files it was made from (<restart>.inputs.json)."""
+        restart = self.bed_restart(soil)
+        return restart.parent / f"{restart.name}.inputs.json"
+
+    def bed_inputs(self, soil):
+        """What a recipe bed is made from, as its .inputs.json records it: a changed soil file or
+        in.soilbin (same paths) makes the bed stale, as it makes a finished point re-run
+        (inputs_hash); included_sha256 holds what in.soilbin and the soil file include in turn
+        (settle.in, ...)."""
+        soilbin = self.repo / "inputs" / "in.soilbin"
+        return {"soilbin_sha256": self.file_hash(soilbin),
+                "soil_file": str(soil.dem_soil_file),
+                "soil_file_sha256": self.file_hash(soil.dem_soil_file),
+                **self.tile_hashes(soil),
+                "included_sha256": self.included_files((soilbin, soil.dem_soil_file))}
+
     def tile_hashes(self, soil):
         """A tiled recipe's (tile_length set) extra deck files: {name_sha256: sha256}; {} for a
         bed settled whole (so the records of existing beds stay as they were)."""
@@ -487,16 +507,8 @@ class Runner:
             bdir = restart.parent
             recipe_file = bdir / f"{restart.name}.recipe.json"
             recipe_text = json.dumps(soil.recipe, sort_keys=True, indent=2) + "\n"
-            # The files the bed is made from: a changed soil file or in.soilbin (same paths)
-            # makes the bed stale, as it makes a finished point re-run (inputs_hash).
-            inputs_file = bdir / f"{restart.name}.inputs.json"
-            inputs = {"soilbin_sha256": self.file_hash(self.repo / "inputs" / "in.soilbin"),
-                      "soil_file": str(soil.dem_soil_file),
-                      "soil_file_sha256": self.file_hash(soil.dem_soil_file),
-                      **self.tile_hashes(soil),
-                      # what in.soilbin and the soil file include in turn (settle.in, ...)
-                      "included_sha256": self.included_files(
-                          (self.repo / "inputs" / "in.soilbin", soil.dem_soil_file))}
+            inputs_file = self.bed_inputs_file(soil)
+            inputs = self.bed_inputs(soil)
             inputs_text = json.dumps(inputs, sort_keys=True, indent=2) + "\n"
             why = ""
             if restart.is_file() and Path(f"{restart}.vars").is_file():
@@ -568,6 +580,19 @@ class Runner:
             w.writerows(rows)
         os.replace(tmp, self.out / "manifest.csv")
 
+    def lock_out_dir(self):
+        """Takes OUT/.wheel-sweep.lock (one driver per output directory; released when this
+        process ends): the open lock file, or None (said) when another driver holds it."""
+        self.out.mkdir(parents=True, exist_ok=True)
+        lock = open(self.out / ".wheel-sweep.lock", "w")
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            self.say(f"wheel-sweep: error: another wheel-sweep is running in {self.out}")
+            lock.close()
+            return None
+        return lock
+
     def run(self):
         sw = self.sweep
         n = len(sw.points)
@@ -590,12 +615,8 @@ class Runner:
             refuse = self._check_cost()
             if refuse is not None:
                 return refuse
-        self.out.mkdir(parents=True, exist_ok=True)
-        lock = open(self.out / ".wheel-sweep.lock", "w")
-        try:
-            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            self.say(f"wheel-sweep: error: another wheel-sweep is running in {self.out}")
+        lock = self.lock_out_dir()
+        if lock is None:
             return 2
         if sw.path != (self.out / "sweep.toml").resolve():
             shutil.copyfile(sw.path, self.out / "sweep.toml")

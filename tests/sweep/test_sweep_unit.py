@@ -4,7 +4,7 @@
   test_sweep_unit.py CASE --sweep scripts/wheel-sweep --work DIR
 
 CASE: toml_roundtrip, cli, soil_names, tiled_recipe, estimate_arithmetic, estimate_active,
-rate_cache, budget, slip_control (see
+rate_cache, budget, slip_control, accept_change (see
 each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (a prerequisite missing).
 """
@@ -791,6 +791,116 @@ def case_slip_control(a, work):
                  "w/flat/s-1.000"):
         check(want in r.stdout, f"--dry-run output lacks {want!r}")
     check(not out.exists(), "--dry-run wrote the output directory")
+
+
+def case_accept_change(a, work):
+    """wheel-sweep --accept-change FILE --reason TEXT (docs/sweeps.md "Accepting an edit that
+    changes no result"): two finished DEM points and a recipe bed recorded as wheel-sweep records
+    them; an edit of a file the deck includes and of one the soil file includes makes the points
+    re-run and the bed re-prepare (--dry-run); accepting only one of the two edits touches no
+    record (the other still differs, named); accepting both updates the points whose inputs hash
+    still matches (one point's does not: named, left) and the bed, records file, hashes, reason and
+    time in `accepted_changes`, and --dry-run then finds that point finished and reuses the bed.
+    Errors exit 2 naming what is wrong: no --reason, --reason alone, a missing file, a file the
+    sweep does not include, --accept-change with --dry-run, a second driver on the output."""
+    import fcntl
+    import hashlib
+    from wheelsim_sweep import config, runner
+    repo = Path(a.sweep).resolve().parents[1]
+    build = work / "build"
+    _stand_in_rig(build, otherwise="exit 0\n")
+    (work / "wheel.stl").write_text("solid w\nendsolid w\n")
+    deck_inc, soil_inc, other = work / "deck_extra.in", work / "soil_extra.in", work / "other.in"
+    for f in (deck_inc, soil_inc, other):
+        f.write_text("# v1\n")
+    (work / "in.deck").write_text(f"# not run\ninclude {deck_inc}\n")
+    (work / "sand.in").write_text((repo / "inputs" / "soils" / "ci.in").read_text()
+                                  + f"include {soil_inc}\n")
+    (work / "rig.toml").write_text('[run]\ndt = 1e-4\nduration = 0.5\n[motor]\nomega = 1.0\n'
+                                   '[terrain]\ntype = "dem"\n')
+    cfg = work / "sweep.toml"
+    cfg.write_text('terrain = "dem"\nbase = "rig.toml"\nwheels = ["wheel.stl"]\n'
+                   'soils = [{ soil = "sand.in", bin_length = 0.3 }]\nslips = [0.1, 0.2]\n'
+                   '[dem]\nnp = 1\ndeck = "in.deck"\n')
+    out = work / "out"
+    sw = config.load(cfg, repo, build)
+    r = runner.Runner(sw, out, repo, build, 1)
+    for p in sw.points:  # finished points, recorded as run_point records them
+        d = r.point_dir(p)
+        d.mkdir(parents=True)
+        (d / "run.h5").write_text("")
+        (d / "done.json").write_text(json.dumps(
+            {"exit_status": 0, "status": "done", "inputs_sha256": r.inputs_hash(p),
+             "included_sha256": r.included_hashes(p)}, indent=2) + "\n")
+    soil = sw.points[0].soil
+    restart = r.bed_restart(soil)
+    restart.parent.mkdir(parents=True)
+    for f in (restart, Path(f"{restart}.vars")):
+        f.write_text("x")
+    (restart.parent / f"{restart.name}.recipe.json").write_text(
+        json.dumps(soil.recipe, sort_keys=True, indent=2) + "\n")
+    r.bed_inputs_file(soil).write_text(json.dumps(r.bed_inputs(soil), sort_keys=True, indent=2)
+                                       + "\n")
+
+    def sweep(*args):
+        return _run(a, str(cfg), "--out-dir", str(out), "--build-dir", str(build), *args)
+
+    res = sweep("--dry-run")
+    check(res.returncode == 0 and "0 point(s) to run, 2 finished" in res.stdout,
+          "before the edits: expected 2 finished points")
+    deck_inc.write_text("# v1, a comment\n")
+    soil_inc.write_text("# v1, another comment\n")
+    res = sweep("--dry-run")
+    check(f"included file {deck_inc} changed" in res.stdout and "2 point(s) to run" in res.stdout,
+          "after the edits: expected both points to re-run, naming the deck's include")
+    check("would prepare" in res.stdout, "after the soil include's edit: the bed re-prepares")
+    for args, msg in (
+            (("--accept-change", str(deck_inc)), "--accept-change needs --reason TEXT"),
+            (("--accept-change", str(deck_inc), "--reason", " "), "needs --reason TEXT"),
+            (("--reason", "x"), "--reason goes with --accept-change"),
+            (("--accept-change", str(work / "nosuch.in"), "--reason", "x"),
+             f"--accept-change {work / 'nosuch.in'}: no such file"),
+            (("--accept-change", str(other), "--reason", "x"),
+             f"--accept-change {other}: not a file the sweep's DEM inputs include"),
+            (("--accept-change", str(deck_inc), "--reason", "x", "--dry-run"),
+             "--accept-change runs nothing")):
+        res = sweep(*args)
+        check(res.returncode == 2 and msg in res.stderr, f"{args}: expected exit 2 and '{msg}'")
+    records = {f: f.read_bytes() for f in out.rglob("done.json")}
+    records[r.bed_inputs_file(soil)] = r.bed_inputs_file(soil).read_bytes()
+    res = sweep("--accept-change", str(deck_inc), "--reason", "a comment")
+    check(res.returncode == 0 and f"{soil_inc} changed too" in res.stdout
+          and "in 0 finished point(s) and 0 bed(s)" in res.stdout,
+          "accepting one of two edits: expected no record changed, the other file named")
+    check(all(f.read_bytes() == b for f, b in records.items()), "a record changed")
+    with open(out / ".wheel-sweep.lock", "w") as held:
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        res = sweep("--accept-change", str(deck_inc), "--accept-change", str(soil_inc),
+                    "--reason", "comments")
+        check(res.returncode == 2 and "another wheel-sweep is running" in res.stdout,
+              "a held lock: expected exit 2")
+    second = r.point_dir(sw.points[1]) / "done.json"
+    rec = json.loads(second.read_text())
+    rec["inputs_sha256"] = "stale"
+    second.write_text(json.dumps(rec))
+    res = sweep("--accept-change", str(deck_inc), "--accept-change", str(soil_inc),
+                "--reason", "comments only")
+    check(res.returncode == 0 and "in 1 finished point(s) and 1 bed(s)" in res.stdout
+          and "its inputs changed" in res.stdout,
+          "accepting both: expected 1 point (the other's inputs changed) and the bed")
+    first = json.loads((r.point_dir(sw.points[0]) / "done.json").read_text())
+    notes = first.get("accepted_changes", [])
+    check(sorted(n["file"] for n in notes) == sorted([str(deck_inc), str(soil_inc)])
+          and all(n["reason"] == "comments only" and n["old_sha256"] != n["new_sha256"]
+                  and n["new_sha256"] == hashlib.sha256(Path(n["file"]).read_bytes()).hexdigest()
+                  and n["utc"].endswith("Z")
+                  for n in notes), f"accepted_changes of the first point: {notes}")
+    bed = json.loads(r.bed_inputs_file(soil).read_text())
+    check(len(bed.get("accepted_changes", [])) == 1, f"bed's accepted_changes: {bed}")
+    res = sweep("--dry-run")
+    check(res.returncode == 0 and "1 point(s) to run, 1 finished" in res.stdout
+          and "reusing" in res.stdout and "inputs changed since it finished" in res.stdout,
+          "after accepting: expected the first point finished, the bed reused, the second to run")
 
 
 def _rewrite(path, old, new):

@@ -1,0 +1,122 @@
+"""wheel-sweep --accept-change FILE --reason TEXT: keep finished DEM points and prepared beds
+valid across an edit of a file their LIGGGHTS inputs include (docs/sweeps.md, "Accepting an
+edit that changes no result").
+
+A finished point records the sha256 of every file its deck, soil file and in.soilbin include in
+turn (done.json `included_sha256`), and a recipe bed the same (its .inputs.json); an edit of any
+of them re-runs the point or re-prepares the bed. When the user knows an edit cannot change a
+result (a comment, a new variable nothing uses yet), this writes the file's new hash into those
+records instead, and appends to each record what was accepted, from what to what, when and why
+(`accepted_changes`), so that the run's provenance says so. Only records that would otherwise be
+valid are touched: a point whose inputs hash, run file or another included file also changed is
+left as it is (and named). Nothing runs.
+"""
+
+import datetime
+import json
+import sys
+from pathlib import Path
+
+from .runner import DONE_FILE, RUN_FILE, _write_atomic
+
+
+def _error(msg):
+    print(f"wheel-sweep: error: {msg}", file=sys.stderr)
+
+
+def _accept(record, now, files, reason, stamp):
+    """Updates `record` (a dict with included_sha256) for the accepted `files` whose recorded
+    hash differs from `now`; returns (accepted [(key, old, new)], others [keys still differing])."""
+    recorded = record.get("included_sha256")
+    if not isinstance(recorded, dict):
+        return [], []
+    accepted, others = [], []
+    for k in sorted(set(recorded) | set(now)):
+        if recorded.get(k) == now.get(k):
+            continue
+        if Path(k).resolve() in files and k in recorded and k in now:
+            accepted.append((k, recorded[k], now[k]))
+        else:
+            others.append(k)
+    if accepted and not others:
+        for k, old, new in accepted:
+            recorded[k] = new
+            record.setdefault("accepted_changes", []).append(
+                {"file": k, "old_sha256": old, "new_sha256": new, "reason": reason, "utc": stamp})
+    return accepted, others
+
+
+def accept_changes(r, files, reason):
+    """Runner r (its sweep, output dir and hashing); files: the paths given; reason: the user's
+    text. Returns the exit status: 0 (also when nothing needed accepting), 2 for a file that no
+    point or bed of the sweep includes."""
+    sw = r.sweep
+    if sw.terrain != "dem":
+        _error(f"--accept-change: {sw.path.name} is an {sw.terrain.upper()} "
+              "sweep; only DEM points record included files")
+        return 2
+    files = {Path(f).resolve() for f in files}
+    included = set()
+    for p in sw.points:
+        included |= {Path(k).resolve() for k in r.included_hashes(p)}
+    beds = {id(p.soil): p.soil for p in sw.points if p.soil.recipe is not None}
+    for soil in beds.values():
+        included |= {Path(k).resolve() for k in r.bed_inputs(soil)["included_sha256"]}
+    unknown = sorted(str(f) for f in files - included)
+    if unknown:
+        _error(f"--accept-change {unknown[0]}: not a file the sweep's DEM "
+              "inputs include (only included files can be accepted: a change of the deck, the "
+              "soil file, in.soilbin, the mesh or the rig config always re-runs; "
+              f"included: {', '.join(sorted(str(f) for f in included)) or 'none'})")
+        return 2
+    lock = r.lock_out_dir()  # not while a driver runs on the same output
+    if lock is None:
+        return 2
+    stamp = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    n_points = n_beds = 0
+    for p in sw.points:
+        d = r.point_dir(p)
+        try:
+            done = json.loads((d / DONE_FILE).read_text())
+        except (OSError, ValueError):
+            continue  # not run, unfinished or unreadable: it runs anyway
+        if done.get("exit_status") != 0 or not (d / RUN_FILE).is_file():
+            continue
+        if done.get("inputs_sha256") != r.inputs_hash(p):
+            r.say(f"    {r.describe(p)}: left as is: its inputs changed (not only included "
+                  "files), so it re-runs")
+            continue
+        accepted, others = _accept(done, r.included_hashes(p), files, reason, stamp)
+        if others:
+            if accepted:
+                r.say(f"    {r.describe(p)}: left as is: {others[0]} changed too, so it re-runs")
+            continue
+        if accepted:
+            _write_atomic(d / DONE_FILE, json.dumps(done, indent=2) + "\n")
+            n_points += 1
+            r.say(f"    {r.describe(p)}: accepted {', '.join(k for k, _, _ in accepted)} "
+                  f"({p.reldir}/{DONE_FILE})")
+    for soil in beds.values():
+        f = r.bed_inputs_file(soil)
+        try:
+            record = json.loads(f.read_text())
+        except (OSError, ValueError):
+            continue
+        now = r.bed_inputs(soil)
+        same_rest = all(record.get(k) == v for k, v in now.items() if k != "included_sha256")
+        if not same_rest:
+            r.say(f"    bed {soil.label}: left as is: its soil file or in.soilbin changed, so it "
+                  "is prepared again")
+            continue
+        accepted, others = _accept(record, now["included_sha256"], files, reason, stamp)
+        if others:
+            if accepted:
+                r.say(f"    bed {soil.label}: left as is: {others[0]} changed too")
+            continue
+        if accepted:
+            _write_atomic(f, json.dumps(record, sort_keys=True, indent=2) + "\n")
+            n_beds += 1
+            r.say(f"    bed {soil.label}: accepted {', '.join(k for k, _, _ in accepted)} ({f})")
+    r.say(f"wheel-sweep: accepted the change of {len(files)} file(s) in {n_points} finished "
+          f"point(s) and {n_beds} bed(s) (reason: {reason})")
+    return 0
