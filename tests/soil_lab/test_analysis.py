@@ -130,6 +130,29 @@ class Analysis(unittest.TestCase):
         self.assertIn("shear box at 2.5 kPa: unstable: the shear stress reached -1", err[0])
         self.assertIn("Janosi tau_max -400 Pa", err[1])
 
+    def test_a_shear_box_still_rising_at_the_end_is_named(self):
+        # Box side 0.24 m, travel 0.06 m (0.25 L), 3000 samples.
+        j = np.linspace(0.0, 0.06, 3000)
+        # Straight line: last quarter's mean 0.875, the quarter before 0.625 of the peak: +25 %.
+        self.assertAlmostEqual(analysis.shear_rise_at_end(j, 8000.0 * j / 0.06), 0.25, places=3)
+        # Levelled off (Janosi, K 4 mm) with stick-slip waves of 12 % and a grain's length (10 mm):
+        # the quarters differ by the waves' share only, under the 8 % threshold.
+        level = 4000.0 * (1.0 - np.exp(-j / 0.004)) * (1.0 + 0.12 * np.sin(2 * np.pi * j / 0.01))
+        # A peak at 0.02 m, then softening to 70 %: falling at the end.
+        soft = np.interp(j, [0.0, 0.02, 0.04, 0.06], [0.0, 5000.0, 3500.0, 3500.0])
+
+        def box(tau, sigma=1e4):
+            return {"sigma_Pa": sigma, "j": j, "tau": tau, "done": {"meta": {"box_m": 0.24}}}
+        self.assertLess(abs(analysis.shear_rise_at_end(j, level)), 0.08)
+        self.assertLess(analysis.shear_rise_at_end(j, soft), 0.0)
+        warn = analysis.shear_peak_warnings([box(level), box(8000.0 * j / 0.06, 2e4), box(soft)])
+        self.assertEqual(len(warn), 1)
+        self.assertIn("shear box at 20 kPa: the shear stress still rises at the end of the travel "
+                      "(its last quarter, to j 0.06 m, 25.0 % of the peak", warn[0])
+        self.assertIn("longer travel than 0.25 of the box side", warn[0])
+        self.assertEqual(analysis.shear_peak_warnings([{"sigma_Pa": 1e4, "j": None, "tau": None}]),
+                         [])
+
 
 if __name__ == "__main__":
     unittest.main()
