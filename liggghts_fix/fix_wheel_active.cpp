@@ -226,15 +226,26 @@ void FixWheelActive::resolve_distances() {
                  "would reach frozen soil before the next update",
                  travel_, distance_);
   if (!reported_setup_) {
-    char line[512];
+    char line[640];
+    // The sinkage the domain allows for: the one given or defaulted, or for a distance given,
+    // the sinkage whose default distance it is. wheel-cosim records it in the run file
+    // (/parameters/liggghts/active_sinkage_allowance) and wheelsim-post warns when the wheel
+    // sinks deeper (docs/fix-wheel-active.md "Sinkage allowance").
+    const double allowance =
+        distance_arg_ > 0.0 ? std::max(0.0, (distance_ - kDistanceRadiusPart * bounding_radius_) /
+                                                kDistanceSinkageFactor)
+                            : sinkage_;
     snprintf(line, sizeof(line),
              "fix wheel/active %s: wheel %s (bounding radius %.4g m); particles of group %s "
-             "farther than %.4g m from its centre are frozen (distance %.4g m%s + radius), "
-             "active again within %.4g m; updated each time the wheel centre has moved %.4g m; "
-             "pairs of frozen particles: %s\n",
+             "farther than %.4g m from its centre are frozen (distance %.4g m%s + radius; "
+             "sinkage allowance %.4g m%s), active again within %.4g m; updated each time the "
+             "wheel centre has moved %.4g m; pairs of frozen particles: %s\n",
              id, wheel_id_.c_str(), bounding_radius_, group->names[igroup],
              bounding_radius_ + distance_ + hysteresis_, distance_,
-             distance_arg_ > 0.0 ? "" : " (default: 0.5 R + 2 x sinkage allowance)",
+             distance_arg_ > 0.0 ? "" : " (default: 0.5 R + 2 x sinkage allowance)", allowance,
+             distance_arg_ > 0.0   ? ", the one whose default distance is the distance given"
+             : sinkage_arg_ >= 0.0 ? ""
+                                   : ", the default R/4",
              bounding_radius_ + distance_, travel_,
              !skip_frozen_pairs_ ? "computed"
              : keep_history_     ? "skipped, contact histories kept"

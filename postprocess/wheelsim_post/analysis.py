@@ -3,7 +3,7 @@
 import dataclasses
 import math
 
-from .health import Health, postprocess_findings
+from .health import ACTIVE_ALLOWANCE_PARAMETER, Health, postprocess_findings
 from .metadata import read_metadata
 from .runfile import RunFile
 from .steady import steady_state
@@ -46,7 +46,9 @@ def analyse_run(path, window, lugs=None):
         count, source = lug_count(run, metadata.wheel, lugs)
         stats = steady_state(run, window, count, source)
         health = run.health()
-    health.findings = health.findings + postprocess_findings(stats)
+        allowance = run.parameter(ACTIVE_ALLOWANCE_PARAMETER)
+    health.findings = health.findings + postprocess_findings(
+        stats, None if allowance is None else float(allowance))
     return RunResult(path, metadata, stats, health)
 
 

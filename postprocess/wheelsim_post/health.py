@@ -91,9 +91,27 @@ def read_health(h5file):
     return Health(status, findings)
 
 
-def postprocess_findings(stats):
-    """Findings of the window statistics (steady.steady_state's dict)."""
+#: The run-file parameter wheel-cosim records from fix wheel/active's setup line [m].
+ACTIVE_ALLOWANCE_PARAMETER = "liggghts/active_sinkage_allowance"
+
+
+def postprocess_findings(stats, active_allowance_m=None):
+    """Findings of the window statistics (steady.steady_state's dict); ``active_allowance_m``:
+    the active domain's sinkage allowance (ACTIVE_ALLOWANCE_PARAMETER; None: no active domain)."""
     findings = []
+    sinkage = stats["sinkage"].mean
+    if active_allowance_m is not None and math.isfinite(sinkage) and sinkage > active_allowance_m:
+        findings.append(
+            Finding(
+                "active_domain_sinkage",
+                "warning",
+                f"the wheel sank {sinkage:.4g} m, deeper than the active domain's sinkage "
+                f"allowance {active_allowance_m:.4g} m (fix wheel/active): the frozen soil may "
+                "carry part of the wheel's load; set its 'sinkage' to at least the sinkage and "
+                "compare one point with the full domain (docs/fix-wheel-active.md, \"Sinkage "
+                "allowance\")",
+            )
+        )
     slip, eta = stats[SLIP_OF_MEANS], stats[EFFICIENCY_OF_MEANS]
     if slip.mean >= 0.0 and math.isfinite(eta.mean):
         bound = 1.0 - slip.mean

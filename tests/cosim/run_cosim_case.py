@@ -312,7 +312,8 @@ def cost_recorded(a):
 def active_coupled(a):
     """The wheel deck (inputs/examples/in.wheel_coupled) with the active domain and its active
     group (active_fixes 1: gravity, walls and integrator redeclared on act_active): the coupled
-    run completes, soil far from the wheel is frozen, and the run file has its test phase."""
+    run completes, soil far from the wheel is frozen, and the run file has its test phase and
+    the domain's sinkage allowance (/parameters/liggghts/active_sinkage_allowance)."""
     rig = rig_config(a, "rig.toml", duration="0.02")
     work = os.path.join(os.path.abspath(a.work), "run")
     run = subprocess.run(
@@ -332,16 +333,25 @@ def active_coupled(a):
     m = re.search(r"([0-9.]+) of ([0-9.]+) particles active on average", screen)
     import h5py
 
-    rows = 0
+    rows, recorded = 0, None
     if os.path.exists(os.path.join(work, "run.h5")):
         with h5py.File(os.path.join(work, "run.h5"), "r") as f:
             rows = len(f["observables/wheel/position/step"])
+            name = "parameters/liggghts/active_sinkage_allowance"
+            recorded = float(f[name][()]) if name in f else None
     frozen = m is not None and float(m.group(1)) < float(m.group(2))
     regrouped = "unfix wall_z0" in screen or "act_active" in screen
-    ok = run.returncode == 0 and frozen and rows > 0
+    # The sinkage allowance of 'distance 0.03' (the sinkage whose default distance 0.5 R + 2 z it
+    # is, at least 0), as the fix prints it and wheel-cosim records it in the run file.
+    radius = re.search(r"wheel/active \S+: wheel \S+ \(bounding radius ([0-9.e+-]+) m\)", screen)
+    expected = max(0.0, (0.03 - 0.5 * float(radius.group(1))) / 2) if radius else None
+    allowance_ok = (recorded is not None and expected is not None
+                    and abs(recorded - expected) <= 1e-4 * max(1.0, expected))
+    ok = run.returncode == 0 and frozen and rows > 0 and allowance_ok
     print(f"run_cosim_case: exit {run.returncode}; active on average "
           f"{m.group(1) + ' of ' + m.group(2) if m else 'not reported'}; run file rows {rows}; "
-          f"active group in the log: {regrouped} {'PASS' if ok else 'FAIL'}")
+          f"active group in the log: {regrouped}; sinkage allowance recorded {recorded} m, "
+          f"expected {expected} m {'PASS' if ok else 'FAIL'}")
     return 0 if ok else 1
 
 

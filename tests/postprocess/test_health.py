@@ -1,6 +1,6 @@
 """Run health in curves and study: the rig's /health group (status and entries), runs
 without it ("unchecked"), and post-processing's own findings over the window
-(efficiency_bound, steady_state_trend)."""
+(efficiency_bound, steady_state_trend, active_domain_sinkage)."""
 
 import csv
 import os
@@ -23,7 +23,7 @@ def read_rows(path):
 
 
 class HealthTest(TempDirTestCase):
-    def write(self, name, dp=100.0, torque=60.0, health=None, slip=0.2):
+    def write(self, name, dp=100.0, torque=60.0, health=None, slip=0.2, parameters=None):
         time, phase, series = syn.steady_run_series(
             N_TEST, 1e-3, 2.0, slip, dp, torque, load=1000.0
         )
@@ -33,10 +33,28 @@ class HealthTest(TempDirTestCase):
             time,
             phase,
             series,
-            parameters={"sweep/wheel": "W", "sweep/soil": "S", "sweep/slip": str(slip)},
+            parameters={
+                "sweep/wheel": "W",
+                "sweep/soil": "S",
+                "sweep/slip": str(slip),
+                **(parameters or {}),
+            },
             health=health,
         )
         return path
+
+    def test_sinkage_beyond_the_active_domains_allowance(self):
+        # The synthetic wheel sinks syn.SINKAGE = 0.02 m on average (+-1 mm).
+        name = "liggghts/active_sinkage_allowance"
+        deeper = self.write("deep.h5", parameters={name: (0.015, "m")}, health=("healthy", []))
+        self.assertEqual(self.verdict(deeper), ("warning", "active_domain_sinkage"))
+        message = analyse_run(deeper, HALF).health.findings[0].message
+        self.assertIn("the wheel sank 0.02 m, deeper than the active domain's sinkage "
+                      "allowance 0.015 m", message)
+        within = self.write("within.h5", parameters={name: (0.025, "m")}, health=("healthy", []))
+        self.assertEqual(self.verdict(within), ("ok", ""))
+        # no active domain (no parameter): no finding
+        self.assertEqual(self.verdict(self.write("full.h5", health=("healthy", []))), ("ok", ""))
 
     def verdict(self, path):
         r = analyse_run(path, HALF)
