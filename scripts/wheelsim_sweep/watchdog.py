@@ -12,13 +12,10 @@ session still registered, and exits.
 Run as a script, this file is the watchdog: /usr/bin/python3 watchdog.py.
 """
 
-import ctypes
 import os
 import signal
 import sys
 import time
-
-PR_SET_PDEATHSIG = 1
 
 
 def _stat_fields(pid):
@@ -67,19 +64,9 @@ def kill_sessions_until_empty(sids, timeout=2.0):
 
 def child_preexec(driver_pid):
     """A preexec_fn for a child: a session of its own, and SIGKILL when its parent (the driver
-    thread that starts it) dies. If the driver died before prctl took effect, the child kills
-    itself. libc is loaded here, in the driver, not in the forked child."""
-    prctl = ctypes.CDLL(None, use_errno=True).prctl
-
-    def preexec():
-        os.setsid()
-        if prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0) != 0:
-            os.write(2, b"wheel-sweep: prctl(PR_SET_PDEATHSIG) failed\n")
-            os._exit(127)
-        if os.getppid() != driver_pid:
-            os.kill(os.getpid(), signal.SIGKILL)
-
-    return preexec
+    thread that starts it) dies (wheelsim_post.mpi_launch.die_with_parent)."""
+    from wheelsim_post.mpi_launch import die_with_parent  # not needed by the watchdog process
+    return die_with_parent(driver_pid, new_session=True, who="wheel-sweep")
 
 
 def main():

@@ -13,9 +13,7 @@ import hashlib
 import json
 import os
 import re
-import shutil
 import subprocess
-import sys
 import time
 from pathlib import Path
 
@@ -77,12 +75,16 @@ class Lab:
         return mpi_launch.mpirun(self.np)
 
     def _liggghts(self, deck, variables, log, cwd):
-        cmd = self._mpirun() + [str(self.liggghts), "-in", str(deck), "-log", "none",
-                                "-var", "inputs_dir", str(self.inputs)]
+        # mpirun dies with this process and each rank with mpirun (SIGKILL, also when the lab is
+        # killed: docs/soil-lab.md "Stopping and resuming"), so no run outlives the lab.
+        cmd = self._mpirun() + mpi_launch.rank_death_prefix() + [
+            str(self.liggghts), "-in", str(deck), "-log", "none", "-var", "inputs_dir",
+            str(self.inputs)]
         for k, v in variables.items():
             cmd += ["-var", k, str(v)]
         with open(log, "w") as f:
-            r = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd)
+            r = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd,
+                               preexec_fn=mpi_launch.die_with_parent(os.getpid(), who="soil-lab"))
         text = Path(log).read_text(errors="replace")
         if r.returncode != 0:
             errors = [ln for ln in text.splitlines() if "ERROR" in ln]

@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+"""The soil lab's runs die with it: `soil-lab run ci --preset quick --tests shear` is killed with
+SIGKILL (or SIGTERM) while LIGGGHTS prepares its bed, and within 5 s no process whose command line
+names the lab's output directory is left (mpirun dies through PR_SET_PDEATHSIG, each rank
+through `setpriv --pdeathsig KILL`; docs/soil-lab.md "Stopping and resuming").
+
+  check_kill_lab.py --build-dir BUILD --work DIR --signal KILL|TERM
+Exit 0 pass, 1 fail, 77 skip (liggghts-wheel not built).
+"""
+
+import argparse
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def survivors(tag):
+    """{pid: command line} of the live processes (not this one) whose command line contains
+    `tag`."""
+    out = {}
+    for name in os.listdir("/proc"):
+        if not name.isdigit() or int(name) == os.getpid():
+            continue
+        try:
+            cmd = Path(f"/proc/{name}/cmdline").read_bytes().replace(b"\0", b" ").decode(
+                errors="replace")
+            state = Path(f"/proc/{name}/stat").read_text().rsplit(")", 1)[1].split()[0]
+        except OSError:
+            continue
+        if tag in cmd and state != "Z":
+            out[int(name)] = cmd
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build-dir", required=True)
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--signal", choices=["KILL", "TERM"], default="KILL")
+    a = ap.parse_args()
+    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").is_file():
+        print("SKIP: liggghts-wheel not built")
+        return 77
+    work = Path(a.work).resolve()
+    shutil.rmtree(work, ignore_errors=True)
+    out = work / f"lab_{a.signal.lower()}"
+    lab = subprocess.Popen(
+        [str(ROOT / "soil_lab" / "soil-lab"), "run", "ci", "--preset", "quick", "--tests",
+         "shear", "--np", "1", "--out", str(out), "--build-dir", a.build_dir, "--quiet"],
+        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    tag = str(out)
+    deadline = time.monotonic() + 120
+    while not any("liggghts-wheel" in cmd for cmd in survivors(tag).values()):
+        if lab.poll() is not None or time.monotonic() > deadline:
+            print(f"FAIL: no LIGGGHTS run of the lab seen (lab exit {lab.poll()})")
+            return 1
+        time.sleep(0.2)
+    running = survivors(tag)
+    lab.send_signal(getattr(signal, f"SIG{a.signal}"))
+    lab.wait()
+    t0 = time.monotonic()
+    left = survivors(tag)
+    while left and time.monotonic() - t0 < 5.0:
+        time.sleep(0.1)
+        left = survivors(tag)
+    print(f"soil-lab killed with SIG{a.signal} while {len(running)} process(es) of its run were "
+          f"alive; after {time.monotonic() - t0:.1f} s {len(left)} left")
+    for p in left:
+        try:
+            os.kill(p, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+    if left:
+        print("FAIL: processes outlived the lab:\n" + "\n".join(f"  {p}: {c}" for p, c in left.items()))
+        return 1
+    print("PASS")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
