@@ -9,6 +9,7 @@ unless $WHEELSIM_MPI_BIND names another policy (e.g. `core` on a cluster node gi
 """
 
 import ctypes
+import functools
 import os
 import signal
 import subprocess
@@ -47,11 +48,13 @@ def die_with_parent(parent_pid, new_session=False, who="wheelsim"):
     return preexec
 
 
+@functools.lru_cache(maxsize=None)
 def rank_death_prefix():
     """The words before a rank's executable that make it die (SIGKILL) with mpirun: util-linux
-    `setpriv --pdeathsig KILL`, as scripts/wheel-cosim does; [] where setpriv lacks it."""
+    `setpriv --pdeathsig KILL`, as scripts/wheel-cosim does; () where setpriv lacks it. Asked
+    once per process."""
     try:
         text = subprocess.run(["setpriv", "--help"], capture_output=True, text=True).stdout
     except OSError:
-        return []
-    return ["setpriv", "--pdeathsig", "KILL"] if "--pdeathsig" in text else []
+        return ()
+    return ("setpriv", "--pdeathsig", "KILL") if "--pdeathsig" in text else ()

@@ -56,12 +56,11 @@ def accept_changes(r, files, reason):
               "sweep; only DEM points record included files")
         return 2
     files = {Path(f).resolve() for f in files}
-    included = set()
-    for p in sw.points:
-        included |= {Path(k).resolve() for k in r.included_hashes(p)}
+    point_now = {p.index: r.included_hashes(p) for p in sw.points}  # current hashes, once
     beds = {id(p.soil): p.soil for p in sw.points if p.soil.recipe is not None}
-    for soil in beds.values():
-        included |= {Path(k).resolve() for k in r.bed_inputs(soil)["included_sha256"]}
+    bed_now = {k: r.bed_inputs(soil) for k, soil in beds.items()}
+    included = {Path(f).resolve() for now in point_now.values() for f in now}
+    included |= {Path(f).resolve() for now in bed_now.values() for f in now["included_sha256"]}
     unknown = sorted(str(f) for f in files - included)
     if unknown:
         _error(f"--accept-change {unknown[0]}: not a file the sweep's DEM "
@@ -86,7 +85,7 @@ def accept_changes(r, files, reason):
             r.say(f"    {r.describe(p)}: left as is: its inputs changed (not only included "
                   "files), so it re-runs")
             continue
-        accepted, others = _accept(done, r.included_hashes(p), files, reason, stamp)
+        accepted, others = _accept(done, point_now[p.index], files, reason, stamp)
         if others:
             if accepted:
                 r.say(f"    {r.describe(p)}: left as is: {others[0]} changed too, so it re-runs")
@@ -96,13 +95,13 @@ def accept_changes(r, files, reason):
             n_points += 1
             r.say(f"    {r.describe(p)}: accepted {', '.join(k for k, _, _ in accepted)} "
                   f"({p.reldir}/{DONE_FILE})")
-    for soil in beds.values():
+    for k, soil in beds.items():
         f = r.bed_inputs_file(soil)
         try:
             record = json.loads(f.read_text())
         except (OSError, ValueError):
             continue
-        now = r.bed_inputs(soil)
+        now = bed_now[k]
         same_rest = all(record.get(k) == v for k, v in now.items() if k != "included_sha256")
         if not same_rest:
             r.say(f"    bed {soil.label}: left as is: its soil file or in.soilbin changed, so it "

@@ -198,9 +198,9 @@ def shear_peak_warnings(shears):
         if s.get("tau") is None or s.get("j") is None:
             continue
         rise = shear_rise_at_end(s["j"], s["tau"])
-        box = (s.get("done") or {}).get("meta", {}).get("box_m")
-        travel = f"{float(np.ptp(s['j'])) / box:.2g}" if box else "this"
         if rise > RISING_AT_END_WARNING:
+            box = (s.get("done") or {}).get("meta", {}).get("box_m")
+            travel = f"{float(np.ptp(s['j'])) / box:.2g}" if box else "this"
             out.append(f"shear box at {s['sigma_Pa'] / 1e3:.3g} kPa: the shear stress still rises "
                        f"at the end of the travel (its last quarter, to j {float(np.max(s['j'])):.3g} "
                        f"m, {100 * rise:.1f} % of the peak above the quarter before): the "

@@ -77,7 +77,7 @@ class Lab:
     def _liggghts(self, deck, variables, log, cwd):
         # mpirun dies with this process and each rank with mpirun (SIGKILL, also when the lab is
         # killed: docs/soil-lab.md "Stopping and resuming"), so no run outlives the lab.
-        cmd = self._mpirun() + mpi_launch.rank_death_prefix() + [
+        cmd = self._mpirun() + list(mpi_launch.rank_death_prefix()) + [
             str(self.liggghts), "-in", str(deck), "-log", "none", "-var", "inputs_dir",
             str(self.inputs)]
         for k, v in variables.items():
