@@ -10,6 +10,7 @@ Exit 0 pass, 1 fail, 77 skip (wheel-rig or the wheel meshes not built).
 
 import argparse
 import csv
+import hashlib
 import json
 import math
 import os
@@ -1027,6 +1028,60 @@ def case_resume_contents(a, work):
 
 class Skip(Exception):
     pass
+
+
+def case_point_archive(a, work):
+    """validation/common/point_archive.py: finished points saved from one sweep directory and
+    restored into a fresh one are skipped by wheel-sweep there (run files untouched); a failed
+    point is not archived; a restored point whose bed hash differs from today's bed is named; a
+    point already in the output directory is not overwritten by restore."""
+    repo = Path(a.sweep).resolve().parents[1]
+    archiver = [sys.executable, str(repo / "validation" / "common" / "point_archive.py")]
+    cfg = work / "sweep.toml"
+    slips = [0.1, 0.25]
+    sweep_config(cfg, a.build_dir, slips=slips, wheels='["wheel1"]')
+    out1, out2, archive, bed = work / "out1", work / "out2", work / "archive", work / "bed.restart"
+    check(run_sweep(a, cfg, "--out-dir", str(out1)).returncode == 0, "first sweep failed")
+    failed = out1 / "wheel1" / "mu05" / "s0.500"  # a failed point beside them: not archived
+    failed.mkdir(parents=True)
+    (failed / "done.json").write_text(json.dumps({"exit_status": 1}))
+    bed.write_text("bed A")
+
+    def archiver_run(*args):
+        r = subprocess.run(archiver + [str(x) for x in args], capture_output=True, text=True,
+                           timeout=60)
+        print(f"$ point_archive.py {' '.join(map(str, args))} -> exit {r.returncode}\n"
+              + r.stdout + r.stderr)
+        check(r.returncode == 0, "point_archive.py failed")
+        return r
+
+    archiver_run("save", out1, archive, "--bed", bed)
+    points = sorted(str(d.parent.relative_to(archive)) for d in archive.rglob("done.json"))
+    check(points == ["wheel1/mu05/s0.100", "wheel1/mu05/s0.250"], f"archived {points}")
+    for rel in points:
+        kept = sorted(f.name for f in (archive / rel).iterdir())
+        check(kept == ["archived.json", "done.json", "rig.toml", "run.h5", "run.log"],
+              f"{rel}: archived files {kept}")
+        record = json.loads((archive / rel / "archived.json").read_text())
+        check(record["bed_sha256"] == {"bed.restart": hashlib.sha256(b"bed A").hexdigest()},
+              f"{rel}: bed hash {record['bed_sha256']}")
+    archiver_run("restore", archive, out2)
+    r = run_sweep(a, cfg, "--out-dir", str(out2))
+    check(r.returncode == 0 and "skipping 2 finished point(s)" in r.stdout,
+          "the restored points were not skipped as finished")
+    for rel in points:
+        check((out2 / rel / "run.h5").read_bytes() == (archive / rel / "run.h5").read_bytes(),
+              f"{rel}: run.h5 changed after the restore")
+    bed.write_text("bed B")  # the bed prepared again, differently
+    r = archiver_run("save", out2, archive, "--bed", bed)
+    check(all(f"{rel} ran on another preparation of the bed" in r.stderr for rel in points),
+          "a point on another bed is not named")
+    beds = json.loads((archive / "beds.json").read_text())
+    check(sorted(beds["points_on_another_bed"]) == points, f"beds.json {beds}")
+    mine = out2 / points[0] / "done.json"
+    mine.write_text("{}")  # this session's own record
+    archiver_run("restore", archive, out2)
+    check(mine.read_text() == "{}", "restore overwrote a point's done.json in the output directory")
 
 
 def main():
