@@ -1033,8 +1033,9 @@ class Skip(Exception):
 def case_point_archive(a, work):
     """validation/common/point_archive.py: finished points saved from one sweep directory and
     restored into a fresh one are skipped by wheel-sweep there (run files untouched); a failed
-    point is not archived; a restored point whose bed hash differs from today's bed is named; a
-    point already in the output directory is not overwritten by restore."""
+    point is not archived; a restored point whose bed hash differs from today's bed (named by a
+    sweep config's restart) is named; a point already in the output directory is not overwritten
+    by restore."""
     repo = Path(a.sweep).resolve().parents[1]
     archiver = [sys.executable, str(repo / "validation" / "common" / "point_archive.py")]
     cfg = work / "sweep.toml"
@@ -1072,8 +1073,10 @@ def case_point_archive(a, work):
     for rel in points:
         check((out2 / rel / "run.h5").read_bytes() == (archive / rel / "run.h5").read_bytes(),
               f"{rel}: run.h5 changed after the restore")
-    bed.write_text("bed B")  # the bed prepared again, differently
-    r = archiver_run("save", out2, archive, "--bed", bed)
+    bed.write_text("bed B")  # the bed prepared again, differently; named by a config's restart
+    beds_cfg = work / "beds.toml"
+    beds_cfg.write_text('soils = [{ name = "s", restart = "bed.restart" }, { name = "flat" }]\n')
+    r = archiver_run("save", out2, archive, "--sweep", beds_cfg)
     check(all(f"{rel} ran on another preparation of the bed" in r.stderr for rel in points),
           "a point on another bed is not named")
     beds = json.loads((archive / "beds.json").read_text())

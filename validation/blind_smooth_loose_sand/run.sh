@@ -38,19 +38,19 @@ start=$(date +%s)
 started_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 status=0
 
-# sweep NAME CONFIG WINDOW_START WINDOW_END RESULTS [BED]: run one sweep into $out/NAME and write
-# its results table (and $out/NAME/curves.csv) (window in test-phase seconds: 0.05 m of travel
-# after the approach to steady sinkage, README "Averaging window"). A failed point is reported by
-# wheel-sweep and left out. With BED (the full case), the points finished in earlier sessions are
-# first restored from the committed points/NAME/ and this run's finished points saved there
-# (README "Resuming across sessions").
+# sweep NAME CONFIG WINDOW_START WINDOW_END RESULTS: run one sweep into $out/NAME and write its
+# results table (and $out/NAME/curves.csv) (window in test-phase seconds: 0.05 m of travel after
+# the approach to steady sinkage, README "Averaging window"). A failed point is reported by
+# wheel-sweep and left out. The full case first restores the points finished in earlier sessions
+# from the committed points/NAME/ and saves this run's finished points there (README "Resuming
+# across sessions").
 sweep() {
-  local name=$1 config=$2 w0=$3 w1=$4 results=$5 bed=${6:-}
+  local name=$1 config=$2 w0=$3 w1=$4 results=$5
   local archive=$here/points/$name archiver=$root/validation/common/point_archive.py
-  [[ -n $bed ]] && "$python" "$archiver" restore "$archive" "$out/$name"
+  ((smoke)) || "$python" "$archiver" restore "$archive" "$out/$name"
   "$root/scripts/wheel-sweep" "$config" --out-dir "$out/$name" --build-dir "$build_dir" \
     "${sweep_args[@]}" || status=$?
-  [[ -n $bed && -f $bed ]] && "$python" "$archiver" save "$out/$name" "$archive" --bed "$bed"
+  ((smoke)) || "$python" "$archiver" save "$out/$name" "$archive" --sweep "$config"
   local runs
   mapfile -t runs < <(find "$out/$name" -mindepth 4 -name run.h5 -not -path "*/beds/*" | sort)
   ((${#runs[@]})) || { echo "run.sh: no finished run under $out/$name" >&2; exit 1; }
@@ -63,15 +63,13 @@ if ((smoke)); then
   sweep main "$here/sweep_smoke.toml" 0.025 0.05 "$dest/results.csv"
 else
   dest=$here
-  coarse_bed=$out/beds/loose_1330_coarse/soilbin_loose_sand_1330_coarse.restart
-  sweep main "$here/sweep.toml" 0.7 1.2 "$dest/results.csv" "$coarse_bed"
+  sweep main "$here/sweep.toml" 0.7 1.2 "$dest/results.csv"
   cp "$out/main/curves.csv" "$dest/curves.csv"
 fi
 "$python" "$here/plot.py" --png "$dest/prediction.png" "$dest/results.csv"
 if ((sensitivity)); then
-  sweep speed_0.05 "$here/sweep_speed.toml" 1.4 2.4 "$dest/results_speed_0.05.csv" "$coarse_bed"
-  sweep grain_1.0 "$here/sweep_grain.toml" 0.7 1.2 "$dest/results_grain_1.0.csv" \
-    "$out/beds/loose_1330/soilbin_loose_sand_1330.restart"
+  sweep speed_0.05 "$here/sweep_speed.toml" 1.4 2.4 "$dest/results_speed_0.05.csv"
+  sweep grain_1.0 "$here/sweep_grain.toml" 0.7 1.2 "$dest/results_grain_1.0.csv"
   "$python" "$here/plot.py" --png "$dest/sensitivity.png" \
     --title "sensitivity: speed and grain size (smooth wheel, loose sand 1330)" \
     "0.1 m/s, d50 4.1 mm=$dest/results.csv" "0.05 m/s, d50 4.1 mm=$dest/results_speed_0.05.csv" \

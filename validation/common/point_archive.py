@@ -8,8 +8,11 @@ copies them back before the next run, where wheel-sweep then skips them as finis
 check: done.json's inputs hash against the current inputs; a point whose inputs changed is run
 again). Checkpoints, LIGGGHTS logs and beds are not kept.
 
-    point_archive.py save    OUT_DIR ARCHIVE_DIR --bed RESTART [--bed RESTART ...]
+    point_archive.py save    OUT_DIR ARCHIVE_DIR [--sweep CONFIG] [--bed RESTART ...]
     point_archive.py restore ARCHIVE_DIR OUT_DIR
+
+--sweep names the beds by the sweep config's soils' `restart` (relative to the config, as
+wheel-sweep reads it); --bed names one directly.
 
 The beds are not kept either: a later session prepares them again from the same recipe (on one
 rank, so bit for bit the same, docs/sweeps.md "Beds"). `save` writes archived.json beside each
@@ -24,6 +27,7 @@ import json
 import shutil
 import subprocess
 import sys
+import tomllib
 from pathlib import Path
 
 KEPT_FILES = ("done.json", "run.h5", "rig.toml", "run.log")
@@ -53,6 +57,17 @@ def finished_points(out_dir):
         if status == 0 and (d / "run.h5").is_file():
             points.append(d)
     return points
+
+
+def sweep_beds(config):
+    """The existing bed restarts a sweep config's soils name (`restart`, relative to it)."""
+    config = Path(config)
+    try:
+        soils = tomllib.loads(config.read_text()).get("soils", [])
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        sys.exit(f"point_archive: cannot read sweep config '{config}': {e}")
+    beds = [config.parent / s["restart"] for s in soils if isinstance(s, dict) and "restart" in s]
+    return [str(b.resolve()) for b in beds if b.is_file()]
 
 
 def git_commit(repo):
@@ -128,12 +143,14 @@ def main(argv=None):
     s.add_argument("archive")
     s.add_argument("--bed", action="append", default=[], metavar="RESTART",
                    help="a bed restart the points ran on (its sha256 is recorded)")
+    s.add_argument("--sweep", metavar="CONFIG",
+                   help="the sweep config: its soils' bed restarts are recorded")
     r = sub.add_parser("restore", help="copy archived points into a sweep's output directory")
     r.add_argument("archive")
     r.add_argument("out_dir")
     a = ap.parse_args(argv)
     if a.command == "save":
-        save(a.out_dir, a.archive, a.bed)
+        save(a.out_dir, a.archive, a.bed + (sweep_beds(a.sweep) if a.sweep else []))
     else:
         restore(a.archive, a.out_dir)
 

@@ -20,7 +20,8 @@
 # comparison_goal_active_domain.md. Resumable: a re-run skips finished points. Writes here
 # results.csv (DEM), results_<part>.csv (the others), comparison.md and comparison.png (the case),
 # comparison_active_domain.md (the check) and provenance[_<part>].toml (git hash, command,
-# machine, wall time). Run it in the background: nohup ... &
+# machine, wall time); finished points are kept in points/ (committed) and restored on the next
+# run. Run it in the background: nohup ... &
 # --points GLOBS: only these points of each sweep (wheel-sweep --points, e.g. 'wheel1/*/s0.200').
 # --smoke: the CI version (sweep_smoke.toml: a 1.6 m bin, one slip, 0.2 s of test phase; about a
 #          minute): same pipeline, outputs into --out-dir only (nothing in this folder changes).
@@ -53,12 +54,17 @@ done
 window=(--window-start 2.0 --window-end 6.0)
 status=0
 
-# part CONFIG OUT RESULTS PROVENANCE: one sweep, its results table and provenance file
+# part CONFIG OUT RESULTS PROVENANCE: one sweep, its results table and provenance file. The full
+# case first restores the points finished in earlier sessions from the committed points/<OUT's
+# name>/ and saves this run's finished points there (README "Resuming across sessions").
 part() {
   local config=$1 dir=$2 results=$3 provenance=$4 t0 t0_utc runs
+  local archive=$here/points/${2##*/} archiver=$root/validation/common/point_archive.py
   t0=$(date +%s); t0_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
+  ((smoke)) || "$python" "$archiver" restore "$archive" "$dir"
   "$root/scripts/wheel-sweep" "$here/$config" --out-dir "$dir" --build-dir "$build_dir" \
     "${sweep_args[@]}" || status=1
+  ((smoke)) || "$python" "$archiver" save "$dir" "$archive" --sweep "$here/$config"
   # every finished point (a failed point is reported by wheel-sweep and left out)
   mapfile -t runs < <(find "$dir" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" | sort)
   ((${#runs[@]})) || { echo "run.sh: no finished run under $dir" >&2; status=1; return 0; }
