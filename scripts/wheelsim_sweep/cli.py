@@ -63,6 +63,11 @@ def main(argv=None):
                          "re-running them; runs nothing (repeatable)")
     ap.add_argument("--reason", metavar="TEXT",
                     help="why the --accept-change edit changes no result (required with it)")
+    ap.add_argument("--archive", metavar="DIR",
+                    help="keep each finished point's done.json, run.h5, rig.toml and run.log in "
+                         "DIR (e.g. a folder committed to git) and restore them from there into "
+                         "the output directory first (docs/sweeps.md, \"Keeping finished "
+                         "points\")")
     ap.add_argument("--build-dir", metavar="D",
                     help="build directory (default: $WHEELSIM_BUILD_DIR, else <repo>/build)")
     cost = ap.add_argument_group("DEM cost estimate (docs/sweeps.md, \"Cost estimate\")")
@@ -91,6 +96,8 @@ def main(argv=None):
         ap.error("the following arguments are required: config")
     if a.beds_only and (a.dry_run or a.estimate):
         ap.error("--beds-only prepares beds: not with --dry-run or --estimate")
+    if a.archive is not None and a.accept_change:
+        ap.error("--accept-change changes the records in the output directory: not with --archive")
     if a.accept_change:
         if not (a.reason or "").strip():
             ap.error("--accept-change needs --reason TEXT: why the edit changes no result")
@@ -147,7 +154,7 @@ def main(argv=None):
     cost = {"rate": machine_rate, "cores": cores, "yes": a.yes,
             "budget_h": a.budget if a.budget is not None else sweep.budget_h}
     r = runner.Runner(sweep, out, REPO, build, jobs, force=a.force, dry_run=a.dry_run,
-                      cost=cost, beds_only=a.beds_only)
+                      cost=cost, beds_only=a.beds_only, archive_dir=a.archive)
     if a.estimate:
         return print_estimate(r, sweep, cost)
     if a.accept_change:

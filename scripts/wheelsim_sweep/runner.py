@@ -24,7 +24,7 @@ from pathlib import Path
 from wheelsim_post import mpi_launch
 from wheelsim_post.deck_files import deck_includes
 
-from . import active_domain, estimate, health, toml_out, watchdog
+from . import active_domain, archive, estimate, health, toml_out, watchdog
 from .config import TILE_VARS
 
 RUN_FILE = "run.h5"
@@ -100,8 +100,11 @@ class Interrupted(Exception):
 
 class Runner:
     def __init__(self, sweep, out_dir, repo, build_dir, jobs, force=False, dry_run=False,
-                 cost=None, beds_only=False):
+                 cost=None, beds_only=False, archive_dir=None):
         self.sweep = sweep
+        # --archive DIR: finished points are kept there and restored from there (archive.py)
+        self.archive = Path(archive_dir).resolve() if archive_dir is not None else None
+        self.restored = []  # reldirs of the points restored from the archive by this run
         self.beds_only = beds_only  # DEM: prepare the points' beds, run no point (cli --beds-only)
         # DEM cost check before running (cli.py): {"rate": callable -> estimate.Rate, "cores",
         # "budget_h" (None: no budget), "yes"}; None: no estimate line
@@ -335,8 +338,13 @@ class Runner:
         return {f"{f.replace('.', '_')}_sha256": self.file_hash(d / f) for f in TILE_DECKS}
 
     def finished(self, p):
-        """(True, "") when the point is finished with the same inputs, else (False, why)."""
+        """(True, "") when the point is finished with the same inputs, else (False, why). With
+        --archive, a point without done.json in the output directory is judged by its archived
+        record (restored once the run starts: _sync_archive)."""
         d = self.point_dir(p)
+        if self.archive is not None and not (d / DONE_FILE).exists():
+            if (self.archive / p.reldir / DONE_FILE).is_file():
+                d = self.archive / p.reldir
         try:
             done = json.loads((d / DONE_FILE).read_text())
         except FileNotFoundError:
@@ -408,6 +416,8 @@ class Runner:
         if self.sweep.terrain == "dem":
             done["included_sha256"] = self.included_hashes(p)
         _write_atomic(d / DONE_FILE, json.dumps(done, indent=2) + "\n")
+        if rc == 0 and self.archive is not None:
+            self._archive_point(p)
         with self.lock:
             self.status[p.index] = done["status"]
             self.exit_status[p.index] = rc
@@ -618,6 +628,8 @@ class Runner:
         lock = self.lock_out_dir()
         if lock is None:
             return 2
+        if self.archive is not None:
+            self._sync_archive()
         if sw.path != (self.out / "sweep.toml").resolve():
             shutil.copyfile(sw.path, self.out / "sweep.toml")
         for sig in (signal.SIGINT, signal.SIGTERM):
@@ -641,6 +653,8 @@ class Runner:
                     self.say(f"wheel-sweep: error: {e}")
                     self.write_manifest()
                     return 1
+            if self.restored and sw.terrain == "dem":
+                self._check_restored_beds()
             if self.beds_only:
                 self.say(f"wheel-sweep: --beds-only: the beds are ready; {len(todo)} point(s) "
                          "left to run")
@@ -653,6 +667,51 @@ class Runner:
         self.check_health()
         self.write_manifest()
         return self._summary(n, skipped, len(todo))
+
+    # ---- --archive DIR (archive.py) -------------------------------------------------------------
+    def _bed_sha(self, p):
+        """{bed restart file name: sha256} of a DEM point's bed; {} for SCM and flat points."""
+        if self.sweep.terrain != "dem":
+            return {}
+        bed = self.bed_restart(p.soil)
+        return {bed.name: self.file_hash(bed)}
+
+    def _archive_point(self, p):
+        try:
+            archive.save(self.archive, self.point_dir(p), p.reldir, self._bed_sha(p), self.repo)
+        except OSError as e:
+            self.say(f"wheel-sweep: warning: could not archive {p.reldir} in {self.archive}: {e}")
+
+    def _sync_archive(self):
+        """Copies the points finished only in the archive into the output directory, and
+        archives the finished points the archive lacks."""
+        done = [p for p in self.sweep.points if self.status.get(p.index) == "done"]
+        self.restored = archive.restore(self.archive, self.out, [p.reldir for p in done])
+        if self.restored:
+            self.say(f"wheel-sweep: restored {len(self.restored)} finished point(s) from the "
+                     f"archive {self.archive}")
+        added = 0
+        for p in done:
+            mine, kept = self.point_dir(p) / DONE_FILE, self.archive / p.reldir / DONE_FILE
+            if p.reldir not in self.restored and (
+                    not kept.is_file() or kept.read_bytes() != mine.read_bytes()):
+                self._archive_point(p)
+                added += 1
+        if added:
+            self.say(f"wheel-sweep: archived {added} finished point(s) the archive lacked")
+
+    def _check_restored_beds(self):
+        """Names the restored points that ran on another preparation of their bed."""
+        for p in self.sweep.points:
+            if p.reldir not in self.restored or self.status.get(p.index) != "done":
+                continue
+            if not self.bed_restart(p.soil).is_file():
+                continue  # no bed prepared (nothing left to run): nothing to compare
+            then = archive.archived_bed(self.archive, p.reldir)
+            now = self._bed_sha(p)
+            if then is not None and then != now:
+                self.say(f"wheel-sweep: warning: {p.reldir} (restored from the archive) ran on "
+                         f"another preparation of its bed: sha256 {then} then, {now} now")
 
     def _run_points(self, todo):
         if not todo:

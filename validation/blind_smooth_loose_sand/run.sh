@@ -41,16 +41,13 @@ status=0
 # sweep NAME CONFIG WINDOW_START WINDOW_END RESULTS: run one sweep into $out/NAME and write its
 # results table (and $out/NAME/curves.csv) (window in test-phase seconds: 0.05 m of travel after
 # the approach to steady sinkage, README "Averaging window"). A failed point is reported by
-# wheel-sweep and left out. The full case first restores the points finished in earlier sessions
-# from the committed points/NAME/ and saves this run's finished points there (README "Resuming
-# across sessions").
+# wheel-sweep and left out. The full case keeps its finished points in the committed points/NAME/
+# (wheel-sweep --archive; README "Resuming across sessions").
 sweep() {
-  local name=$1 config=$2 w0=$3 w1=$4 results=$5
-  local archive=$here/points/$name archiver=$root/validation/common/point_archive.py
-  ((smoke)) || "$python" "$archiver" restore "$archive" "$out/$name"
+  local name=$1 config=$2 w0=$3 w1=$4 results=$5 archive=()
+  ((smoke)) || archive=(--archive "$here/points/$name")
   "$root/scripts/wheel-sweep" "$config" --out-dir "$out/$name" --build-dir "$build_dir" \
-    "${sweep_args[@]}" || status=$?
-  ((smoke)) || "$python" "$archiver" save "$out/$name" "$archive" --sweep "$config"
+    "${archive[@]}" "${sweep_args[@]}" || status=$?
   local runs
   mapfile -t runs < <(find "$out/$name" -mindepth 4 -name run.h5 -not -path "*/beds/*" | sort)
   ((${#runs[@]})) || { echo "run.sh: no finished run under $out/$name" >&2; exit 1; }

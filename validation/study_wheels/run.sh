@@ -55,16 +55,15 @@ window=(--window-start 2.0 --window-end 6.0)
 status=0
 
 # part CONFIG OUT RESULTS PROVENANCE: one sweep, its results table and provenance file. The full
-# case first restores the points finished in earlier sessions from the committed points/<OUT's
-# name>/ and saves this run's finished points there (README "Resuming across sessions").
+# case keeps its finished points in the committed points/<OUT's name>/ (wheel-sweep --archive;
+# README "Resuming across sessions").
 part() {
   local config=$1 dir=$2 results=$3 provenance=$4 t0 t0_utc runs
-  local archive=$here/points/${2##*/} archiver=$root/validation/common/point_archive.py
+  local archive=()
   t0=$(date +%s); t0_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
-  ((smoke)) || "$python" "$archiver" restore "$archive" "$dir"
+  ((smoke)) || archive=(--archive "$here/points/${dir##*/}")
   "$root/scripts/wheel-sweep" "$here/$config" --out-dir "$dir" --build-dir "$build_dir" \
-    "${sweep_args[@]}" || status=1
-  ((smoke)) || "$python" "$archiver" save "$dir" "$archive" --sweep "$here/$config"
+    "${archive[@]}" "${sweep_args[@]}" || status=1
   # every finished point (a failed point is reported by wheel-sweep and left out)
   mapfile -t runs < <(find "$dir" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" | sort)
   ((${#runs[@]})) || { echo "run.sh: no finished run under $dir" >&2; status=1; return 0; }

@@ -1,0 +1,65 @@
+"""wheel-sweep --archive DIR: keep the finished points' results somewhere that outlives the run
+directory (a folder committed to git), and take them back on the next run.
+
+After each point finishes (exit status 0) its small files — done.json, run.h5, rig.toml, run.log —
+are copied to DIR/<WHEEL>/<SOIL>/<sSLIP>/ with archived.json beside them (the sha256 of the bed
+restart it ran on, the git commit, the time). At the start of a run, every archived point whose
+folder in the output directory has no done.json is copied back; the usual resume check
+(runner.finished: exit status, inputs hash, included files, run.h5) then decides whether it is
+finished. Checkpoints, LIGGGHTS logs and beds are not kept: a DEM bed is prepared again from its
+recipe, and an archived point whose bed hash differs from the bed now in place is named
+(docs/sweeps.md, "Keeping finished points").
+"""
+import datetime
+import json
+import shutil
+import subprocess
+from pathlib import Path
+
+KEPT_FILES = ("done.json", "run.h5", "rig.toml", "run.log")
+RECORD = "archived.json"
+
+
+def _git_commit(repo):
+    try:
+        return subprocess.run(["git", "-C", str(repo), "rev-parse", "HEAD"], check=True,
+                              capture_output=True, text=True, timeout=30).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def restore(archive, out_dir, reldirs):
+    """Copies each archived point of `reldirs` whose output folder has no done.json back into
+    out_dir; returns the reldirs restored."""
+    restored = []
+    for rel in reldirs:
+        src, dest = Path(archive) / rel, Path(out_dir) / rel
+        if not (src / "done.json").is_file() or (dest / "done.json").exists():
+            continue
+        dest.mkdir(parents=True, exist_ok=True)
+        for name in KEPT_FILES:
+            if (src / name).is_file():
+                shutil.copy2(src / name, dest / name)
+        restored.append(rel)
+    return restored
+
+
+def save(archive, point_dir, rel, bed_sha256, repo):
+    """Copies a finished point's kept files to archive/rel, with its archived.json record."""
+    dest = Path(archive) / rel
+    dest.mkdir(parents=True, exist_ok=True)
+    kept = [n for n in KEPT_FILES if (Path(point_dir) / n).is_file()]
+    for name in kept:
+        shutil.copy2(Path(point_dir) / name, dest / name)
+    record = {"bed_sha256": bed_sha256, "git_commit": _git_commit(repo), "files": kept,
+              "archived_utc": datetime.datetime.now(datetime.timezone.utc)
+              .strftime("%Y-%m-%dT%H:%M:%SZ")}
+    (dest / RECORD).write_text(json.dumps(record, indent=1) + "\n")
+
+
+def archived_bed(archive, rel):
+    """The bed sha256 an archived point ran on (None: not recorded or not a DEM point)."""
+    try:
+        return json.loads((Path(archive) / rel / RECORD).read_text()).get("bed_sha256")
+    except (OSError, ValueError):
+        return None
