@@ -3,14 +3,14 @@
 #
 #   validation/blind_smooth_loose_sand/run.sh [--smoke] [--sensitivity] [--out-dir DIR] [--jobs N] [--force]
 #
-# Full case: prepares the ~45 000-sphere bin once, runs the 9 slips (signed convention, each set
+# Full case: prepares the ~74 000-sphere bin once, runs the 9 slips (signed convention, each set
 # by the wheel speed at 0.1 m/s) through wheel-sweep (resumable: a re-run skips finished points),
 # then writes into this folder results.csv, curves.csv, prediction.png and provenance.toml (git
 # hash, command, machine, wall time). Many hours on 2 cores (README "Cost"): run it in the
 # background, nohup ... &
-# --sensitivity: afterwards also the speed (0.05 m/s) and grain-size (the calibrated 2-3.5 mm
-#          spheres) sweeps at 2 slips each: results_speed_0.05.csv, results_grain_1.0.csv and
-#          sensitivity.png here.
+# --sensitivity: afterwards also the speed (0.05 m/s), grain-size (the calibrated 2-3.5 mm
+#          spheres) and bed-depth (0.063 m) sweeps at 2 slips each: results_speed_0.05.csv,
+#          results_grain_1.0.csv, results_depth_0.06.csv and sensitivity.png here.
 # Finished points are kept in points/ (committed) and restored on the next run (README).
 # --smoke: the CI version (a tiny bin, slip -0.5, 0.05 s of test phase; minutes): same
 #          pipeline, outputs into --out-dir only (nothing in this folder changes).
@@ -67,10 +67,12 @@ fi
 if ((sensitivity)); then
   sweep speed_0.05 "$here/sweep_speed.toml" 1.4 2.4 "$dest/results_speed_0.05.csv"
   sweep grain_1.0 "$here/sweep_grain.toml" 0.7 1.2 "$dest/results_grain_1.0.csv"
+  sweep depth_0.06 "$here/sweep_depth.toml" 0.7 1.2 "$dest/results_depth_0.06.csv"
   "$python" "$here/plot.py" --png "$dest/sensitivity.png" \
-    --title "sensitivity: speed and grain size (smooth wheel, loose sand 1330)" \
-    "0.1 m/s, d50 4.1 mm=$dest/results.csv" "0.05 m/s, d50 4.1 mm=$dest/results_speed_0.05.csv" \
-    "0.1 m/s, d50 2.75 mm=$dest/results_grain_1.0.csv"
+    --title "sensitivity: speed, grain size, bed depth (smooth wheel, loose sand 1330)" \
+    "main: 0.1 m/s, d50 4.1 mm, bed 0.105 m=$dest/results.csv" \
+    "0.05 m/s=$dest/results_speed_0.05.csv" "d50 2.75 mm=$dest/results_grain_1.0.csv" \
+    "bed 0.063 m=$dest/results_depth_0.06.csv"
 fi
 write_provenance "$dest/provenance.toml" validation/blind_smooth_loose_sand \
   "validation/blind_smooth_loose_sand/run.sh${args[*]:+ }${args[*]}" \
