@@ -3,7 +3,8 @@
 import dataclasses
 import math
 
-from .health import ACTIVE_ALLOWANCE_PARAMETER, Health, postprocess_findings
+from .health import (ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, WHEEL_WIDTH_PARAMETER,
+                     Health, postprocess_findings)
 from .metadata import read_metadata
 from .runfile import RunFile
 from .steady import steady_state
@@ -46,9 +47,10 @@ def analyse_run(path, window, lugs=None):
         count, source = lug_count(run, metadata.wheel, lugs)
         stats = steady_state(run, window, count, source)
         health = run.health()
-        allowance = run.parameter(ACTIVE_ALLOWANCE_PARAMETER)
+        allowance, bed_depth, width = (run.parameter(name) for name in (
+            ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, WHEEL_WIDTH_PARAMETER))
     health.findings = health.findings + postprocess_findings(
-        stats, None if allowance is None else float(allowance))
+        stats, *(None if v is None else float(v) for v in (allowance, bed_depth, width)))
     return RunResult(path, metadata, stats, health)
 
 

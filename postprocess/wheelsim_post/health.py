@@ -93,13 +93,37 @@ def read_health(h5file):
 
 #: The run-file parameter wheel-cosim records from fix wheel/active's setup line [m].
 ACTIVE_ALLOWANCE_PARAMETER = "liggghts/active_sinkage_allowance"
+#: The DEM bed's depth (surface above the bin's rigid floor) wheel-cosim records [m].
+BED_DEPTH_PARAMETER = "bed/bed_depth_m"
+#: The wheel mesh's extent along the axle, recorded by wheel-rig [m].
+WHEEL_WIDTH_PARAMETER = "wheel/width"
+#: floor_clearance: a warning when the wheel's bottom runs closer to the bin's rigid floor than
+#: this many wheel widths. Under a square contact of side b, about a third of the contact pressure
+#: still reaches one side b deeper (Boussinesq); a rigid floor there carries part of the load.
+FLOOR_CLEARANCE_WIDTHS = 1.0
 
 
-def postprocess_findings(stats, active_allowance_m=None):
+def postprocess_findings(stats, active_allowance_m=None, bed_depth_m=None, wheel_width_m=None):
     """Findings of the window statistics (steady.steady_state's dict); ``active_allowance_m``:
-    the active domain's sinkage allowance (ACTIVE_ALLOWANCE_PARAMETER; None: no active domain)."""
+    the active domain's sinkage allowance (ACTIVE_ALLOWANCE_PARAMETER; None: no active domain);
+    ``bed_depth_m``, ``wheel_width_m``: a DEM bed's depth and the wheel's width (None: unknown,
+    no floor check)."""
     findings = []
     sinkage = stats["sinkage"].mean
+    if bed_depth_m is not None and wheel_width_m is not None and math.isfinite(sinkage):
+        clearance = bed_depth_m - sinkage
+        if clearance < FLOOR_CLEARANCE_WIDTHS * wheel_width_m:
+            findings.append(
+                Finding(
+                    "floor_clearance",
+                    "warning",
+                    f"the wheel's bottom ran {clearance:.4g} m above the bin's rigid floor (bed "
+                    f"depth {bed_depth_m:.4g} m, sinkage {sinkage:.4g} m), less than "
+                    f"{FLOOR_CLEARANCE_WIDTHS:g} x its width {wheel_width_m:.4g} m: the floor "
+                    "may carry part of the wheel's load; deepen the bed or compare one point on "
+                    "a deeper one (docs/run-health.md)",
+                )
+            )
     if active_allowance_m is not None and math.isfinite(sinkage) and sinkage > active_allowance_m:
         findings.append(
             Finding(

@@ -1,6 +1,6 @@
 """Run health in curves and study: the rig's /health group (status and entries), runs
 without it ("unchecked"), and post-processing's own findings over the window
-(efficiency_bound, steady_state_trend, active_domain_sinkage)."""
+(efficiency_bound, steady_state_trend, active_domain_sinkage, floor_clearance)."""
 
 import csv
 import os
@@ -55,6 +55,23 @@ class HealthTest(TempDirTestCase):
         self.assertEqual(self.verdict(within), ("ok", ""))
         # no active domain (no parameter): no finding
         self.assertEqual(self.verdict(self.write("full.h5", health=("healthy", []))), ("ok", ""))
+
+    def test_floor_clearance(self):
+        # sinkage 0.02 m: a 0.05 m bed leaves 0.03 m below the wheel, less than its 0.04 m width
+        bed, width = "bed/bed_depth_m", "wheel/width"
+        shallow = self.write("shallow.h5", parameters={bed: ("0.05", "m"), width: (0.04, "m")},
+                             health=("healthy", []))
+        self.assertEqual(self.verdict(shallow), ("warning", "floor_clearance"))
+        message = analyse_run(shallow, HALF).health.findings[0].message
+        self.assertIn("the wheel's bottom ran 0.03 m above the bin's rigid floor (bed depth "
+                      "0.05 m, sinkage 0.02 m), less than 1 x its width 0.04 m", message)
+        deep = self.write("deep.h5", parameters={bed: ("0.07", "m"), width: (0.04, "m")},
+                          health=("healthy", []))
+        self.assertEqual(self.verdict(deep), ("ok", ""))
+        # SCM or flat (no bed depth), a wheel without a mesh (no width): no finding
+        for name, params in (("scm.h5", {width: (0.04, "m")}), ("nomesh.h5", {bed: ("0.05", "m")})):
+            self.assertEqual(self.verdict(self.write(name, parameters=params,
+                                                     health=("healthy", []))), ("ok", ""))
 
     def verdict(self, path):
         r = analyse_run(path, HALF)

@@ -613,6 +613,8 @@ int main(int argc, char **argv) {
       file->set_parameter("wheel/axle_inertia", sim.wheel().axle_inertia_kg_m2, "kg m^2");
       file->set_parameter("wheel/effective_radius", sim.wheel().effective_radius_m, "m");
       file->set_parameter("wheel/rim_radius", sim.wheel().rim_radius_m, "m");
+      if (sim.wheel().width_m > 0.0)
+        file->set_parameter("wheel/width", sim.wheel().width_m, "m");
       file->set_parameter("wheel/source", sim.wheel().source);
       if (sim.wheel().lug_count > 0) { // from the mesh's props file (post-processing's window)
         file->set_parameter("wheel/lug_count", std::int64_t{sim.wheel().lug_count}, "1");

@@ -92,8 +92,14 @@ WheelProperties resolve_wheel_properties(const WheelConfig &w) {
     } catch (const geometry::MeshError &e) {
       throw RigConfigError(std::string("wheel.mesh: ") + e.what());
     }
-    for (const auto &v : mesh.vertices_m)
+    double y_min_m = std::numeric_limits<double>::infinity();
+    double y_max_m = -std::numeric_limits<double>::infinity();
+    for (const auto &v : mesh.vertices_m) {
       p.rim_radius_m = std::max(p.rim_radius_m, std::hypot(v.x(), v.z()));
+      y_min_m = std::min(y_min_m, v.y());
+      y_max_m = std::max(y_max_m, v.y());
+    }
+    p.width_m = mesh.vertices_m.empty() ? 0.0 : y_max_m - y_min_m;
     p.source = "mesh " + w.mesh;
     read_lug_properties(w.mesh, w.mesh_scale, p);
     if (w.density_kg_m3) {

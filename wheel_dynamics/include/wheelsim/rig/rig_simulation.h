@@ -36,6 +36,7 @@ struct WheelProperties {
   double axle_inertia_kg_m2 = 0.0; ///< about +y through the centre
   double effective_radius_m = 0.0; ///< R_eff: slip, traction force, flat-ground contact
   double rim_radius_m = 0.0;       ///< outer radius: lowest rim point for sinkage
+  double width_m = 0.0;            ///< the mesh's extent along the axle (y); 0 without a mesh
   std::string source;              ///< "config" or "mesh <path> (density ...)"
   /// The lugs, from the `<mesh stem>.props.toml` that wheel-mesh writes beside its meshes
   /// ([wheel] lug_count, lug_width_m, lug_height_m); 0 without that file or for a smooth wheel.
