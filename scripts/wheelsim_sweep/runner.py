@@ -246,7 +246,8 @@ class Runner:
 
     def file_hash(self, path):
         """sha256 of a file's contents ("missing" if it cannot be read); computed once per file
-        and run of the driver (a bed restart may be large)."""
+        and run of the driver (a bed restart may be large). "missing" is not kept: a bed
+        prepared later in the run is hashed then."""
         path = str(path)
         if path not in self._file_hashes:
             h = hashlib.sha256()
@@ -254,9 +255,9 @@ class Runner:
                 with open(path, "rb") as f:
                     for block in iter(lambda: f.read(1 << 20), b""):
                         h.update(block)
-                self._file_hashes[path] = h.hexdigest()
             except OSError:
-                self._file_hashes[path] = "missing"
+                return "missing"
+            self._file_hashes[path] = h.hexdigest()
         return self._file_hashes[path]
 
     def inputs_hash(self, p):

@@ -1030,6 +1030,51 @@ class Skip(Exception):
     pass
 
 
+def case_dem_archive_bed(a, work):
+    """--archive on a DEM sweep: the archived point records its bed's sha256; restored into an
+    output directory whose bed is the same file it is not named; restored where the bed file
+    differs (here: the same bed with bytes appended), it is named as having run on another
+    preparation of its bed. One coupled point of 150 steps on a small ci bed, 1 rank."""
+    if shutil.which("mpirun") is None:
+        raise Skip("mpirun not found (Debian openmpi-bin)")
+    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").exists():
+        raise Skip("liggghts-wheel not built")
+    repo = Path(a.sweep).resolve().parents[1]
+    cfg = work / "sweep.toml"
+    cfg.write_text(f"""terrain = "dem"
+base = "{repo}/inputs/rigs/ci_small_wheel.toml"
+wheels = ["test_small"]
+soils = [{{ soil = "ci", bin_length = 0.12, bin_width = 0.08, fill_height = 0.03, \
+check_time = 0.002, max_settle_time = 0.006 }}]
+slips = [0.2]
+[dem]
+np = 1
+bed_np = 1
+deck = "{repo}/tests/cosim/in.motion_compare"
+liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
+""")
+    out, arch = work / "out", work / "archive"
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--archive", str(arch), timeout=300)
+    check(r.returncode == 0, "the DEM sweep failed")
+    bed = out / "beds" / "ci" / "soilbin_ci.restart"
+    rel = "test_small/ci/s0.200"
+    record = json.loads((arch / rel / "archived.json").read_text())
+    want = {bed.name: hashlib.sha256(bed.read_bytes()).hexdigest()}
+    check(record["bed_sha256"] == want, f"archived.json bed_sha256 {record['bed_sha256']} != {want}")
+    shutil.rmtree(out / rel)
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--archive", str(arch), "--beds-only",
+                  timeout=120)
+    check(r.returncode == 0 and "restored 1 finished point(s)" in r.stdout
+          and "another preparation" not in r.stdout, "restored onto the same bed: wrong report")
+    shutil.rmtree(out / rel)
+    with open(bed, "ab") as f:
+        f.write(b"another preparation")
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--archive", str(arch), "--beds-only",
+                  timeout=120)
+    check(r.returncode == 0 and f"{rel} (restored from the archive) ran on another preparation "
+          "of its bed" in r.stdout, "a point restored onto a different bed file is not named")
+
+
 def case_point_archive(a, work):
     """--archive DIR: each finished point's done.json, run.h5, rig.toml and run.log are kept in
     DIR with an archived.json record; a fresh output directory run with the same archive gets them
