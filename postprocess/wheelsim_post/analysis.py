@@ -3,8 +3,8 @@
 import dataclasses
 import math
 
-from .health import (ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, WHEEL_WIDTH_PARAMETER,
-                     Health, postprocess_findings)
+from .health import (ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, BIN_LENGTH_PARAMETER,
+                     RIM_RADIUS_PARAMETER, WHEEL_WIDTH_PARAMETER, Health, postprocess_findings)
 from .metadata import read_metadata
 from .runfile import RunFile
 from .steady import steady_state
@@ -47,10 +47,11 @@ def analyse_run(path, window, lugs=None):
         count, source = lug_count(run, metadata.wheel, lugs)
         stats = steady_state(run, window, count, source)
         health = run.health()
-        allowance, bed_depth, width = (run.parameter(name) for name in (
-            ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, WHEEL_WIDTH_PARAMETER))
+        parameters = [run.parameter(name) for name in (
+            ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, WHEEL_WIDTH_PARAMETER,
+            BIN_LENGTH_PARAMETER, RIM_RADIUS_PARAMETER)]
     health.findings = health.findings + postprocess_findings(
-        stats, *(None if v is None else float(v) for v in (allowance, bed_depth, width)))
+        stats, *(None if v is None else float(v) for v in parameters))
     return RunResult(path, metadata, stats, health)
 
 

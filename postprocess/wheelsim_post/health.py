@@ -97,19 +97,45 @@ ACTIVE_ALLOWANCE_PARAMETER = "liggghts/active_sinkage_allowance"
 BED_DEPTH_PARAMETER = "bed/bed_depth_m"
 #: The wheel mesh's extent along the axle, recorded by wheel-rig [m].
 WHEEL_WIDTH_PARAMETER = "wheel/width"
+#: The DEM bin's inner length (x in [0, bin_length]) wheel-cosim records [m].
+BIN_LENGTH_PARAMETER = "bed/bin_length_m"
+#: The wheel's outer radius, recorded by wheel-rig [m].
+RIM_RADIUS_PARAMETER = "wheel/rim_radius"
+#: end_wall_clearance: a warning when the rim's front comes closer to the far end wall than this
+#: many times the sinkage. The Rankine passive zone ahead of a blade pushed at depth z reaches
+#: z tan(45 deg + phi/2) = 1.6 - 2.0 z for phi 25 - 37 deg; the pile there must not meet the wall.
+END_WALL_CLEARANCE_SINKAGES = 2.0
 #: floor_clearance: a warning when the wheel's bottom runs closer to the bin's rigid floor than
 #: this many wheel widths. Under a square contact of side b, about a third of the contact pressure
 #: still reaches one side b deeper (Boussinesq); a rigid floor there carries part of the load.
 FLOOR_CLEARANCE_WIDTHS = 1.0
 
 
-def postprocess_findings(stats, active_allowance_m=None, bed_depth_m=None, wheel_width_m=None):
+def postprocess_findings(stats, active_allowance_m=None, bed_depth_m=None, wheel_width_m=None,
+                         bin_length_m=None, rim_radius_m=None):
     """Findings of the window statistics (steady.steady_state's dict); ``active_allowance_m``:
     the active domain's sinkage allowance (ACTIVE_ALLOWANCE_PARAMETER; None: no active domain);
     ``bed_depth_m``, ``wheel_width_m``: a DEM bed's depth and the wheel's width (None: unknown,
-    no floor check)."""
+    no floor check); ``bin_length_m``, ``rim_radius_m``: the bin's length and the wheel's outer
+    radius (None: no end-wall check)."""
     findings = []
     sinkage = stats["sinkage"].mean
+    x_max = stats.get("wheel_x_max", math.nan)
+    if (bin_length_m is not None and rim_radius_m is not None and math.isfinite(x_max)
+            and math.isfinite(sinkage) and sinkage > 0.0):
+        gap = bin_length_m - (x_max + rim_radius_m)
+        if gap < END_WALL_CLEARANCE_SINKAGES * sinkage:
+            findings.append(
+                Finding(
+                    "end_wall_clearance",
+                    "warning",
+                    f"the rim's front came to {gap:.4g} m from the bin's far wall (bin length "
+                    f"{bin_length_m:.4g} m, wheel centre at x = {x_max:.4g} m, rim radius "
+                    f"{rim_radius_m:.4g} m), less than {END_WALL_CLEARANCE_SINKAGES:g} x the "
+                    f"sinkage {sinkage:.4g} m: the soil pushed ahead of the wheel may meet the "
+                    "wall; lengthen the bin or end the window earlier (docs/run-health.md)",
+                )
+            )
     if bed_depth_m is not None and wheel_width_m is not None and math.isfinite(sinkage):
         clearance = bed_depth_m - sinkage
         if clearance < FLOOR_CLEARANCE_WIDTHS * wheel_width_m:

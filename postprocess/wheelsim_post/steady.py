@@ -323,6 +323,15 @@ def _scalar_series(run, name, steps):
     return series.step[keep], value[keep]
 
 
+def _window_max_x(run, name, steps):
+    """The largest x [m] of a 3-component position observable over ``steps`` (NaN without it)."""
+    if not run.has_observable(name):
+        return math.nan
+    series = run.observable(name)
+    x = series.value[np.isin(series.step, steps)]
+    return float(np.max(x[:, 0])) if x.ndim == 2 and len(x) else math.nan
+
+
 def _aligned(*pairs):
     """Values of several (step, value) pairs at their common steps."""
     common = pairs[0][0]
@@ -395,7 +404,8 @@ def steady_state(run, window, lug_count=None, lug_source="unknown"):
     Keys: '<quantity>' -> Stat for every name in quantities.QUANTITIES (slip in the three
     conventions of slip.py: 'slip' driving, 'slip_skid', 'slip_signed'), of_means(<slip
     name>) and EFFICIENCY_OF_MEANS -> Stat (std NaN), 'n_samples', 'span' (the WindowSpan), 'r_eff',
-    'vertical_load' and 'vertical_load_source', 'dp_trend' ((change, standard error) [N]).
+    'vertical_load' and 'vertical_load_source', 'dp_trend' ((change, standard error) [N]),
+    'wheel_x_max' (the wheel centre's largest x in the window [m], NaN without wheel/position).
     """
     span = resolve_window(run, window, lug_count, lug_source)
     r_eff = run.parameter_float("wheel/effective_radius")
@@ -452,6 +462,7 @@ def steady_state(run, window, lug_count=None, lug_source="unknown"):
             "correlation time, so the SEMs are probably too small (use a longer window)"
         )
     result["dp_batch_correlation"] = correlation
+    result["wheel_x_max"] = _window_max_x(run, "wheel/position", span.steps)
     result["n_samples"] = int(len(span.steps))
     result["span"] = span
     result["r_eff"] = r_eff

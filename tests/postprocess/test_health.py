@@ -1,6 +1,7 @@
 """Run health in curves and study: the rig's /health group (status and entries), runs
 without it ("unchecked"), and post-processing's own findings over the window
-(efficiency_bound, steady_state_trend, active_domain_sinkage, floor_clearance)."""
+(efficiency_bound, steady_state_trend, active_domain_sinkage, floor_clearance,
+end_wall_clearance)."""
 
 import csv
 import os
@@ -23,10 +24,14 @@ def read_rows(path):
 
 
 class HealthTest(TempDirTestCase):
-    def write(self, name, dp=100.0, torque=60.0, health=None, slip=0.2, parameters=None):
+    def write(self, name, dp=100.0, torque=60.0, health=None, slip=0.2, parameters=None,
+              x_end=None):
         time, phase, series = syn.steady_run_series(
             N_TEST, 1e-3, 2.0, slip, dp, torque, load=1000.0
         )
+        if x_end is not None:  # the wheel centre moving from x = 0 to x_end
+            x = np.linspace(0.0, x_end, len(time))
+            series["wheel/position"] = (np.column_stack([x, 0 * x, 0.1 + 0 * x]), "m")
         path = self.path(name)
         syn.write_run(
             path,
@@ -72,6 +77,24 @@ class HealthTest(TempDirTestCase):
         for name, params in (("scm.h5", {width: (0.04, "m")}), ("nomesh.h5", {bed: ("0.05", "m")})):
             self.assertEqual(self.verdict(self.write(name, parameters=params,
                                                      health=("healthy", []))), ("ok", ""))
+
+    def test_end_wall_clearance(self):
+        # sinkage 0.02 m; the centre ends at x = 0.5 m, the rim (radius 0.1 m) at 0.6 m
+        params = {"wheel/rim_radius": (0.1, "m")}
+        near = self.write("near.h5", parameters={**params, "bed/bin_length_m": ("0.63", "m")},
+                          health=("healthy", []), x_end=0.5)
+        self.assertEqual(self.verdict(near), ("warning", "end_wall_clearance"))
+        message = analyse_run(near, HALF).health.findings[0].message
+        self.assertIn("the rim's front came to 0.03 m from the bin's far wall (bin length 0.63 m, "
+                      "wheel centre at x = 0.5 m, rim radius 0.1 m), less than 2 x the sinkage "
+                      "0.02 m", message)
+        far = self.write("far.h5", parameters={**params, "bed/bin_length_m": ("0.7", "m")},
+                         health=("healthy", []), x_end=0.5)
+        self.assertEqual(self.verdict(far), ("ok", ""))
+        # no bin length (SCM, flat, older runs) or no position: no finding
+        for name, kw in (("scm.h5", {"parameters": params, "x_end": 0.5}),
+                         ("nopos.h5", {"parameters": {**params, "bed/bin_length_m": ("0.63", "m")}})):
+            self.assertEqual(self.verdict(self.write(name, health=("healthy", []), **kw)), ("ok", ""))
 
     def verdict(self, path):
         r = analyse_run(path, HALF)
