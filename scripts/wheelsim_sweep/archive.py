@@ -2,7 +2,8 @@
 directory (a folder committed to git), and take them back on the next run.
 
 After each point finishes (exit status 0) its small files — done.json, run.h5, rig.toml, run.log —
-are copied to DIR/<WHEEL>/<SOIL>/<sSLIP>/ with archived.json beside them (the sha256 of the bed
+are copied to DIR/<WHEEL>/<SOIL>/<sSLIP>/ (run.h5 rewritten with gzip-compressed datasets: the
+same groups, datasets, values and attributes in about a third of the bytes) with archived.json beside them (the sha256 of the bed
 restart it ran on, the git commit, the time). At the start of a run, every archived point whose
 folder in the output directory has no done.json is copied back; the usual resume check
 (runner.finished: exit status, inputs hash, included files, run.h5) then decides whether it is
@@ -44,13 +45,39 @@ def restore(archive, out_dir, reldirs):
     return restored
 
 
+def compressed_copy(src, dest):
+    """Writes the HDF5 file src to dest with every dataset of 64 or more elements gzip-compressed
+    (level 6, byte shuffle); groups, values, dtypes and attributes as they are."""
+    import h5py  # only archiving needs it
+
+    tmp = Path(f"{dest}.part")
+    with h5py.File(src, "r") as fin, h5py.File(tmp, "w") as fout:
+        fout.attrs.update(fin.attrs)
+
+        def copy(name, obj):
+            if isinstance(obj, h5py.Group):
+                fout.require_group(name).attrs.update(obj.attrs)
+                return
+            big = obj.shape != () and obj.size >= 64
+            out = fout.create_dataset(name, data=obj[()], dtype=obj.dtype,
+                                      **(dict(compression="gzip", compression_opts=6,
+                                              shuffle=True) if big else {}))
+            out.attrs.update(obj.attrs)
+
+        fin.visititems(copy)
+    tmp.replace(dest)
+
+
 def save(archive, point_dir, rel, bed_sha256, repo):
     """Copies a finished point's kept files to archive/rel, with its archived.json record."""
     dest = Path(archive) / rel
     dest.mkdir(parents=True, exist_ok=True)
     kept = [n for n in KEPT_FILES if (Path(point_dir) / n).is_file()]
     for name in kept:
-        shutil.copy2(Path(point_dir) / name, dest / name)
+        if name == "run.h5":
+            compressed_copy(Path(point_dir) / name, dest / name)
+        else:
+            shutil.copy2(Path(point_dir) / name, dest / name)
     record = {"bed_sha256": bed_sha256, "git_commit": _git_commit(repo), "files": kept,
               "archived_utc": datetime.datetime.now(datetime.timezone.utc)
               .strftime("%Y-%m-%dT%H:%M:%SZ")}

@@ -1096,6 +1096,23 @@ def case_point_archive(a, work):
         record = json.loads((arch / rel / "archived.json").read_text())
         check(record["bed_sha256"] == {} and len(record["git_commit"]) in (7, 40, len("unknown"))
               and record["archived_utc"].endswith("Z"), f"{rel}: archived.json {record}")
+    for rel in points:  # the archived run file: compressed, the same contents
+        with h5py.File(out1 / rel / "run.h5", "r") as f0, h5py.File(arch / rel / "run.h5", "r") as f1:
+            names = []
+            f0.visit(names.append)
+            for name in names:
+                if isinstance(f0[name], h5py.Dataset):
+                    x0, x1 = f0[name][()], f1[name][()]
+                    numeric = np.asarray(x0).dtype.kind in "fc"
+                    check(f0[name].dtype == f1[name].dtype
+                          and np.array_equal(x0, x1, equal_nan=numeric),
+                          f"{rel}: archived run.h5 differs in {name}")
+                a0, a1 = f0[name].attrs, f1[name].attrs
+                check(sorted(a0) == sorted(a1)
+                      and all(np.array_equal(a0[k], a1[k]) for k in a0),
+                      f"{rel}: archived run.h5 attributes differ in {name}")
+            check(f1["observables/drawbar_pull/value"].compression == "gzip",
+                  f"{rel}: archived run.h5 not compressed")
     r = run_sweep(a, cfg, "--out-dir", str(out2), "--archive", str(arch))
     check(r.returncode == 0 and "restored 2 finished point(s)" in r.stdout
           and "skipping 2 finished point(s)" in r.stdout and "[started" not in r.stdout,
