@@ -1,7 +1,8 @@
 """soil-lab's command line (docs/soil-lab.md):
 
   soil-lab run SOIL [--tests bulk,plate,shear,repose] [--out DIR] [--np N] [--preset P]
-                    [--normal-stresses S1,S2,S3] [--bed-var NAME=VALUE ...] [--build-dir D]
+                    [--normal-stresses S1,S2,S3] [--bed-var NAME=VALUE ...] [--archive DIR]
+                    [--build-dir D]
   soil-lab report DIR
   soil-lab scm DIR --out FILE.toml [--name NAME]
 
@@ -93,7 +94,7 @@ def _run(a):
     soil_file = runner.resolve_soil_file(a.soil, REPO / "inputs")
     out = Path(a.out or RUNS / "soil_lab" / Path(soil_file).stem).resolve()
     out.mkdir(parents=True, exist_ok=True)
-    lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet)
+    lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet, archive=a.archive)
     soil = lab.soil_info(soil_file)
     p = plan.make_plan(soil, tests, a.preset, stresses, bed_vars, widths, a.plate_bin,
                        a.speed_check, a.shear_travel, a.plate_speed, a.shear_speed)
@@ -182,6 +183,10 @@ def main(argv=None):
                         "the differences")
     r.add_argument("--bed-var", action="append", metavar="NAME=VALUE",
                    help="an inputs/in.soilbin variable for every bed (e.g. compaction=plate)")
+    r.add_argument("--archive", metavar="DIR",
+                   help="keep each finished test run's files (CSV or dump, log, done.json) in "
+                        "DIR/<run>/ (e.g. a folder committed to git) and restore them from there "
+                        "first: a lab can span sessions whose output directory does not survive")
     r.add_argument("--build-dir", metavar="D", help="build directory (default: <repo>/build)")
     r.add_argument("--quiet", action="store_true", help="no progress lines")
     rep = sub.add_parser("report", help="fit and plot a lab directory's results")

@@ -13,6 +13,7 @@ import hashlib
 import json
 import os
 import re
+import shutil
 import subprocess
 import time
 from pathlib import Path
@@ -53,10 +54,13 @@ def resolve_soil_file(soil, inputs_dir):
 
 
 class Lab:
-    def __init__(self, repo, build_dir, out_dir, np=1, quiet=False):
+    def __init__(self, repo, build_dir, out_dir, np=1, quiet=False, archive=None):
         self.repo = Path(repo)
         self.build = Path(build_dir)
         self.out = Path(out_dir)
+        # --archive DIR: each finished test run's files kept in DIR/<run>/ and restored from there
+        # (docs/soil-lab.md, "Stopping and resuming")
+        self.archive = Path(archive).resolve() if archive is not None else None
         self.np = np
         self.quiet = quiet
         self.inputs = self.repo / "inputs"
@@ -131,6 +135,30 @@ class Lab:
                                   indent=1) + "\n")
         os.replace(tmp, Path(directory) / "done.json")
 
+    def _restore_step(self, directory, name):
+        """Copies the archived files of step `name` into `directory` when it has no done.json
+        (the resume check then decides whether it counts as finished)."""
+        src = self.archive / name
+        if (src / "done.json").is_file() and not (Path(directory) / "done.json").exists():
+            Path(directory).mkdir(parents=True, exist_ok=True)
+            for f in src.iterdir():
+                if f.is_file():
+                    shutil.copy2(f, Path(directory) / f.name)
+            self.say(f"{name}: restored from the archive {self.archive}")
+
+    def _keep_step(self, directory, name):
+        """Copies a finished step's files (its CSV or dump, log, done.json) to the archive, unless
+        it holds that record already."""
+        dest = self.archive / name
+        mine = (Path(directory) / "done.json").read_bytes()
+        if (dest / "done.json").is_file() and (dest / "done.json").read_bytes() == mine:
+            return
+        dest.mkdir(parents=True, exist_ok=True)
+        for f in Path(directory).iterdir():
+            if f.is_file() and f.name != "done.json":
+                shutil.copy2(f, dest / f.name)
+        shutil.copy2(Path(directory) / "done.json", dest / "done.json")  # last: marks it whole
+
     def _key(self, *parts, files=()):
         """(a hash of `parts` and the contents of `files`, {path: sha256} of the files the LIGGGHTS
         inputs among `files` (decks, soil files) include in turn, e.g. a soil file's base soil)."""
@@ -198,8 +226,12 @@ class Lab:
                      **{k: str(d / v) for k, v in outputs.items()}}
         deck = DECKS / run.deck
         key = self._key(variables, run.meta, files=(deck, soil.file, restart, *meshes.values()))
+        if self.archive is not None:
+            self._restore_step(d, run.name)
         if self._done(d, key) is not None:
             self.say(f"{progress}{run.name}: done before, skipped")
+            if self.archive is not None:
+                self._keep_step(d, run.name)
             return
         self.say(f"{progress}{run.name}: running")
         t0 = time.monotonic()
@@ -211,6 +243,8 @@ class Lab:
         particles = max((int(a) for _, a in steps), default=0)
         self._finish(d, key, wall_s=round(wall, 1), np=self.np, steps=n_steps,
                      particles=particles, dt_s=soil.dt_s, meta=run.meta)
+        if self.archive is not None:
+            self._keep_step(d, run.name)
         rate = n_steps * particles / wall if wall > 0 else 0
         self.say(f"{progress}{run.name}: {n_steps} steps, {particles} particles, {wall:.0f} s "
                  f"({rate / 1e6:.2f} M particle-steps/s)")

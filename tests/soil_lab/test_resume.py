@@ -48,6 +48,32 @@ class Resume(unittest.TestCase):
         other = self.lab._key({"bin_length": "0.3"}, files=(self.variant,))
         self.assertIsNone(self.lab._done(self.step, other))
 
+    def test_archive_keeps_and_restores_a_finished_step(self):
+        root = Path(self.tmp.name)
+        lab = Lab(root / "repo", root / "build", root / "out", quiet=True, archive=root / "arch")
+        step = root / "out" / "shear_s5000"
+        step.mkdir()
+        (step / "shear.csv").write_text("# t tau\n0 1\n")
+        lab._finish(step, self.key(), wall_s=1.0)
+        lab._keep_step(step, "shear_s5000")
+        kept = sorted(f.name for f in (root / "arch" / "shear_s5000").iterdir())
+        self.assertEqual(kept, ["done.json", "shear.csv"])
+        for f in step.iterdir():  # a new session: the output directory is gone
+            f.unlink()
+        self.assertIsNone(lab._done(step, self.key()))
+        lab._restore_step(step, "shear_s5000")
+        self.assertIsNotNone(lab._done(step, self.key()), "the restored step is not finished")
+        self.assertEqual((step / "shear.csv").read_text(), "# t tau\n0 1\n")
+        # a step of this output directory is not overwritten by the archive
+        (step / "done.json").write_text("{}")
+        lab._restore_step(step, "shear_s5000")
+        self.assertEqual((step / "done.json").read_text(), "{}")
+        # with other inputs the restored record does not count
+        other = lab._key({"bin_length": "0.3"}, files=(self.variant,))
+        (step / "done.json").unlink()
+        lab._restore_step(step, "shear_s5000")
+        self.assertIsNone(lab._done(step, other))
+
     def test_a_record_from_before_included_files_is_kept(self):
         inputs, _ = self.key()
         (self.step / "done.json").write_text(json.dumps({"inputs": inputs, "wall_s": 1.0}))
