@@ -136,6 +136,32 @@ TEST(RunHealth, AWheelThatFallsThroughTheGroundStopsAtOneRadiusOfSinkage) {
   EXPECT_FALSE(sim.finished());
 }
 
+TEST(RunHealth, AWheelSinkingWhileCarriedWarnsAtOneRadiusAndStopsAtTwo) {
+  // In the test phase the terrain carries 90 % of the load (a wheel digging into a soft soil):
+  // it sinks on; past one radius a warning (once), past two radii the run stops.
+  RigSimulation sim(parse_rig_config(config(), "t.toml"));
+  FlatGround ground = make_flat_ground(sim.config(), sim.wheel());
+  const double W = sim.rig().vertical_load_N();
+  const auto findings = run_checked(sim, [&](const WheelPose &s, double t) {
+    if (sim.phase() != Phase::test)
+      return ground.contact(s, t);
+    WheelWrench w;
+    w.f_B_W.z() = 0.9 * W;
+    return w;
+  });
+  std::vector<const HealthFinding *> buried;
+  for (const auto &f : findings)
+    if (f.code == "sinkage_beyond_radius")
+      buried.push_back(&f);
+  ASSERT_EQ(buried.size(), 2u);
+  EXPECT_EQ(buried[0]->severity, Severity::warning);
+  EXPECT_NE(buried[0]->message.find("while the terrain still carries it"), std::string::npos)
+      << buried[0]->message;
+  EXPECT_EQ(buried[1]->severity, Severity::error);
+  EXPECT_NE(buried[1]->message.find("more than 2 radii"), std::string::npos) << buried[1]->message;
+  EXPECT_FALSE(sim.finished());
+}
+
 TEST(RunHealth, GridCoarserThanHalfTheRimRadiusIsAnErrorBeforeTheRun) {
   RigSimulation sim(parse_rig_config(config(), "t.toml"));
   RunHealth health(sim, nullptr);

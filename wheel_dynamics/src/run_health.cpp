@@ -134,14 +134,31 @@ void RunHealth::after_step(const RigOutputs &o, double contacts) {
              " (t = " + fmt(o.time_s) + " s, " + to_string(o.phase) +
              " phase): the rig diverged; reduce run.dt",
          o.step, o.time_s);
+  // Below one radius the wheel centre is under the undisturbed surface. Out of contact there
+  // (a vanishing or far too coarse terrain), or below two radii (the whole wheel under the
+  // surface), the run stops; still carried by the terrain (a locked wheel digging into a soft
+  // DEM soil), it is a warning, once.
   const double R = sim_.wheel().rim_radius_m;
-  if (o.sinkage_m > R)
+  const bool in_contact = o.contact.f_B_W.z() >= limits_.contact_load_fraction * o.vertical_load_N;
+  if (o.sinkage_m > R && (!in_contact || o.sinkage_m > 2.0 * R))
     stop("sinkage_beyond_radius",
          "the sinkage is " + fmt(o.sinkage_m) + " m at step " + std::to_string(o.step) +
              " (t = " + fmt(o.time_s) + " s): more than the rim radius " + fmt(R) +
-             " m, the wheel centre is below the soil surface; the terrain does not carry the " +
-             "wheel (check terrain.grid_spacing, the soil, terrain.surface_height)",
+             " m, the wheel centre is below the soil surface, and " +
+             (in_contact ? "the whole wheel is under it (more than 2 radii)"
+                         : "the terrain does not carry the wheel") +
+             " (check terrain.grid_spacing, the soil, terrain.surface_height)",
          o.step, o.time_s);
+  else if (o.sinkage_m > R && !buried_warned_) {
+    buried_warned_ = true;
+    add(Severity::warning, "sinkage_beyond_radius",
+        "the sinkage is " + fmt(o.sinkage_m) + " m at step " + std::to_string(o.step) +
+            " (t = " + fmt(o.time_s) + " s): more than the rim radius " + fmt(R) +
+            " m, the wheel centre is below the undisturbed surface while the terrain still " +
+            "carries it (vertical contact force " + fmt(o.contact.f_B_W.z()) +
+            " N): the wheel is digging itself in",
+        o.step, o.time_s);
+  }
 
   // Stability: ω_c dt with ω_c = sqrt(k / m) of the contact spring on the spindle's mass.
   const double k = grid_spacing_m_ > 0.0

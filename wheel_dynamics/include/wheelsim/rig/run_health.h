@@ -114,6 +114,7 @@ private:
   double elastic_K_Pa_m_ = 0.0; // SCM: stiffness per area [Pa/m]
   double stiffness_N_m_ = 0.0;  // flat: fixed contact stiffness [N/m]
   bool stability_warned_ = false, stability_failed_ = false;
+  bool buried_warned_ = false; ///< sinkage_beyond_radius warned once (the wheel still carried)
   long long last_step_ = 0;
   double last_time_s_ = 0.0;
   // test-phase statistics
