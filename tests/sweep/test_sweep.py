@@ -454,6 +454,24 @@ deck = "in.deck"
     kill_driver_and_check(a, cmd, "[started 2/", started)
 
 
+def small_dem_sweep(path, repo, soil, deck, fill=0.03, soil_keys=""):
+    """A one-point DEM sweep: test_small at 20 % on a 0.12 x 0.08 m bin recipe of `soil` (fill
+    height `fill`, more recipe keys `soil_keys`), 150 coupled steps of `deck` on one rank."""
+    extra = f", {soil_keys}" if soil_keys else ""
+    path.write_text(f"""terrain = "dem"
+base = "{repo}/inputs/rigs/ci_small_wheel.toml"
+wheels = ["test_small"]
+soils = [{{ soil = "{soil}", bin_length = 0.12, bin_width = 0.08, fill_height = {fill}, \
+check_time = 0.002, max_settle_time = 0.006{extra} }}]
+slips = [0.2]
+[dem]
+np = 1
+bed_np = 1
+deck = "{deck}"
+liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
+""")
+
+
 def case_dem_soil_file(a, work):
     """A DEM bin recipe with a soil include file outside the repository, by a path relative to
     the config (soil = "elsewhere/my_sand.in": inputs/soils/ci.in with soil_name my_sand): the bed
@@ -481,18 +499,7 @@ def case_dem_soil_file(a, work):
     check(resume_line in deck_text, "tests/cosim/in.motion_compare does not include resume.in")
     deck.write_text(deck_text.replace(resume_line, f"{resume_line}include {extra}\n"))
     cfg = work / "sweep.toml"
-    cfg.write_text(f"""terrain = "dem"
-base = "{repo}/inputs/rigs/ci_small_wheel.toml"
-wheels = ["test_small"]
-soils = [{{ soil = "elsewhere/my_sand.in", bin_length = 0.12, bin_width = 0.08, fill_height = 0.03, \
-check_time = 0.002, max_settle_time = 0.006 }}]
-slips = [0.2]
-[dem]
-np = 1
-bed_np = 1
-deck = "{deck}"
-liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
-""")
+    small_dem_sweep(cfg, repo, "elsewhere/my_sand.in", deck)
     out = work / "out"
     cmd = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--out-dir", str(out), "--jobs", "1"]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
@@ -549,19 +556,8 @@ def case_dem_tiled_bed(a, work):
     cfg = work / "sweep.toml"
 
     def write(tile, fill=0.03):
-        cfg.write_text(f"""terrain = "dem"
-base = "{repo}/inputs/rigs/ci_small_wheel.toml"
-wheels = ["test_small"]
-soils = [{{ soil = "ci", bin_length = 0.12, bin_width = 0.08, fill_height = {fill}, \
-check_time = 0.002, max_settle_time = 0.006, tile_length = {tile}, tile_relax_time = 0.002, \
-tile_relax_max = 0.004 }}]
-slips = [0.2]
-[dem]
-np = 1
-bed_np = 1
-deck = "{repo}/tests/cosim/in.motion_compare"
-liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
-""")
+        small_dem_sweep(cfg, repo, "ci", repo / "tests" / "cosim" / "in.motion_compare", fill,
+                        f"tile_length = {tile}, tile_relax_time = 0.002, tile_relax_max = 0.004")
     out = work / "out"
     cmd = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--out-dir", str(out), "--jobs", "1"]
     bed = out / "beds" / "ci" / "soilbin_ci.restart"
@@ -1041,18 +1037,7 @@ def case_dem_archive_bed(a, work):
         raise Skip("liggghts-wheel not built")
     repo = Path(a.sweep).resolve().parents[1]
     cfg = work / "sweep.toml"
-    cfg.write_text(f"""terrain = "dem"
-base = "{repo}/inputs/rigs/ci_small_wheel.toml"
-wheels = ["test_small"]
-soils = [{{ soil = "ci", bin_length = 0.12, bin_width = 0.08, fill_height = 0.03, \
-check_time = 0.002, max_settle_time = 0.006 }}]
-slips = [0.2]
-[dem]
-np = 1
-bed_np = 1
-deck = "{repo}/tests/cosim/in.motion_compare"
-liggghts_args = ["-var", "motion", "coupled", "-var", "steps", "150"]
-""")
+    small_dem_sweep(cfg, repo, "ci", repo / "tests" / "cosim" / "in.motion_compare")
     out, arch = work / "out", work / "archive"
     r = run_sweep(a, cfg, "--out-dir", str(out), "--archive", str(arch), timeout=300)
     check(r.returncode == 0, "the DEM sweep failed")
