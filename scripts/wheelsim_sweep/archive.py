@@ -3,8 +3,8 @@ directory (a folder committed to git), and take them back on the next run.
 
 After each point finishes (exit status 0) its small files — done.json, run.h5, rig.toml, run.log —
 are copied to DIR/<WHEEL>/<SOIL>/<sSLIP>/ (run.h5 rewritten with gzip-compressed datasets: the
-same groups, datasets, values and attributes in about a third of the bytes) with archived.json beside them (the sha256 of the bed
-restart it ran on, the git commit, the time). At the start of a run, every archived point whose
+same groups, datasets, values and attributes in about a third of the bytes) with archived.json
+beside them (the sha256 of the bed restart it ran on, the checkout's git commit, the time). At the start of a run, every archived point whose
 folder in the output directory has no done.json is copied back; the usual resume check
 (runner.finished: exit status, inputs hash, included files, run.h5) then decides whether it is
 finished. Checkpoints, LIGGGHTS logs and beds are not kept: a DEM bed is prepared again from its
@@ -16,6 +16,8 @@ import json
 import shutil
 import subprocess
 from pathlib import Path
+
+from wheelsim_post import step_archive
 
 KEPT_FILES = ("done.json", "run.h5", "rig.toml", "run.log")
 RECORD = "archived.json"
@@ -32,17 +34,8 @@ def _git_commit(repo):
 def restore(archive, out_dir, reldirs):
     """Copies each archived point of `reldirs` whose output folder has no done.json back into
     out_dir; returns the reldirs restored."""
-    restored = []
-    for rel in reldirs:
-        src, dest = Path(archive) / rel, Path(out_dir) / rel
-        if not (src / "done.json").is_file() or (dest / "done.json").exists():
-            continue
-        dest.mkdir(parents=True, exist_ok=True)
-        for name in KEPT_FILES:
-            if (src / name).is_file():
-                shutil.copy2(src / name, dest / name)
-        restored.append(rel)
-    return restored
+    return [rel for rel in reldirs
+            if step_archive.restore(Path(archive) / rel, Path(out_dir) / rel, KEPT_FILES)]
 
 
 def compressed_copy(src, dest):
@@ -68,16 +61,14 @@ def compressed_copy(src, dest):
     tmp.replace(dest)
 
 
+def _copy(src, dest):
+    (compressed_copy if src.name == "run.h5" else shutil.copy2)(src, dest)
+
+
 def save(archive, point_dir, rel, bed_sha256, repo):
     """Copies a finished point's kept files to archive/rel, with its archived.json record."""
     dest = Path(archive) / rel
-    dest.mkdir(parents=True, exist_ok=True)
-    kept = [n for n in KEPT_FILES if (Path(point_dir) / n).is_file()]
-    for name in kept:
-        if name == "run.h5":
-            compressed_copy(Path(point_dir) / name, dest / name)
-        else:
-            shutil.copy2(Path(point_dir) / name, dest / name)
+    kept = step_archive.keep(point_dir, dest, KEPT_FILES, copy=_copy)
     record = {"bed_sha256": bed_sha256, "git_commit": _git_commit(repo), "files": kept,
               "archived_utc": datetime.datetime.now(datetime.timezone.utc)
               .strftime("%Y-%m-%dT%H:%M:%SZ")}

@@ -21,7 +21,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
 from pathlib import Path
 
-from wheelsim_post import mpi_launch
+from wheelsim_post import mpi_launch, step_archive
 from wheelsim_post.deck_files import deck_includes
 
 from . import active_domain, archive, estimate, health, toml_out, watchdog
@@ -693,9 +693,8 @@ class Runner:
                      f"archive {self.archive}")
         added = 0
         for p in done:
-            mine, kept = self.point_dir(p) / DONE_FILE, self.archive / p.reldir / DONE_FILE
-            if p.reldir not in self.restored and (
-                    not kept.is_file() or kept.read_bytes() != mine.read_bytes()):
+            if p.reldir not in self.restored and not step_archive.holds(
+                    self.archive / p.reldir, self.point_dir(p)):
                 self._archive_point(p)
                 added += 1
         if added:

@@ -13,12 +13,11 @@ import hashlib
 import json
 import os
 import re
-import shutil
 import subprocess
 import time
 from pathlib import Path
 
-from wheelsim_post import mpi_launch
+from wheelsim_post import mpi_launch, step_archive
 from wheelsim_post.deck_files import deck_includes
 
 from .plan import LabInputError, SoilInfo
@@ -138,26 +137,14 @@ class Lab:
     def _restore_step(self, directory, name):
         """Copies the archived files of step `name` into `directory` when it has no done.json
         (the resume check then decides whether it counts as finished)."""
-        src = self.archive / name
-        if (src / "done.json").is_file() and not (Path(directory) / "done.json").exists():
-            Path(directory).mkdir(parents=True, exist_ok=True)
-            for f in src.iterdir():
-                if f.is_file():
-                    shutil.copy2(f, Path(directory) / f.name)
+        if step_archive.restore(self.archive / name, directory):
             self.say(f"{name}: restored from the archive {self.archive}")
 
     def _keep_step(self, directory, name):
         """Copies a finished step's files (its CSV or dump, log, done.json) to the archive, unless
         it holds that record already."""
-        dest = self.archive / name
-        mine = (Path(directory) / "done.json").read_bytes()
-        if (dest / "done.json").is_file() and (dest / "done.json").read_bytes() == mine:
-            return
-        dest.mkdir(parents=True, exist_ok=True)
-        for f in Path(directory).iterdir():
-            if f.is_file() and f.name != "done.json":
-                shutil.copy2(f, dest / f.name)
-        shutil.copy2(Path(directory) / "done.json", dest / "done.json")  # last: marks it whole
+        if not step_archive.holds(self.archive / name, directory):
+            step_archive.keep(directory, self.archive / name)
 
     def _key(self, *parts, files=()):
         """(a hash of `parts` and the contents of `files`, {path: sha256} of the files the LIGGGHTS

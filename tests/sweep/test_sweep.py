@@ -454,6 +454,16 @@ deck = "in.deck"
     kill_driver_and_check(a, cmd, "[started 2/", started)
 
 
+def dem_repo(a):
+    """The repository of the sweep under test, for a case that runs LIGGGHTS (Skip without mpirun
+    or liggghts-wheel)."""
+    if shutil.which("mpirun") is None:
+        raise Skip("mpirun not found (Debian openmpi-bin)")
+    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").exists():
+        raise Skip("liggghts-wheel not built")
+    return Path(a.sweep).resolve().parents[1]
+
+
 def small_dem_sweep(path, repo, soil, deck, fill=0.03, soil_keys=""):
     """A one-point DEM sweep: test_small at 20 % on a 0.12 x 0.08 m bin recipe of `soil` (fill
     height `fill`, more recipe keys `soil_keys`), 150 coupled steps of `deck` on one rank."""
@@ -479,11 +489,7 @@ def case_dem_soil_file(a, work):
     coupled point (tests/cosim/in.motion_compare, 150 steps, 1 rank) includes the same file and
     its run file records bed/soil and bed/soil_file; a changed soil file (same path) makes the
     finished point re-run and the bed be prepared again (--dry-run)."""
-    if shutil.which("mpirun") is None:
-        raise Skip("mpirun not found (Debian openmpi-bin)")
-    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").exists():
-        raise Skip("liggghts-wheel not built")
-    repo = Path(a.sweep).resolve().parents[1]
+    repo = dem_repo(a)
     soil = work / "elsewhere" / "my_sand.in"
     soil.parent.mkdir()
     text = (repo / "inputs" / "soils" / "ci.in").read_text()
@@ -548,11 +554,7 @@ def case_dem_tiled_bed(a, work):
     tile_length 0.04; no point runs), then one coupled point (150 steps, 1 rank) runs on it; a re-run skips the point, --force re-runs
     it on the same bed (reused, untouched); a changed tile_length (0.06: 2 blocks) re-prepares the bed, says which key changed,
     and re-runs the point; a changed non-tile key is still an error."""
-    if shutil.which("mpirun") is None:
-        raise Skip("mpirun not found (Debian openmpi-bin)")
-    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").exists():
-        raise Skip("liggghts-wheel not built")
-    repo = Path(a.sweep).resolve().parents[1]
+    repo = dem_repo(a)
     cfg = work / "sweep.toml"
 
     def write(tile, fill=0.03):
@@ -1031,11 +1033,7 @@ def case_dem_archive_bed(a, work):
     output directory whose bed is the same file it is not named; restored where the bed file
     differs (here: the same bed with bytes appended), it is named as having run on another
     preparation of its bed. One coupled point of 150 steps on a small ci bed, 1 rank."""
-    if shutil.which("mpirun") is None:
-        raise Skip("mpirun not found (Debian openmpi-bin)")
-    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").exists():
-        raise Skip("liggghts-wheel not built")
-    repo = Path(a.sweep).resolve().parents[1]
+    repo = dem_repo(a)
     cfg = work / "sweep.toml"
     small_dem_sweep(cfg, repo, "ci", repo / "tests" / "cosim" / "in.motion_compare")
     out, arch = work / "out", work / "archive"
