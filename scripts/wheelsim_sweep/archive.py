@@ -4,12 +4,12 @@ directory (a folder committed to git), and take them back on the next run.
 After each point finishes (exit status 0) its small files — done.json, run.h5, rig.toml, run.log —
 are copied to DIR/<WHEEL>/<SOIL>/<sSLIP>/ (run.h5 rewritten with gzip-compressed datasets: the
 same groups, datasets, values and attributes in about a third of the bytes) with archived.json
-beside them (the sha256 of the bed restart it ran on, the checkout's git commit, the time). At the start of a run, every archived point whose
-folder in the output directory has no done.json is copied back; the usual resume check
-(runner.finished: exit status, inputs hash, included files, run.h5) then decides whether it is
-finished. Checkpoints, LIGGGHTS logs and beds are not kept: a DEM bed is prepared again from its
-recipe, and an archived point whose bed hash differs from the bed now in place is named
-(docs/sweeps.md, "Keeping finished points").
+beside them (the sha256 of the bed restart it ran on, the checkout's git commit, the time). At the
+start of a run, every archived point whose folder in the output directory has no done.json is
+copied back; the usual resume check (runner.finished: exit status, inputs hash, included files,
+run.h5) then decides whether it is finished. Checkpoints, LIGGGHTS logs and beds are not kept: a
+DEM bed is prepared again from its recipe, and an archived point whose bed hash differs from the
+bed now in place is named (docs/sweeps.md, "Keeping finished points").
 """
 import datetime
 import json

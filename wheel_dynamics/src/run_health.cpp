@@ -140,11 +140,13 @@ void RunHealth::after_step(const RigOutputs &o, double contacts) {
   // DEM soil), it is a warning, once.
   const double R = sim_.wheel().rim_radius_m;
   const bool in_contact = o.contact.f_B_W.z() >= limits_.contact_load_fraction * o.vertical_load_N;
+  const auto beyond_radius = [&] {
+    return "the sinkage is " + fmt(o.sinkage_m) + " m at step " + std::to_string(o.step) +
+           " (t = " + fmt(o.time_s) + " s): more than the rim radius " + fmt(R) + " m, ";
+  };
   if (o.sinkage_m > R && (!in_contact || o.sinkage_m > 2.0 * R))
     stop("sinkage_beyond_radius",
-         "the sinkage is " + fmt(o.sinkage_m) + " m at step " + std::to_string(o.step) +
-             " (t = " + fmt(o.time_s) + " s): more than the rim radius " + fmt(R) +
-             " m, the wheel centre is below the soil surface, and " +
+         beyond_radius() + "the wheel centre is below the soil surface, and " +
              (in_contact ? "the whole wheel is under it (more than 2 radii)"
                          : "the terrain does not carry the wheel") +
              " (check terrain.grid_spacing, the soil, terrain.surface_height)",
@@ -152,9 +154,8 @@ void RunHealth::after_step(const RigOutputs &o, double contacts) {
   else if (o.sinkage_m > R && !buried_warned_) {
     buried_warned_ = true;
     add(Severity::warning, "sinkage_beyond_radius",
-        "the sinkage is " + fmt(o.sinkage_m) + " m at step " + std::to_string(o.step) +
-            " (t = " + fmt(o.time_s) + " s): more than the rim radius " + fmt(R) +
-            " m, the wheel centre is below the undisturbed surface while the terrain still " +
+        beyond_radius() +
+            "the wheel centre is below the undisturbed surface while the terrain still " +
             "carries it (vertical contact force " + fmt(o.contact.f_B_W.z()) +
             " N): the wheel is digging itself in",
         o.step, o.time_s);
