@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """wheel-rig's run health end to end (docs/run-health.md): the small SCM wheel of
-inputs/rigs/small_wheel_scm.toml (0.3 s test phase) run as a user would, three ways:
+inputs/rigs/small_wheel_scm.toml (0.3 s test phase; --duration sets it) run as a user would,
+three ways:
 
   healthy    as shipped: exit 0, /health status healthy or warnings, no error row
   grid5      terrain.grid_spacing = 5 (metres where millimetres were meant): exit 1 within 5 s,
@@ -52,13 +53,14 @@ def main():
     ap.add_argument("--config", required=True, help="inputs/rigs/small_wheel_scm.toml")
     ap.add_argument("--mesh", required=True, help="the built test_small.stl")
     ap.add_argument("--workdir", required=True)
+    ap.add_argument("--duration", type=float, default=0.3, help="test phase [s]")
     a = ap.parse_args()
     work = pathlib.Path(a.workdir)
     work.mkdir(parents=True, exist_ok=True)
     base = pathlib.Path(a.config).read_text()
     base = re.sub(r'(?m)^mesh = ".*"', f'mesh = "{pathlib.Path(a.mesh).resolve()}"', base)
     base = re.sub(r'(?m)^soil = "\.\./', f'soil = "{pathlib.Path(a.config).resolve().parent.parent}/', base)
-    base = re.sub(r"(?m)^duration = .*", "duration = 0.3", base)
+    base = re.sub(r"(?m)^duration = .*", f"duration = {a.duration}", base)
     cases = {
         "healthy": base,
         "grid5": re.sub(r"(?m)^grid_spacing = \S+", "grid_spacing = 5", base),
