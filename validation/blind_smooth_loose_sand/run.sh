@@ -9,8 +9,9 @@
 # hash, command, machine, wall time). Many hours on 2 cores (README "Cost"): run it in the
 # background, nohup ... &
 # --sensitivity: afterwards also the speed (0.05 m/s), grain-size (the calibrated 2-3.5 mm
-#          spheres) and bed-depth (0.063 m) sweeps at 2 slips each: results_speed_0.05.csv,
-#          results_grain_1.0.csv, results_depth_0.06.csv and sensitivity.png here.
+#          spheres), bed-depth (0.063 m) and travel (0.25 m on a 0.52 m bin) sweeps at 2 slips
+#          each: results_speed_0.05.csv, results_grain_1.0.csv, results_depth_0.06.csv,
+#          results_travel_0.25.csv and sensitivity.png here.
 # Finished points are kept in points/ (committed) and restored on the next run (README).
 # --smoke: the CI version (a tiny bin, slip -0.5, 0.05 s of test phase; minutes): same
 #          pipeline, outputs into --out-dir only (nothing in this folder changes).
@@ -68,11 +69,12 @@ if ((sensitivity)); then
   sweep speed_0.05 "$here/sweep_speed.toml" 1.4 2.4 "$dest/results_speed_0.05.csv"
   sweep grain_1.0 "$here/sweep_grain.toml" 0.7 1.2 "$dest/results_grain_1.0.csv"
   sweep depth_0.06 "$here/sweep_depth.toml" 0.7 1.2 "$dest/results_depth_0.06.csv"
+  sweep travel_0.25 "$here/sweep_travel.toml" 2.0 2.5 "$dest/results_travel_0.25.csv"
   "$python" "$here/plot.py" --png "$dest/sensitivity.png" \
-    --title "sensitivity: speed, grain size, bed depth (smooth wheel, loose sand 1330)" \
+    --title "sensitivity: speed, grain size, bed depth, travel (smooth wheel, loose sand 1330)" \
     "main: 0.1 m/s, d50 4.1 mm, bed 0.105 m=$dest/results.csv" \
     "0.05 m/s=$dest/results_speed_0.05.csv" "d50 2.75 mm=$dest/results_grain_1.0.csv" \
-    "bed 0.063 m=$dest/results_depth_0.06.csv"
+    "bed 0.063 m=$dest/results_depth_0.06.csv" "travel 0.25 m=$dest/results_travel_0.25.csv"
 fi
 write_provenance "$dest/provenance.toml" validation/blind_smooth_loose_sand \
   "validation/blind_smooth_loose_sand/run.sh${args[*]:+ }${args[*]}" \
