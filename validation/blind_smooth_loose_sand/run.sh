@@ -42,13 +42,20 @@ status=0
 # sweep NAME CONFIG WINDOW_START WINDOW_END RESULTS: run one sweep into $out/NAME and write its
 # results table (and $out/NAME/curves.csv) (window in test-phase seconds: 0.05 m of travel after
 # the approach to steady sinkage, README "Averaging window"). A failed point is reported by
-# wheel-sweep and left out. The full case keeps its finished points in the committed points/NAME/
-# (wheel-sweep --archive; README "Resuming across sessions").
+# wheel-sweep and left out; a sweep stopped by a signal (the session's end) writes nothing. The
+# full case keeps its finished points in the committed points/NAME/ (wheel-sweep --archive;
+# README "Resuming across sessions").
 sweep() {
   local name=$1 config=$2 w0=$3 w1=$4 results=$5 archive=()
   ((smoke)) || archive=(--archive "$here/points/$name")
+  local rc=0
   "$root/scripts/wheel-sweep" "$config" --out-dir "$out/$name" --build-dir "$build_dir" \
-    "${archive[@]}" "${sweep_args[@]}" || status=$?
+    "${archive[@]}" "${sweep_args[@]}" || rc=$?
+  if ((rc > 128)); then   # wheel-sweep stopped by a signal: unfinished, nothing to write
+    echo "run.sh: wheel-sweep stopped by signal $((rc - 128)) in $name: no results written" >&2
+    exit "$rc"
+  fi
+  ((rc == 0)) || status=$rc
   local runs
   mapfile -t runs < <(find "$out/$name" -mindepth 4 -name run.h5 -not -path "*/beds/*" | sort)
   ((${#runs[@]})) || { echo "run.sh: no finished run under $out/$name" >&2; exit 1; }
