@@ -51,10 +51,7 @@ sweep() {
   local rc=0
   "$root/scripts/wheel-sweep" "$config" --out-dir "$out/$name" --build-dir "$build_dir" \
     "${archive[@]}" "${sweep_args[@]}" || rc=$?
-  if ((rc > 128)); then   # wheel-sweep stopped by a signal: unfinished, nothing to write
-    echo "run.sh: wheel-sweep stopped by signal $((rc - 128)) in $name: no results written" >&2
-    exit "$rc"
-  fi
+  stop_if_signalled "$rc" "$name"
   ((rc == 0)) || status=$rc
   local runs
   mapfile -t runs < <(find "$out/$name" -mindepth 4 -name run.h5 -not -path "*/beds/*" | sort)

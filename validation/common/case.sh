@@ -1,8 +1,17 @@
 # Sourced first by validation/<case>/run.sh: sets here (the case's folder), root (the checkout),
 # build_dir ($WHEELSIM_BUILD_DIR, else <root>/build) and python (Debian's, with numpy, h5py and
-# matplotlib), and brings write_provenance (provenance.sh).
+# matplotlib), and brings write_provenance (provenance.sh) and stop_if_signalled.
 here=$(cd "$(dirname "${BASH_SOURCE[1]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
 build_dir=${WHEELSIM_BUILD_DIR:-$root/build}
 python=/usr/bin/python3
 source "$root/validation/common/provenance.sh"
+
+# stop_if_signalled RC WHAT: wheel-sweep exited 128 + N (stopped by signal N, e.g. at a session's
+# end): its points are unfinished, so exit RC before any results table or provenance is written.
+stop_if_signalled() {
+  if (($1 > 128)); then
+    echo "run.sh: wheel-sweep stopped by signal $(($1 - 128)) ($2): no results written" >&2
+    exit "$1"
+  fi
+}

@@ -59,7 +59,8 @@ if ((sensitivity)); then
     local name=$1 config=$2 w0=$3 w1=$4 runs t0 t0_utc rc=0
     t0=$(date +%s); t0_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
     "$root/scripts/wheel-sweep" "$here/$config" --out-dir "$out/sensitivity/$name" \
-      --build-dir "$build_dir" "${sweep_args[@]}" || rc=1
+      --build-dir "$build_dir" "${sweep_args[@]}" || rc=$?
+    stop_if_signalled "$rc" "$config"
     mapfile -t runs < <(find "$out/sensitivity/$name" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
     ((${#runs[@]})) || { echo "run.sh: no finished run under $out/sensitivity/$name" >&2; return 1; }
     "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start "$w0" --window-end "$w1" \
@@ -94,6 +95,7 @@ if ((sensitivity)); then
   exit $status
 fi
 "$root/scripts/wheel-sweep" "$config" --out-dir "$out" --build-dir "$build_dir" "${sweep_args[@]}" || status=$?
+stop_if_signalled "$status" "$config"
 # results of every finished point (a failed point is reported by wheel-sweep and left out)
 mapfile -t runs < <(find "$out" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" | sort)
 ((${#runs[@]})) || { echo "run.sh: no finished run under $out" >&2; exit 1; }

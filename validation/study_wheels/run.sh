@@ -58,12 +58,14 @@ status=0
 # case keeps its finished points in the committed points/<OUT's name>/ (wheel-sweep --archive;
 # README "Resuming across sessions").
 part() {
-  local config=$1 dir=$2 results=$3 provenance=$4 t0 t0_utc runs
+  local config=$1 dir=$2 results=$3 provenance=$4 t0 t0_utc runs rc=0
   local archive=()
   t0=$(date +%s); t0_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
   ((smoke)) || archive=(--archive "$here/points/${dir##*/}")
   "$root/scripts/wheel-sweep" "$here/$config" --out-dir "$dir" --build-dir "$build_dir" \
-    "${archive[@]}" "${sweep_args[@]}" || status=1
+    "${archive[@]}" "${sweep_args[@]}" || rc=$?
+  stop_if_signalled "$rc" "$config"
+  ((rc == 0)) || status=1
   # every finished point (a failed point is reported by wheel-sweep and left out)
   mapfile -t runs < <(find "$dir" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" | sort)
   ((${#runs[@]})) || { echo "run.sh: no finished run under $dir" >&2; status=1; return 0; }
