@@ -122,7 +122,7 @@ class Runner:
         self.stop_signal = None
         self.status = {}  # point index -> done | failed | interrupted | pending
         self.exit_status = {}
-        self._file_hashes = {}  # path -> sha256 of its contents (file_hash)
+        self._file_hashes = {}  # path -> ((size, mtime), sha256) of its contents (file_hash)
         self._includes = {}  # deck path -> the files it includes in turn (included_files)
         self.health = {}  # point index -> (status, codes) of its run file (check_health)
 
@@ -245,11 +245,17 @@ class Runner:
                 "--out", str(d / PART_FILE), "--quiet"] + params
 
     def file_hash(self, path):
-        """sha256 of a file's contents ("missing" if it cannot be read); computed once per file
-        and run of the driver (a bed restart may be large). "missing" is not kept: a bed
-        prepared later in the run is hashed then."""
+        """sha256 of a file's contents ("missing" if it cannot be read); kept while the file's
+        size and modification time stay the same (a bed restart may be large), so a file edited
+        while the driver runs is hashed again: a point records what it read when it started."""
         path = str(path)
-        if path not in self._file_hashes:
+        try:
+            st = os.stat(path)
+        except OSError:
+            return "missing"
+        stamp = (st.st_size, st.st_mtime_ns)
+        kept = self._file_hashes.get(path)
+        if kept is None or kept[0] != stamp:
             h = hashlib.sha256()
             try:
                 with open(path, "rb") as f:
@@ -257,8 +263,8 @@ class Runner:
                         h.update(block)
             except OSError:
                 return "missing"
-            self._file_hashes[path] = h.hexdigest()
-        return self._file_hashes[path]
+            kept = self._file_hashes[path] = (stamp, h.hexdigest())
+        return kept[1]
 
     def inputs_hash(self, p):
         """What decides a point's result (not the out dir): its rig config, its run settings, and
@@ -389,6 +395,9 @@ class Runner:
             counter["started"] += 1
             self.say(f"[started {counter['started']}/{counter['total']}] {self.describe(p)} "
                      f"({p.reldir}{', resuming from its checkpoint' if resume else ''})")
+        # the included files as this point reads them: an edit while it runs (a later point's
+        # inputs) must not be recorded as what this one ran with
+        included = self.included_hashes(p) if self.sweep.terrain == "dem" else None
         t0 = time.monotonic()
         with self.lock:
             counter["running"][p.index] = t0
@@ -414,8 +423,8 @@ class Runner:
                 "terrain": self.sweep.terrain, "exit_status": rc,
                 "status": "done" if rc == 0 else "failed", "wall_time_s": round(wall, 3),
                 "run_file": RUN_FILE if rc == 0 else None, "inputs_sha256": self.inputs_hash(p)}
-        if self.sweep.terrain == "dem":
-            done["included_sha256"] = self.included_hashes(p)
+        if included is not None:
+            done["included_sha256"] = included
         _write_atomic(d / DONE_FILE, json.dumps(done, indent=2) + "\n")
         if rc == 0 and self.archive is not None:
             self._archive_point(p)

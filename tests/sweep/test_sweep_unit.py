@@ -18,6 +18,7 @@ import shutil
 import subprocess
 import sys
 import tomllib
+import time
 from pathlib import Path
 
 SKIP = 77
@@ -901,6 +902,52 @@ def case_accept_change(a, work):
     check(res.returncode == 0 and "1 point(s) to run, 1 finished" in res.stdout
           and "reusing" in res.stdout and "inputs changed since it finished" in res.stdout,
           "after accepting: expected the first point finished, the bed reused, the second to run")
+
+
+def case_included_at_start(a, work):
+    """A DEM point records the included files' hashes as they were when it started, and an edit
+    while the driver runs is seen (file_hash keeps a hash only while size and mtime stay): the
+    include is hashed before the point (as the driver's start-up check does), edited, the point
+    runs with a stand-in child that edits it again and writes the run file; done.json holds the
+    hash of the version the point started with, and the point then counts as stale."""
+    import hashlib
+    from wheelsim_sweep import config, runner
+    repo = Path(a.sweep).resolve().parents[1]
+    build = work / "build"
+    _stand_in_rig(build, otherwise="exit 0\n")
+    (work / "wheel.stl").write_text("solid w\nendsolid w\n")
+    inc = work / "deck_extra.in"
+    inc.write_text("# v1\n")
+    (work / "in.deck").write_text(f"# not run\ninclude {inc}\n")
+    (work / "rig.toml").write_text('[run]\ndt = 1e-4\nduration = 0.5\n[motor]\nomega = 1.0\n'
+                                   '[terrain]\ntype = "dem"\n')
+    cfg = work / "sweep.toml"
+    cfg.write_text('terrain = "dem"\nbase = "rig.toml"\nwheels = ["wheel.stl"]\n'
+                   f'soils = [{{ soil = "{repo / "inputs" / "soils" / "ci.in"}", bin_length = 0.3 }}]\n'
+                   'slips = [0.1]\n[dem]\nnp = 1\ndeck = "in.deck"\n')
+    sw = config.load(cfg, repo, build)
+    r = runner.Runner(sw, work / "out", repo, build, 1)
+    p = sw.points[0]
+    r.included_hashes(p)  # the driver's start-up check hashes it first (kept: file_hash)
+    time.sleep(0.01)
+    inc.write_text("# v1: edited after the driver started\n")
+    v1 = hashlib.sha256(inc.read_bytes()).hexdigest()
+
+    def child(cmd, log, cwd):  # the point "runs": meanwhile the include is edited
+        inc.write_text("# v2: edited while the point ran\n")
+        (Path(cwd) / runner.PART_FILE).write_text("")
+        return 0
+    r.command = lambda p_, resume: ["true"]
+    r._run_child = child
+    counter = {"started": 0, "finished": 0, "total": 1, "running": {}, "walls": []}
+    r.run_point(p, counter)
+    done = json.loads((r.point_dir(p) / runner.DONE_FILE).read_text())
+    got = done.get("included_sha256", {}).get(str(inc.resolve()))
+    check(done.get("exit_status") == 0, f"the stand-in point finished ({done})")
+    check(got == v1, f"recorded hash of {inc.name} is the one at the start ({got} vs {v1})")
+    ok, why = r.finished(p)
+    check(not ok and "changed since it finished" in why,
+          f"so the point counts as run with the old include and re-runs ({why!r})")
 
 
 def _rewrite(path, old, new):
