@@ -91,10 +91,14 @@ def _run(a):
             raise plan.LabInputError(f"--tests: unknown test '{t}'"
                                      + (f" (did you mean '{near}'?)" if near else "")
                                      + f"; tests: {', '.join(plan.TEST_NAMES)}")
+    if a.checkpoints < 0:
+        raise plan.LabInputError(f"--checkpoints: expected a number >= 0 (0: none), got "
+                                 f"{a.checkpoints}")
     soil_file = runner.resolve_soil_file(a.soil, REPO / "inputs")
     out = Path(a.out or RUNS / "soil_lab" / Path(soil_file).stem).resolve()
     out.mkdir(parents=True, exist_ok=True)
-    lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet, archive=a.archive)
+    lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet, archive=a.archive,
+                     checkpoints=a.checkpoints)
     soil = lab.soil_info(soil_file)
     p = plan.make_plan(soil, tests, a.preset, stresses, bed_vars, widths, a.plate_bin,
                        a.speed_check, a.shear_travel, a.plate_speed, a.shear_speed)
@@ -187,6 +191,9 @@ def main(argv=None):
                    help="keep each finished test run's files (CSV or dump, log, done.json) in "
                         "DIR/<run>/ (e.g. a folder committed to git) and restore them from there "
                         "first: a lab can span sessions whose output directory does not survive")
+    r.add_argument("--checkpoints", type=int, default=runner.DEFAULT_CHECKPOINTS, metavar="N",
+                   help="restart files written over each plate and shear run, from which a "
+                        f"stopped lab goes on (default {runner.DEFAULT_CHECKPOINTS}; 0: none)")
     r.add_argument("--build-dir", metavar="D", help="build directory (default: <repo>/build)")
     r.add_argument("--quiet", action="store_true", help="no progress lines")
     rep = sub.add_parser("report", help="fit and plot a lab directory's results")

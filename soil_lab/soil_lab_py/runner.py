@@ -6,7 +6,9 @@ Layout of the output directory (docs/soil-lab.md, "Outputs"):
   beds/<bed>/                in.soilbin's restart, .vars and log (bulk density, porosity)
   <run>/                     one directory per deck run: its CSV or dump, log, done.json
 Every step writes done.json (inputs hash, wall time, particles) last; a step whose done.json
-matches its inputs is skipped on a re-run, so an interrupted lab resumes where it stopped.
+matches its inputs is skipped on a re-run, so an interrupted lab resumes where it stopped. A plate
+or shear run that was stopped goes on from its last checkpoint (<run>/checkpoints/: restart files
+lab-<start step>-<step>.restart, soil_lab/decks/lab_run.in), not from its start.
 """
 
 import hashlib
@@ -20,9 +22,14 @@ from pathlib import Path
 from wheelsim_post import mpi_launch, step_archive
 from wheelsim_post.deck_files import deck_includes
 
+from .checkpoints import Checkpoints
 from .plan import LabInputError, SoilInfo
 
 DECKS = Path(__file__).resolve().parent.parent / "decks"
+# Tests whose decks write checkpoints (lab_start.in and lab_run.in); the repose test does not (its
+# frozen base is a group made from positions at its start, and its output is one dump at the end).
+CHECKPOINTED_TESTS = ("plate", "shear")
+DEFAULT_CHECKPOINTS = 10  # restart files over a plate or shear run: at most 10 % of it is redone
 
 
 class LabRunError(RuntimeError):
@@ -53,7 +60,8 @@ def resolve_soil_file(soil, inputs_dir):
 
 
 class Lab:
-    def __init__(self, repo, build_dir, out_dir, np=1, quiet=False, archive=None):
+    def __init__(self, repo, build_dir, out_dir, np=1, quiet=False, archive=None,
+                 checkpoints=DEFAULT_CHECKPOINTS):
         self.repo = Path(repo)
         self.build = Path(build_dir)
         self.out = Path(out_dir)
@@ -61,6 +69,7 @@ class Lab:
         # (docs/soil-lab.md, "Stopping and resuming")
         self.archive = Path(archive).resolve() if archive is not None else None
         self.np = np
+        self.checkpoints = checkpoints  # restart files per plate or shear run (0: none)
         self.quiet = quiet
         self.inputs = self.repo / "inputs"
         self.liggghts = self.build / "bin" / "liggghts-wheel"
@@ -77,7 +86,8 @@ class Lab:
     def _mpirun(self):
         return mpi_launch.mpirun(self.np)
 
-    def _liggghts(self, deck, variables, log, cwd):
+    def _liggghts(self, deck, variables, log, cwd, while_running=None):
+        """Runs `deck` with LIGGGHTS; `while_running()` is called every few seconds meanwhile."""
         # mpirun dies with this process and each rank with mpirun (SIGKILL, also when the lab is
         # killed: docs/soil-lab.md "Stopping and resuming"), so no run outlives the lab.
         cmd = self._mpirun() + list(mpi_launch.rank_death_prefix()) + [
@@ -86,12 +96,19 @@ class Lab:
         for k, v in variables.items():
             cmd += ["-var", k, str(v)]
         with open(log, "w") as f:
-            r = subprocess.run(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd,
-                               preexec_fn=mpi_launch.die_with_parent(os.getpid(), who="soil-lab"))
+            p = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd,
+                                 preexec_fn=mpi_launch.die_with_parent(os.getpid(), who="soil-lab"))
+            while True:
+                try:
+                    p.wait(timeout=5.0)
+                    break
+                except subprocess.TimeoutExpired:
+                    if while_running is not None:
+                        while_running()
         text = Path(log).read_text(errors="replace")
-        if r.returncode != 0:
+        if p.returncode != 0:
             errors = [ln for ln in text.splitlines() if "ERROR" in ln]
-            raise LabRunError(f"{Path(deck).name} failed (exit {r.returncode}): "
+            raise LabRunError(f"{Path(deck).name} failed (exit {p.returncode}): "
                               f"{errors[-1] if errors else 'see the log'} (log: {log})")
         return text
 
@@ -220,16 +237,38 @@ class Lab:
             if self.archive is not None:
                 self._keep_step(d, run.name)
             return
-        self.say(f"{progress}{run.name}: running")
+        ckpt = None
+        if run.test in CHECKPOINTED_TESTS:
+            csv = d / outputs["out_csv"]
+            ckpt = Checkpoints(d / "checkpoints", csv, soil.dt_s, key[0])
+            resume = ckpt.prepare(restart)
+            variables = {**variables, "lab_decks": str(DECKS),
+                         "checkpoint_count": self.checkpoints, "checkpoint_dir": str(ckpt.dir),
+                         **resume}
+            if ckpt.resuming:
+                self.say(f"{progress}{run.name}: resuming from its checkpoint at step "
+                         f"{ckpt.resumed_step} ({ckpt.resumed_step - ckpt.start_step} steps done)")
+        if not (ckpt and ckpt.resuming):
+            self.say(f"{progress}{run.name}: running")
         t0 = time.monotonic()
-        text = self._liggghts(deck, variables, d / "liggghts.log", d)
+        text = self._liggghts(deck, variables, d / "liggghts.log", d,
+                              while_running=ckpt.prune if ckpt else None)
         wall = time.monotonic() - t0
         steps = re.findall(r"^Loop time of \S+ on \d+ procs for (\d+) steps with (\d+) atoms", text,
                            re.M)
         n_steps = sum(int(s) for s, _ in steps)
         particles = max((int(a) for _, a in steps), default=0)
+        resumed = {}
+        if ckpt and ckpt.resuming:
+            # the attempts before: the steps up to the checkpoint and their wall time
+            n_steps += ckpt.resumed_step - ckpt.start_step
+            resumed = {"resumed_at_step": ckpt.resumed_step,
+                       "wall_s_before_resume": round(ckpt.wall_before_s, 1)}
+            wall += ckpt.wall_before_s
         self._finish(d, key, wall_s=round(wall, 1), np=self.np, steps=n_steps,
-                     particles=particles, dt_s=soil.dt_s, meta=run.meta)
+                     particles=particles, dt_s=soil.dt_s, meta=run.meta, **resumed)
+        if ckpt:
+            ckpt.clear()
         if self.archive is not None:
             self._keep_step(d, run.name)
         rate = n_steps * particles / wall if wall > 0 else 0

@@ -2,6 +2,10 @@
 """The whole soil lab on the ci soil with the quick preset (CI smoke; docs/soil-lab.md):
 
   soil-lab run ci --preset quick --speed-check
+                                  -> SIGKILLed in its first shear box once it has two checkpoints;
+                                     the same command resumes that box from its newest complete
+                                     checkpoint (done.json: resumed_at_step; the CSV's rows evenly
+                                     spaced to the end, no gap, no repeat; no checkpoint left)
                                   -> every test's output, results.toml/csv and the PNGs; the
                                      fitted values finite and in physically plausible ranges; the
                                      half-speed comparisons (quasi-static check) reported
@@ -12,8 +16,10 @@
 Exit 0 pass, 1 fail, 77 skip (liggghts-wheel not built).
 """
 import argparse
+import json
 import os
 import re
+import signal
 import shutil
 import subprocess
 import sys
@@ -50,8 +56,24 @@ def main():
     shutil.rmtree(out, ignore_errors=True)  # a fresh lab: the first run must do everything
     env = {**os.environ, "WHEELSIM_BUILD_DIR": str(build)}
     t0 = time.monotonic()
-    r = lab("run", "ci", "--preset", "quick", "--speed-check", "--out", str(out), "--np", a.np,
-            env=env)
+    command = ["run", "ci", "--preset", "quick", "--speed-check", "--out", str(out), "--np", a.np]
+    box = out / "shear_s3000"
+    Path(a.work).mkdir(parents=True, exist_ok=True)
+    with open(Path(a.work) / "killed_lab.log", "w") as log:
+        p = subprocess.Popen([str(LAB), *command], stdout=log, stderr=subprocess.STDOUT, env=env)
+        deadline = time.monotonic() + 600
+        while p.poll() is None and time.monotonic() < deadline:
+            if len(list((box / "checkpoints").glob("lab-*.restart"))) >= 2:
+                break
+            time.sleep(0.05)
+        killed = p.poll() is None
+        p.send_signal(signal.SIGKILL)
+        p.wait()
+    check(killed and not (box / "done.json").exists(),
+          f"lab SIGKILLed in its first shear box after two checkpoints "
+          f"({time.monotonic() - t0:.0f} s; log {Path(a.work) / 'killed_lab.log'})")
+    time.sleep(1.0)  # mpirun and the rank die with the lab (soil_lab.kill_kill)
+    r = lab(*command, env=env)
     print(r.stdout[-4000:], r.stderr[-2000:])
     check(r.returncode == 0, f"soil-lab run exit 0 (got {r.returncode}, {time.monotonic() - t0:.0f} s)")
     for f in ("soil.toml", "results.toml", "results.csv", "plate.png", "shear_curves.png",
@@ -59,6 +81,21 @@ def main():
               "plate_b0.032/plate.csv", "shear_s3000/shear.csv", "shear_s6000/shear.csv",
               "shear_s9000/shear.csv", "repose/repose.dump"):
         check((out / f).is_file(), f"{f} written")
+    check("shear_s3000: resuming from its checkpoint at step" in r.stdout,
+          "the killed box resumed from a checkpoint")
+    done = json.loads((box / "done.json").read_text()) if (box / "done.json").is_file() else {}
+    rows = [[float(x) for x in line.split()] for line in
+            (box / "shear.csv").read_text().splitlines() if line and not line.startswith("#")] \
+        if (box / "shear.csv").is_file() else []
+    gaps = [b[0] - a_[0] for a_, b in zip(rows, rows[1:])]
+    check(done.get("resumed_at_step", 0) > 0 and done.get("wall_s_before_resume", 0) > 0 and
+          not (box / "checkpoints").exists(),
+          f"done.json: resumed at step {done.get('resumed_at_step')}, wall before "
+          f"{done.get('wall_s_before_resume')} s; checkpoints removed")
+    check(len(gaps) > 100 and max(gaps) - min(gaps) < 1e-9 * max(gaps) + 1e-12 and
+          rows[-1][1] > 0.99 * done.get("meta", {}).get("box_m", 1) * 0.12,
+          f"resumed CSV: {len(rows)} rows evenly spaced (row interval {min(gaps, default=0):.6g}.."
+          f"{max(gaps, default=0):.6g} s), displacement at the end {rows[-1][1] if rows else None} m")
     res = tomllib.loads((out / "results.toml").read_text()) if (out / "results.toml").is_file() else {}
     bulk, plate, shear = res.get("bulk", {}), res.get("plate", {}), res.get("shear", {})
     check(1000 < bulk.get("bulk_density_kg_m3", 0) < 2500 and 0.2 < bulk.get("porosity", 0) < 0.6,
@@ -76,9 +113,9 @@ def main():
     check(len(total.get("beds", {})) == 3 and total.get("lab_wall_s", 0) > total.get("runs_wall_s", 0) > 0,
           f"lab wall time = beds + runs ({total})")
     inv = res.get("soil", {}).get("invocations", [])
-    check(len(inv) == 1 and len(inv[0].get("git_commit", "")) == 40 and "--preset quick" in
-          inv[0].get("command", "") and inv[0].get("host"),
-          f"provenance: command, git commit, host ({inv})")
+    check(len(inv) == 2 and all(len(i.get("git_commit", "")) == 40 and "--preset quick" in
+                                i.get("command", "") and i.get("host") for i in inv),
+          f"provenance of both invocations (killed, resumed): command, git commit, host ({inv})")
     qs = res.get("quasi_static", {})
     check(set(qs) >= {"plate_b0.032", "shear_s6000"} and
           all(abs(q["difference"]) < (1 if q["relative"] else 15) and q["half_speed"] > 0
@@ -109,6 +146,7 @@ def main():
     for args, message in ((("run", "nosuch"), "unknown soil 'nosuch'"),
                           (("run", "ci", "--tests", "plate,sheer"), "did you mean 'shear'?"),
                           (("run", "ci", "--tets", "plate"), "did you mean '--tests'?"),
+                          (("run", "ci", "--checkpoints", "-1"), "--checkpoints: expected a number >= 0"),
                           (("scm", str(out / "nothing"), "--out", "x.toml"), "not a soil-lab directory")):
         r = lab(*args, env=env)
         check(r.returncode == 2 and message in r.stderr,
