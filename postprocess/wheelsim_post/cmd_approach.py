@@ -12,7 +12,7 @@ from .choices import split_list
 from .csvio import write_csv
 from .errors import PostError
 from .runfile import RunFile
-from .steady import TEST_PHASE
+from .steady import TEST_PHASE, require_scalar
 
 HELP = ("means of drawbar pull, torque and sinkage over successive segments of travel in the "
         "test phase: how far a run is from steady state")
@@ -104,12 +104,7 @@ def run(args):
             travel_step, travel = travel_step[order], travel[order]
             table = {}
             for name in names:
-                series = run_file.observable(name)
-                if series.value.ndim != 1:
-                    raise PostError(
-                        f"run file '{path}': observable '{name}' has "
-                        f"{series.value.shape[1]} components, expected 1"
-                    )
+                series = require_scalar(run_file, run_file.observable(name))
                 table[name] = (series.unit, segment_means(travel_step, travel, series.step,
                                                           series.value, args.segment))
         units = {name: unit for name, (unit, _) in table.items()}

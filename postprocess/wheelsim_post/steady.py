@@ -310,17 +310,21 @@ def scaled(stat, factor):
     return Stat(stat.mean * factor, stat.std * abs(factor), stat.sem * abs(factor))
 
 
+def require_scalar(run, series):
+    """``series`` (an observable of ``run``) if it has one component, else PostError."""
+    if series.value.ndim != 1:
+        raise PostError(
+            f"run file '{run.path}': observable '{series.name}' has {series.value.shape[1]} "
+            "components, expected 1"
+        )
+    return series
+
+
 def _scalar_series(run, name, steps):
     """(step, value) of a 1-component observable restricted to ``steps``."""
-    series = run.observable(name)
-    value = series.value
-    if value.ndim != 1:
-        raise PostError(
-            f"run file '{run.path}': observable '{name}' has {value.shape[1]} components, "
-            "expected 1"
-        )
+    series = require_scalar(run, run.observable(name))
     keep = np.isin(series.step, steps)
-    return series.step[keep], value[keep]
+    return series.step[keep], series.value[keep]
 
 
 def _window_max_x(run, name, steps):

@@ -44,20 +44,24 @@ class Checkpoints:
                     out.append((int(m.group(1)), int(m.group(2)), f))
         return sorted(out, key=lambda c: c[1])
 
-    def _rows(self):
-        """The CSV's rows as (steps since the start, line), in file order; [] if none."""
+    def _read(self):
+        """(the CSV's first comment line, its rows as (steps since the start, line) in file
+        order); ("", []) without a CSV."""
         if not self.csv.is_file():
-            return []
-        rows = []
+            return "", []
+        header, rows = "", []
         for line in self.csv.read_text(errors="replace").splitlines(keepends=True):
             fields = line.split()
-            if not fields or fields[0].startswith("#") or not line.endswith("\n"):
-                continue  # a comment, or a last line the kill cut short
+            if fields and fields[0].startswith("#"):
+                header = header or line
+                continue
+            if not fields or not line.endswith("\n"):
+                continue  # an empty line, or a last line the kill cut short
             try:
                 rows.append((round(float(fields[0]) / self.dt_s), line))
             except ValueError:
                 continue
-        return rows
+        return header, rows
 
     def _last_row_step(self):
         """Steps since the start of the CSV's last complete row (read from the file's end), -1 if
@@ -116,9 +120,8 @@ class Checkpoints:
             if f != path:
                 f.unlink()
                 Path(f"{f}.vars").unlink(missing_ok=True)
-        keep = [line for n, line in self._rows() if n <= step - start]
-        header = next((line for line in self.csv.read_text(errors="replace").splitlines(True)
-                       if line.startswith("#")), "")
+        header, rows = self._read()
+        keep = [line for n, line in rows if n <= step - start]
         tmp = self.csv.with_name(self.csv.name + ".tmp")
         tmp.write_text(header + "".join(keep))
         os.replace(tmp, self.csv)
