@@ -8,8 +8,8 @@
 # then writes into this folder results.csv, curves.csv, prediction.png and provenance.toml (git
 # hash, command, machine, wall time). Many hours on 2 cores (README "Cost"): run it in the
 # background, nohup ... &
-# --sensitivity: afterwards also the speed (0.05 m/s), grain-size (the calibrated 2-3.5 mm
-#          spheres), bed-depth (0.063 m) and travel (0.25 m on a 0.52 m bin) sweeps at 2 slips
+# --sensitivity: afterwards also the travel (0.25 m on a 0.52 m bin), speed (0.05 m/s), bed-depth
+#          (0.063 m) and grain-size (the calibrated 2-3.5 mm spheres) sweeps, in that order, at 2 slips
 #          each: results_speed_0.05.csv, results_grain_1.0.csv, results_depth_0.06.csv,
 #          results_travel_0.25.csv and sensitivity.png here.
 # Finished points are kept in points/ (committed) and restored on the next run (README).
@@ -70,10 +70,12 @@ else
 fi
 "$python" "$here/plot.py" --png "$dest/prediction.png" "$dest/results.csv"
 if ((sensitivity)); then
-  sweep speed_0.05 "$here/sweep_speed.toml" 1.4 2.4 "$dest/results_speed_0.05.csv"
-  sweep grain_1.0 "$here/sweep_grain.toml" 0.7 1.2 "$dest/results_grain_1.0.csv"
-  sweep depth_0.06 "$here/sweep_depth.toml" 0.7 1.2 "$dest/results_depth_0.06.csv"
+  # the order is the order of what each tells: travel first (every main point warns of a trend:
+  # how far from steady are they), then speed (the quasi-static question), depth, grain (dearest)
   sweep travel_0.25 "$here/sweep_travel.toml" 2.0 2.5 "$dest/results_travel_0.25.csv"
+  sweep speed_0.05 "$here/sweep_speed.toml" 1.4 2.4 "$dest/results_speed_0.05.csv"
+  sweep depth_0.06 "$here/sweep_depth.toml" 0.7 1.2 "$dest/results_depth_0.06.csv"
+  sweep grain_1.0 "$here/sweep_grain.toml" 0.7 1.2 "$dest/results_grain_1.0.csv"
   "$python" "$here/plot.py" --png "$dest/sensitivity.png" \
     --title "sensitivity: speed, grain size, bed depth, travel (smooth wheel, loose sand 1330)" \
     "main: 0.1 m/s, d50 4.1 mm, bed 0.105 m=$dest/results.csv" \
