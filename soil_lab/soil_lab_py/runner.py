@@ -220,6 +220,8 @@ class Lab:
         return done["result"]["restart"], done["result"]
 
     def run(self, soil, run, restart, progress=""):
+        """Runs one plate, shear or repose deck (skipped when done before, resumed from its newest
+        checkpoint when stopped); returns its wall time [s] (a skipped run's from its done.json)."""
         d = self.out / run.name
         d.mkdir(parents=True, exist_ok=True)
         base = run.meta.get("half_of", run.name)  # a half-speed run uses its model's meshes
@@ -232,11 +234,12 @@ class Lab:
         key = self._key(variables, run.meta, files=(deck, soil.file, restart, *meshes.values()))
         if self.archive is not None:
             self._restore_step(d, run.name)
-        if self._done(d, key) is not None:
+        done = self._done(d, key)
+        if done is not None:
             self.say(f"{progress}{run.name}: done before, skipped")
             if self.archive is not None:
                 self._keep_step(d, run.name)
-            return
+            return done.get("wall_s")
         ckpt = None
         if run.test in CHECKPOINTED_TESTS:
             csv = d / outputs["out_csv"]
@@ -274,16 +277,20 @@ class Lab:
         rate = n_steps * particles / wall if wall > 0 else 0
         self.say(f"{progress}{run.name}: {n_steps} steps, {particles} particles, {wall:.0f} s "
                  f"({rate / 1e6:.2f} M particle-steps/s)")
+        return wall
 
     def run_plan(self, plan):
         self.out.mkdir(parents=True, exist_ok=True)
         restarts = {}
         for name, bed in plan.beds.items():
             restarts[name], _ = self.bed(plan.soil, bed)
-        t0 = time.monotonic()
+        walls = []  # wall time of each run finished so far, in this lab or before (done.json)
         for i, run in enumerate(plan.runs):
             eta = ""
-            if i > 0:
-                per = (time.monotonic() - t0) / i
+            if walls:  # runs skipped as done before count at their own cost, not at 0 s
+                per = sum(walls) / len(walls)
                 eta = f", ~{per * (len(plan.runs) - i) / 60:.1f} min left"
-            self.run(plan.soil, run, restarts[run.bed], progress=f"[{i + 1}/{len(plan.runs)}{eta}] ")
+            wall_s = self.run(plan.soil, run, restarts[run.bed],
+                              progress=f"[{i + 1}/{len(plan.runs)}{eta}] ")
+            if wall_s:
+                walls.append(float(wall_s))

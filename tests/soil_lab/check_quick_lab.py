@@ -83,6 +83,10 @@ def main():
         check((out / f).is_file(), f"{f} written")
     check("shear_s3000: resuming from its checkpoint at step" in r.stdout,
           "the killed box resumed from a checkpoint")
+    eta = re.search(r"~([0-9.]+) min left\] shear_s3000: resuming", r.stdout)
+    check(eta is not None and float(eta.group(1)) > 0,
+          f"the resumed lab's ETA counts the runs skipped as done at their own wall time "
+          f"({eta.group(0) if eta else 'no ETA'})")
     done = json.loads((box / "done.json").read_text()) if (box / "done.json").is_file() else {}
     rows = [[float(x) for x in line.split()] for line in
             (box / "shear.csv").read_text().splitlines() if line and not line.startswith("#")] \
