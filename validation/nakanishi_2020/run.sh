@@ -11,10 +11,11 @@
 # --sensitivity: only the sensitivity sweeps, on the main sweep's bed (run the case first):
 #          time step halved at 35.42 % (sweep_dt.toml) against the same point repeated on that bed
 #          (sweep_bed_repeat.toml), the published 3.25 s test phase at 77.97-86.8 %
-#          (sweep_window.toml) and the rolling friction mu_r 0 and 0.1 at 35.42 %, each on its
-#          own bed (sweep_mur.toml); writes results_<name>.csv, comparison_<name>.md and
-#          provenance_<name>.toml here. --only NAMES: just these, comma-separated from bed_repeat,
-#          dt_0.6e-4, window_3.25, mur (mur prepares its own beds: it needs no main bed).
+#          (sweep_window.toml), the rolling friction mu_r 0 and 0.1 at 35.42 %, each on its
+#          own bed (sweep_mur.toml), and a bed poured frictionless at 35.42 % (sweep_pour_mu0.toml);
+#          writes results_<name>.csv, comparison_<name>.md and provenance_<name>.toml here.
+#          --only NAMES: just these, comma-separated from bed_repeat, dt_0.6e-4, window_3.25, mur,
+#          pour_mu0 (mur and pour_mu0 prepare their own beds: they need no main bed).
 # --scm: the SCM half (sweep_scm.toml: the same rig on the SCM soil the soil lab fitted to the DEM
 #          soil, inputs/scm_soils/from_dem/nakanishi_2020.toml; seconds per point): writes
 #          results_scm.csv, comparison_scm.md/png (DEM against SCM) and provenance_scm.toml here.
@@ -22,7 +23,7 @@
 #          outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
-smoke=0 sensitivity=0 scm=0 only="bed_repeat,dt_0.6e-4,window_3.25,mur" out="" sweep_args=() args=("$@")
+smoke=0 sensitivity=0 scm=0 only="bed_repeat,dt_0.6e-4,window_3.25,mur,pour_mu0" out="" sweep_args=() args=("$@")
 while (($#)); do
   case "$1" in
     --smoke) smoke=1; shift ;;
@@ -74,8 +75,8 @@ if ((sensitivity)); then
   }
   wanted() { [[ ,$only, == *,$1,* ]]; }
   for name in ${only//,/ }; do
-    case $name in bed_repeat|dt_0.6e-4|window_3.25|mur) ;;
-      *) echo "run.sh: --only: unknown sensitivity '$name' (expected bed_repeat, dt_0.6e-4, window_3.25, mur)" >&2; exit 2 ;;
+    case $name in bed_repeat|dt_0.6e-4|window_3.25|mur|pour_mu0) ;;
+      *) echo "run.sh: --only: unknown sensitivity '$name' (expected bed_repeat, dt_0.6e-4, window_3.25, mur, pour_mu0)" >&2; exit 2 ;;
     esac
   done
   # the sensitivity sweeps name the main sweep's bed under the default runs directory
@@ -83,7 +84,7 @@ if ((sensitivity)); then
     echo "run.sh: --sensitivity runs in the default runs directory (its sweeps name the main sweep's bed there): leave out --out-dir" >&2; exit 2; }
   if wanted bed_repeat || wanted dt_0.6e-4 || wanted window_3.25; then
     [[ -f $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart ]] || {
-      echo "run.sh: --sensitivity runs on the main sweep's bed, $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart: run the case first (or --only mur)" >&2; exit 2; }
+      echo "run.sh: --sensitivity runs on the main sweep's bed, $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart: run the case first (or --only mur,pour_mu0)" >&2; exit 2; }
   fi
   # the two one-point sweeps side by side (one rank each), then the three window points
   pids=()
@@ -92,6 +93,7 @@ if ((sensitivity)); then
   for pid in "${pids[@]}"; do wait "$pid" || status=1; done
   if wanted window_3.25; then sens window_3.25 sweep_window.toml 1.0 3.25 || status=1; fi
   if wanted mur; then sens mur sweep_mur.toml 1.0 2.4 || status=1; fi
+  if wanted pour_mu0; then sens pour_mu0 sweep_pour_mu0.toml 1.0 2.4 || status=1; fi
   exit $status
 fi
 "$root/scripts/wheel-sweep" "$config" --out-dir "$out" --build-dir "$build_dir" "${sweep_args[@]}" || status=$?
