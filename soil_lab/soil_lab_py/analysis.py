@@ -10,7 +10,7 @@ import csv
 import json
 import re
 import tomllib
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 from typing import Dict, List, Optional
 
@@ -125,16 +125,27 @@ def shear_particle_loss(counts, j_peak_m):
             "lost_at_end": float(1.0 - n[-1] / n[0])}
 
 
+def shear_peak_and_residual(j_m, tau_Pa, smooth_fraction=0.05):
+    """fits.PeakResidual of a shear box's curve: the peak is that of a centred running mean over
+    `smooth_fraction` of the points (the raw maximum is biased upwards by the DEM signal's
+    noise), taken only where the window is full (a zero-padded mean at the ends would read low);
+    the residual, the mean over the last 20 % of the displacement, is the raw curve's."""
+    j, tau = np.asarray(j_m, dtype=float), np.asarray(tau_Pa, dtype=float)
+    raw = fits.peak_and_residual(j, tau)
+    w = max(1, int(len(tau) * smooth_fraction))
+    if len(tau) <= w:
+        return raw
+    smooth = np.convolve(tau, np.ones(w) / w, mode="valid")  # smooth[k]: tau[k .. k+w-1]
+    k = int(np.argmax(smooth))
+    return replace(raw, tau_peak_Pa=float(smooth[k]), j_peak_m=float(j[k + w // 2]))
+
+
 def read_shear(run, done):
     t = _table(run / "shear.csv", ("time_s", "displacement_m", "shear_force_N", "tau_Pa",
                                    "sigma_Pa", "lid_z_m", "phase"))
     s = t["phase"] == 2
     j, tau, sigma = t["displacement_m"][s], t["tau_Pa"][s], t["sigma_Pa"][s]
-    # The peak of a running mean over 5 % of the curve (the raw maximum is biased upwards by the
-    # DEM signal's noise); the residual and Janosi fits use the raw curve.
-    w = max(1, len(tau) // 20)
-    smooth = np.convolve(tau, np.ones(w) / w, mode="same") if len(tau) > w else tau
-    peak = fits.peak_and_residual(j, smooth)
+    peak = shear_peak_and_residual(j, tau)
     log = run / "liggghts.log"
     counts = shear_particle_counts(log.read_text(errors="replace")) if log.is_file() else None
     return {"sigma_Pa": float(np.mean(sigma)), "sigma_target_Pa": done["meta"]["normal_stress_Pa"],

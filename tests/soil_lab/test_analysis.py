@@ -153,6 +153,27 @@ class Analysis(unittest.TestCase):
         self.assertEqual(analysis.shear_peak_warnings([{"sigma_Pa": 1e4, "j": None, "tau": None}]),
                          [])
 
+    def test_shear_peak_is_smoothed_and_the_residual_is_the_raw_curves(self):
+        # A curve that levels off at 10 kPa well before the end, with +-1 kPa of fast noise: the
+        # residual (last 20 %) is the plateau's raw mean; the peak, a running mean over 5 % of the
+        # points, is near the plateau (not the noise's maximum, 11 kPa). A running mean
+        # zero-padded at the ends (the lab until 2026-11-27) read the residual ~3 % low.
+        j = np.linspace(0.0, 0.06, 4000)
+        noise = 1000.0 * np.sin(2 * np.pi * np.arange(j.size) / 7.0)
+        tau = 10000.0 * (1.0 - np.exp(-j / 0.004)) + noise
+        r = analysis.shear_peak_and_residual(j, tau)
+        plateau = tau[j >= 0.048]
+        self.assertAlmostEqual(r.tau_residual_Pa, plateau.mean(), delta=1e-9 * 1e4)
+        self.assertAlmostEqual(r.tau_residual_Pa, 10000.0, delta=30.0)
+        self.assertGreater(r.tau_peak_Pa, 9950.0)
+        self.assertLess(r.tau_peak_Pa, 10150.0)
+        # still rising at the end: the peak is the last full window's mean, centred inside it
+        rising = 8000.0 * j / 0.06
+        r = analysis.shear_peak_and_residual(j, rising)
+        w = int(j.size * 0.05)
+        self.assertAlmostEqual(r.tau_peak_Pa, rising[-w:].mean(), delta=1e-6)
+        self.assertAlmostEqual(r.j_peak_m, j[-w + w // 2], delta=1e-12)
+
 
 if __name__ == "__main__":
     unittest.main()
