@@ -222,6 +222,15 @@ def shear_peak_warnings(shears):
     return out
 
 
+def shear_count_warnings(shears):
+    """A line when fewer shear boxes have finished than the Mohr-Coulomb fit needs (a lab stopped
+    before its last boxes, or reported while it runs): c and phi are then not fitted."""
+    if not 0 < len(shears) < 3:
+        return []
+    return [f"only {len(shears)} shear box(es) finished: the Mohr-Coulomb fit needs >= 3 normal "
+            "stresses, so c and phi are not fitted (the same soil-lab run command finishes the lab)"]
+
+
 def shear_loss_warnings(shears):
     """A line for each shear box that lost more than SHEAR_LOSS_WARNING of its particles."""
     out = []
@@ -377,8 +386,8 @@ def summary(r: Results):
                  "particles": s["loss"]["particles"],
                  "particles_lost_by_peak": s["loss"]["lost_by_peak"],
                  "particles_lost_at_end": s["loss"]["lost_at_end"]})} for s in r.shears]}
-        warnings = (shear_stability_errors(r.shears) + shear_peak_warnings(r.shears)
-                    + shear_loss_warnings(r.shears))
+        warnings = (shear_count_warnings(r.shears) + shear_stability_errors(r.shears)
+                    + shear_peak_warnings(r.shears) + shear_loss_warnings(r.shears))
         if warnings:
             out["shear"]["warnings"] = warnings
         if r.mc_peak:

@@ -114,6 +114,14 @@ class Analysis(unittest.TestCase):
         self.assertIn("2.0 % of its 1000 particles had left the box by the peak (j 0.07 m", warn[1])
         self.assertEqual(analysis.shear_loss_warnings([box({**early, "lost_at_end": 0.005})]), [])
 
+    def test_too_few_shear_boxes_for_mohr_coulomb_are_named(self):
+        self.assertEqual(analysis.shear_count_warnings([]), [])
+        self.assertEqual(analysis.shear_count_warnings([{}] * 3), [])
+        warn = analysis.shear_count_warnings([{}] * 2)
+        self.assertEqual(len(warn), 1)
+        self.assertIn("only 2 shear box(es) finished", warn[0])
+        self.assertIn("c and phi are not fitted", warn[0])
+
     def test_an_unstable_shear_box_is_named(self):
         j = np.linspace(0.0, 0.008, 400)
         good = 1000.0 * (1.0 - np.exp(-j / 0.002))
