@@ -46,6 +46,7 @@ def _provenance(np_ranks):
     start time (UTC)."""
     import datetime
     import platform
+    import shlex
     import subprocess
     import sys
 
@@ -53,7 +54,8 @@ def _provenance(np_ranks):
         r = subprocess.run(["git", "-C", str(REPO), *args], capture_output=True, text=True)
         return r.stdout.strip() if r.returncode == 0 else "unknown"
 
-    return {"command": " ".join(["soil-lab"] + sys.argv[1:]), "git_commit": git("rev-parse", "HEAD"),
+    # shell-quoted, so that it can be pasted back (e.g. --bed-var "soil_pair_settings=a b")
+    return {"command": shlex.join(["soil-lab"] + sys.argv[1:]), "git_commit": git("rev-parse", "HEAD"),
             "git_changes": git("status", "--porcelain", "--untracked-files=no") not in ("", "unknown"),
             "host": platform.node(), "cores": os.cpu_count() or 0, "np": np_ranks,
             "started_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")}

@@ -3,10 +3,14 @@ inputs are unchanged, including the files its decks and soil file include in tur
 that includes a base soil, as dry_sand_coarse.in includes dry_sand.in)."""
 
 import json
+import shlex
+import sys
 import tempfile
 import unittest
 from pathlib import Path
+from unittest import mock
 
+from soil_lab_py import cli
 from soil_lab_py.runner import Lab
 
 
@@ -78,6 +82,15 @@ class Resume(unittest.TestCase):
         inputs, _ = self.key()
         (self.step / "done.json").write_text(json.dumps({"inputs": inputs, "wall_s": 1.0}))
         self.assertIsNotNone(self.lab._done(self.step, self.key()))
+
+
+class Provenance(unittest.TestCase):
+    def test_the_recorded_command_can_be_pasted_back(self):
+        # an argument with a space (a bed variable holding two words) must stay one argument
+        argv = ["soil-lab", "run", "my soil.in", "--bed-var", "soil_pair_settings=tangential_reduce off"]
+        with mock.patch.object(sys, "argv", argv):
+            command = cli._provenance(1)["command"]
+        self.assertEqual(shlex.split(command), argv)
 
 
 if __name__ == "__main__":
