@@ -1,6 +1,7 @@
 """soil-lab's resume records (soil_lab_py.runner.Lab): a finished step is skipped only while its
 inputs are unchanged, including the files its decks and soil file include in turn (a soil file
-that includes a base soil, as dry_sand_coarse.in includes dry_sand.in)."""
+that includes a base soil, as dry_sand_coarse.in includes dry_sand.in); and the command each
+invocation records for a later resume can be pasted back."""
 
 import json
 import shlex
