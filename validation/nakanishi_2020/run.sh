@@ -23,7 +23,8 @@
 #          outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
-smoke=0 sensitivity=0 scm=0 only="bed_repeat,dt_0.6e-4,window_3.25,mur,pour_mu0" out="" sweep_args=() args=("$@")
+sensitivities="bed_repeat,dt_0.6e-4,window_3.25,mur,pour_mu0"  # --only takes a subset of these
+smoke=0 sensitivity=0 scm=0 only=$sensitivities out="" sweep_args=() args=("$@")
 while (($#)); do
   case "$1" in
     --smoke) smoke=1; shift ;;
@@ -75,9 +76,8 @@ if ((sensitivity)); then
   }
   wanted() { [[ ,$only, == *,$1,* ]]; }
   for name in ${only//,/ }; do
-    case $name in bed_repeat|dt_0.6e-4|window_3.25|mur|pour_mu0) ;;
-      *) echo "run.sh: --only: unknown sensitivity '$name' (expected bed_repeat, dt_0.6e-4, window_3.25, mur, pour_mu0)" >&2; exit 2 ;;
-    esac
+    [[ ,$sensitivities, == *,$name,* ]] || {
+      echo "run.sh: --only: unknown sensitivity '$name' (expected ${sensitivities//,/, })" >&2; exit 2; }
   done
   # the sensitivity sweeps name the main sweep's bed under the default runs directory
   [[ $out == "$root/runs/validation/nakanishi_2020" ]] || {
