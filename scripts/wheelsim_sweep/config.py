@@ -616,8 +616,16 @@ def load(path, repo, build_dir):
         bctx = _Ctx(bpath.resolve())
         rig = _check_rig_tables(bctx, _load_toml(bpath, ctx), "")
     if "override" in doc:
-        rig = _deep_merge(rig, _check_rig_tables(ctx, copy.deepcopy(doc["override"]), "override",
-                                                 build_dir))
+        over = _check_rig_tables(ctx, copy.deepcopy(doc["override"]), "override", build_dir)
+        # A terrain switch (override.terrain.type other than the base's): the base's [terrain]
+        # keys belong to its type, so the override's [terrain] replaces it instead of merging
+        # (the same rig on another terrain without a second rig file).
+        switch = over.get("terrain", {}).get("type")
+        base_terrain = rig.get("terrain")
+        if (switch is not None and isinstance(base_terrain, dict)
+                and base_terrain.get("type") not in (None, switch)):
+            rig.pop("terrain")
+        rig = _deep_merge(rig, over)
     if not rig:
         raise ctx.err("no rig config: give 'base' (a rig config file) and/or [override] tables")
     base_type = rig.get("terrain", {}).get("type")

@@ -4,7 +4,7 @@
   test_sweep_unit.py CASE --sweep scripts/wheel-sweep --work DIR
 
 CASE: toml_roundtrip, cli, soil_names, tiled_recipe, estimate_arithmetic, estimate_active,
-rate_cache, budget, slip_control, accept_change (see
+rate_cache, budget, slip_control, accept_change, included_at_start, terrain_switch (see
 each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (a prerequisite missing).
 """
@@ -954,6 +954,47 @@ def _rewrite(path, old, new):
     p = path.with_name("bad_" + path.name)
     p.write_text(path.read_text().replace(old, new))
     return p
+
+
+def case_terrain_switch(a, work):
+    """override.terrain.type other than the base's: the override's [terrain] replaces the base's
+    (none of the base type's keys left: the same rig on another terrain from one rig file); the
+    rest of the base is kept; the same type merges key by key; without the switch a base of
+    another type is still an error naming override.terrain.type."""
+    from wheelsim_sweep import config
+    repo = Path(a.sweep).resolve().parents[1]
+    _stand_in_rig(work, [("terrain", "type"), ("terrain", "friction"), ("run", "duration")],
+                  otherwise="exec \"$0\" --list-keys\n")
+    _ascii_stl(work / "w.stl", 0.1)
+    rig = ('[wheel]\nmass = 1.0\ninertia = 0.01\n[rig]\nvertical_load = 24.0\n'
+           '[motor]\nomega = 1.0\n[carriage]\nmode = "imposed_slip"\n'
+           '[run]\ndt = 1e-4\nduration = 0.5\n')
+    (work / "base_dem.toml").write_text(
+        rig + '[terrain]\ntype = "dem"\nendpoint = "ipc:///tmp/x"\ntimeout = 10.0\n')
+    (work / "base_flat.toml").write_text(rig + '[terrain]\ntype = "flat"\nfriction = 0.3\n')
+
+    def load(base, override):
+        (work / "sweep.toml").write_text(f'terrain = "flat"\nbase = "{base}"\n'
+                                         f'wheels = ["w.stl"]\nslips = [0.2]\n{override}')
+        return config.load(work / "sweep.toml", repo, work)
+
+    p = load("base_dem.toml", '[override.terrain]\ntype = "flat"\n[override.run]\n'
+             'duration = 2.0\n').points[0]
+    check(p.rig["terrain"] == {"type": "flat"},
+          f"switch dem -> flat: terrain {p.rig['terrain']}, expected the override's alone")
+    check(p.rig["run"] == {"dt": 1e-4, "duration": 2.0} and p.rig["rig"] == {"vertical_load": 24.0},
+          f"switch: the rest of the base not kept: {p.rig}")
+    p = load("base_flat.toml", '[override.terrain]\ntype = "flat"\n').points[0]
+    check(p.rig["terrain"] == {"type": "flat", "friction": 0.3},
+          f"same type: terrain {p.rig['terrain']}, expected the base's keys kept")
+    p = load("base_flat.toml", '[override.terrain]\nfriction = 0.4\n').points[0]
+    check(p.rig["terrain"] == {"type": "flat", "friction": 0.4},
+          f"same type, one key: terrain {p.rig['terrain']}")
+    try:
+        load("base_dem.toml", '[override.run]\nduration = 2.0\n')
+        raise Fail("a dem base for a flat sweep without override.terrain.type was accepted")
+    except config.ConfigError as e:
+        check("override.terrain.type" in str(e) and '"dem"' in str(e), f"message: {e}")
 
 
 def main():
