@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Validation case 2 — blind prediction: smooth wheel on loose sand (README.md).
 #
-#   validation/blind_smooth_loose_sand/run.sh [--smoke] [--sensitivity] [--out-dir DIR] [--jobs N] [--force]
+#   validation/blind_smooth_loose_sand/run.sh [--smoke | --sensitivity | --scm] [--out-dir DIR] [--jobs N] [--force]
 #
 # Full case: prepares the ~74 000-sphere bin once, runs the 9 slips (signed convention, each set
 # by the wheel speed at 0.1 m/s) through wheel-sweep (resumable: a re-run skips finished points),
@@ -12,26 +12,36 @@
 #          (0.063 m) and grain-size (the calibrated 2-3.5 mm spheres) sweeps, in that order, at 2 slips
 #          each: results_speed_0.05.csv, results_grain_1.0.csv, results_depth_0.06.csv,
 #          results_travel_0.25.csv and sensitivity.png here.
+# --scm:   only the SCM half (sweep_scm.toml: the same rig and slips on the SCM soil the soil lab
+#          fitted to the DEM soil, inputs/scm_soils/from_dem/loose_sand_1330.toml; ~1 min per
+#          point): results_scm.csv, comparison_scm.md/png (DEM against SCM) and
+#          provenance_scm.toml here. Not part of the blind prediction (README).
 # Finished points are kept in points/ (committed) and restored on the next run (README).
 # --smoke: the CI version (a tiny bin, slip -0.5, 0.05 s of test phase; minutes): same
 #          pipeline, outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
-smoke=0 sensitivity=0 out="" sweep_args=() args=("$@")
+smoke=0 sensitivity=0 scm=0 out="" sweep_args=() args=("$@")
 while (($#)); do
   case "$1" in
     --smoke) smoke=1; shift ;;
     --sensitivity) sensitivity=1; shift ;;
+    --scm) scm=1; shift ;;
     --out-dir) out=$2; shift 2 ;;
     --jobs|-j) sweep_args+=(--jobs "$2"); shift 2 ;;
     --force) sweep_args+=(--force); shift ;;
-    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,/^set -euo pipefail/{/^set -euo/!p}' "$0"; exit 0 ;;
     *) echo "run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-((smoke && sensitivity)) && { echo "run.sh: --smoke and --sensitivity exclude each other" >&2; exit 2; }
+((smoke + sensitivity + scm > 1)) && { echo "run.sh: --smoke, --sensitivity and --scm exclude each other" >&2; exit 2; }
 if ((smoke)); then out=${out:-$root/runs/validation/blind_smooth_loose_sand_smoke}
 else out=${out:-$root/runs/validation/blind_smooth_loose_sand}; fi
+if ((scm)); then
+  soil=$root/inputs/scm_soils/from_dem/loose_sand_1330.toml
+  [[ -f $soil ]] || { echo "run.sh: --scm needs $soil (soil_lab/soil-lab run loose_sand_1330 ..., then soil-lab scm)" >&2; exit 2; }
+  [[ -f $here/results.csv ]] || { echo "run.sh: --scm compares with the DEM half's $here/results.csv: run the case first" >&2; exit 2; }
+fi
 [[ -f $build_dir/meshes/smooth_r58_w50.stl ]] || {
   echo "run.sh: $build_dir/meshes/smooth_r58_w50.stl missing: build first (scripts/build.sh)" >&2; exit 2; }
 
@@ -47,7 +57,7 @@ status=0
 # README "Resuming across sessions").
 sweep() {
   local name=$1 config=$2 w0=$3 w1=$4 results=$5 archive=()
-  ((smoke)) || archive=(--archive "$here/points/$name")
+  ((smoke || scm)) || archive=(--archive "$here/points/$name")  # SCM points take a minute: not kept
   local rc=0
   "$root/scripts/wheel-sweep" "$config" --out-dir "$out/$name" --build-dir "$build_dir" \
     "${archive[@]}" "${sweep_args[@]}" || rc=$?
@@ -60,6 +70,18 @@ sweep() {
     --results "$results" --csv "$out/$name/curves.csv"
 }
 
+if ((scm)); then
+  # the main sweep's window; the DEM half's prediction (results.csv) is not touched
+  sweep scm "$here/sweep_scm.toml" 0.7 1.2 "$here/results_scm.csv"
+  "$python" "$here/plot.py" --png "$here/comparison_scm.png" \
+    --title "DEM and SCM on the same soil (loose_sand_1330; SCM: the soil lab's fit)" \
+    "DEM (the prediction)=$here/results.csv" "SCM, fitted to the DEM soil=$here/results_scm.csv"
+  "$python" "$root/validation/common/dem_vs_scm.py" "$here/results.csv" "$here/results_scm.csv" \
+    --md "$here/comparison_scm.md"
+  write_provenance "$here/provenance_scm.toml" validation/blind_smooth_loose_sand \
+    "validation/blind_smooth_loose_sand/run.sh --scm" "$started_utc" "$start" "$out/scm"
+  exit $status
+fi
 if ((smoke)); then
   dest=$out
   sweep main "$here/sweep_smoke.toml" 0.025 0.05 "$dest/results.csv"
