@@ -562,7 +562,10 @@ class Runner:
             cmd = mpi_launch.mpirun(self.sweep.bed_np)
             cmd += [str(self.build / "bin" / "liggghts-wheel"),
                     "-in", str(self.repo / "inputs" / "in.soilbin"),
-                    "-var", "inputs_dir", str(self.repo / "inputs")]
+                    "-var", "inputs_dir", str(self.repo / "inputs"),
+                    # a soil file may prepare its bed with other contact settings (docs/soils.md
+                    # "Preparing the bed with other contact settings"); not part of the recipe
+                    "-var", "soil_preparing_bed", "1"]
             for k, v in soil.recipe.items():
                 cmd += ["-var", k, str(v)]
             cmd += ["-var", "out_dir", str(bdir), "-var", "restart_file", str(part),

@@ -208,7 +208,10 @@ class Lab:
             self.say(f"bed '{bed.name}': preparing {bed.length_m:.3g} x {bed.width_m:.3g} m, "
                      f"{bed.fill_height_m:.3g} m deep")
             t0 = time.monotonic()
-            text = self._liggghts(deck, variables, d / "soilbin.log", d)
+            # soil_preparing_bed: a soil file may prepare its bed with other contact settings
+            # (docs/soils.md "Preparing the bed with other contact settings"); not in the key
+            text = self._liggghts(deck, {**variables, "soil_preparing_bed": 1},
+                                  d / "soilbin.log", d)
             result = dict(re.findall(r"^soilbin: (\w+) = (\S+)$", text, re.M))
             done = {"result": result, "wall_s": round(time.monotonic() - t0, 1), "np": self.np}
             self._finish(d, key, **done)
