@@ -1,6 +1,7 @@
 # Run inputs/in.soilbin once and check its printed result block.
 #   cmake -DCMD=<launcher|exe, '|'-separated> -DINPUTS_DIR=... -DOUT_DIR=... [-DVARS=<name|value|...>]
-#         [-DKEY=core_bulk_density -DMIN=... -DMAX=...] [-DEXPECT_FAIL_REGEX=...] -P run_soilbin.cmake
+#         [-DKEY=core_bulk_density -DMIN=... -DMAX=...] [-DEXPECT_FAIL_REGEX=...]
+#         [-DEXPECT_OUTPUT_REGEX=...] -P run_soilbin.cmake
 # Writes ${OUT_DIR}/result.txt (the `soilbin: key = value` lines) for compare_soilbin.cmake.
 cmake_minimum_required(VERSION 3.16)
 foreach(v CMD INPUTS_DIR OUT_DIR)
@@ -43,6 +44,9 @@ endif()
 
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "in.soilbin exited with '${rc}' (output in ${OUT_DIR}/screen.txt):\n${err}")
+endif()
+if(DEFINED EXPECT_OUTPUT_REGEX AND NOT "${out}" MATCHES "${EXPECT_OUTPUT_REGEX}")
+  message(FATAL_ERROR "the output does not match '${EXPECT_OUTPUT_REGEX}' (${OUT_DIR}/screen.txt)")
 endif()
 string(REGEX MATCHALL "soilbin: [a-z_]+ = [^\n]*" lines "${out}")
 if(NOT lines)
