@@ -487,15 +487,18 @@ def case_dem_soil_file(a, work):
     the config (soil = "elsewhere/my_sand.in": inputs/soils/ci.in with soil_name my_sand): the bed
     is prepared with it and named after soil_name, its .vars records the absolute path, the
     coupled point (tests/cosim/in.motion_compare, 150 steps, 1 rank) includes the same file and
-    its run file records bed/soil and bed/soil_file; a changed soil file (same path) makes the
-    finished point re-run and the bed be prepared again (--dry-run)."""
+    its run file records bed/soil and bed/soil_file; the bed is prepared with soil_preparing_bed 1,
+    the point sees 0; a changed soil file (same path) makes the finished point re-run and the bed
+    be prepared again (--dry-run)."""
     repo = dem_repo(a)
     soil = work / "elsewhere" / "my_sand.in"
     soil.parent.mkdir()
     text = (repo / "inputs" / "soils" / "ci.in").read_text()
     check("variable soil_name string ci\n" in text, "inputs/soils/ci.in has no soil_name line")
     soil.write_text(text.replace("variable soil_name string ci\n",
-                                 'variable soil_name string my_sand\nprint "my_sand.in: included"\n'))
+                                 'variable soil_name string my_sand\nprint "my_sand.in: included"\n'
+                                 'variable soil_preparing_bed index 0\n'
+                                 'print "my_sand.in: soil_preparing_bed ${soil_preparing_bed}"\n'))
     # the deck (tests/cosim/in.motion_compare) with one more include, by absolute path
     extra = work / "extra.in"
     extra.write_text('print "extra.in: included"\n')
@@ -521,6 +524,12 @@ def case_dem_soil_file(a, work):
     check(done["exit_status"] == 0, f"the point failed: {done} (log {pdir / 'run.log'})")
     check("my_sand.in: included" in (pdir / "cosim" / "liggghts.log").read_text(),
           "the coupled run's LIGGGHTS did not include the soil file")
+    # the bed is prepared with soil_preparing_bed 1, the point runs without it (docs/soils.md
+    # "Preparing the bed with other contact settings")
+    check("my_sand.in: soil_preparing_bed 1" in (bed.parent / "soilbin.log").read_text(),
+          "the bed was not prepared with -var soil_preparing_bed 1")
+    check("my_sand.in: soil_preparing_bed 0" in (pdir / "cosim" / "liggghts.log").read_text(),
+          "the coupled run did not see soil_preparing_bed 0")
     with h5py.File(pdir / "run.h5", "r") as f:
         par = {k: f[f"parameters/bed/{k}"].asstr()[()] for k in ("soil", "soil_file")}
     check(par == {"soil": "my_sand", "soil_file": str(soil)}, f"run file /parameters/bed: {par}")
