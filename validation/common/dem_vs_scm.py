@@ -5,8 +5,9 @@ slip (both results tables from `wheelsim-post curves --results`, docs/postproces
     dem_vs_scm.py DEM.csv SCM.csv --md OUT.md [--title TEXT]
 
 Per slip: drawbar pull, driving torque and sinkage of both halves and SCM − DEM in their units
-(not in %: torque and pull cross zero along a slip sweep). A DEM slip without an SCM row (or the reverse) is named on stderr and left
-out. Exit 0, or 2 with one line naming the bad file or column.
+(not in %: torque and pull cross zero along a slip sweep). A DEM slip without an SCM row (or the
+reverse) is named on stderr and left out. Exit 0, or 2 with one line naming the bad file or
+column.
 """
 import argparse
 import sys
@@ -30,11 +31,11 @@ def by_slip(path):
     return rows
 
 
-def table(dem, scm):
+def table(dem, scm, slips):
     lines = ["| slip | DP DEM [N] | DP SCM [N] | Δ DP [N] | T DEM [N m] | T SCM [N m] | Δ T [N m] | "
              "sinkage DEM [mm] | sinkage SCM [mm] | Δ sinkage [mm] |",
              "|---|---|---|---|---|---|---|---|---|---|"]
-    for s in sorted(set(dem) & set(scm)):
+    for s in slips:
         d, m = dem[s], scm[s]
         lines.append(
             f"| {s:g} | {d['drawbar_pull_N']:.2f} ± {d['drawbar_pull_sem_N']:.2f} | "
@@ -58,11 +59,13 @@ def main():
     for s in sorted(set(dem) ^ set(scm)):
         print(f"dem_vs_scm.py: slip {s:g} only in {a.dem if s in dem else a.scm}: left out",
               file=sys.stderr)
-    if not set(dem) & set(scm):
+    common = sorted(set(dem) & set(scm))
+    if not common:
         print(f"dem_vs_scm.py: error: {a.dem} and {a.scm} have no target slip in common",
               file=sys.stderr)
         raise SystemExit(2)
-    Path(a.md).write_text("\n".join([a.title, ""] + table(dem, scm)) + "\n", encoding="utf-8")
+    Path(a.md).write_text("\n".join([a.title, ""] + table(dem, scm, common)) + "\n",
+                          encoding="utf-8")
     print(f"wrote {a.md}")
 
 
