@@ -79,7 +79,7 @@ if ((scm)); then
   "$python" "$root/validation/common/dem_vs_scm.py" "$here/results.csv" "$here/results_scm.csv" \
     --md "$here/comparison_scm.md"
   write_provenance "$here/provenance_scm.toml" validation/blind_smooth_loose_sand \
-    "validation/blind_smooth_loose_sand/run.sh --scm" "$started_utc" "$start" "$out/scm"
+    "validation/blind_smooth_loose_sand/run.sh${args[*]:+ }${args[*]}" "$started_utc" "$start" "$out/scm"
   exit $status
 fi
 if ((smoke)); then
