@@ -98,19 +98,18 @@ _SHEAR_THERMO_HEADER = re.compile(r"^\s*Step\s+Atoms\s+j\s+tau\b", re.M)
 
 def shear_particle_counts(log_text):
     """(j [m], particles) of the shear run's thermo rows (in.lab_shear's `thermo_style custom
-    step atoms v_j ...`), or None when the log has none."""
-    m = _SHEAR_THERMO_HEADER.search(log_text)
-    if m is None:
-        return None
+    step atoms v_j ...`: one block per LIGGGHTS run, the consolidation's checks and the shear), or
+    None when the log has none."""
     j, n = [], []
-    for line in log_text[m.end():].splitlines()[1:]:
-        cols = line.split()
-        try:
-            n_i, j_i = int(cols[1]), float(cols[2])
-        except (IndexError, ValueError):
-            break  # the end of the thermo block
-        n.append(n_i)
-        j.append(j_i)
+    for m in _SHEAR_THERMO_HEADER.finditer(log_text):
+        for line in log_text[m.end():].splitlines()[1:]:
+            cols = line.split()
+            try:
+                n_i, j_i = int(cols[1]), float(cols[2])
+            except (IndexError, ValueError):
+                break  # the end of the thermo block
+            n.append(n_i)
+            j.append(j_i)
     return (np.array(j), np.array(n)) if n else None
 
 
@@ -140,6 +139,22 @@ def shear_peak_and_residual(j_m, tau_Pa, smooth_fraction=0.05):
     return replace(raw, tau_peak_Pa=float(smooth[k]), j_peak_m=float(j[k + w // 2]))
 
 
+def shear_consolidation(time_s, sigma_Pa, lid_z_m, phase, log_text=""):
+    """How the box consolidated before it sheared: {consolidation_s (the time the shear began),
+    sigma_start_ratio (the mean normal stress over the first 2 % of the shear's rows / its mean
+    over the shear), lid_z_start_m (the sample's height then, above the floor), lid_travel_m (the
+    lid's vertical displacement over the shear: < 0 the sample contracted), not_consolidated (the
+    deck's WARNING: still creeping at consolidate_max)}."""
+    s = np.asarray(phase) == 2
+    z = np.asarray(lid_z_m, dtype=float)[s]
+    sig = np.asarray(sigma_Pa, dtype=float)[s]
+    head = sig[: max(1, len(sig) // 50)]
+    return {"consolidation_s": float(np.asarray(time_s, dtype=float)[s][0]),
+            "sigma_start_ratio": float(np.mean(head) / np.mean(sig)),
+            "lid_z_start_m": float(z[0]), "lid_travel_m": float(z[-1] - z[0]),
+            "not_consolidated": "WARNING: not consolidated" in log_text}
+
+
 def read_shear(run, done):
     t = _table(run / "shear.csv", ("time_s", "displacement_m", "shear_force_N", "tau_Pa",
                                    "sigma_Pa", "lid_z_m", "phase"))
@@ -147,10 +162,14 @@ def read_shear(run, done):
     j, tau, sigma = t["displacement_m"][s], t["tau_Pa"][s], t["sigma_Pa"][s]
     peak = shear_peak_and_residual(j, tau)
     log = run / "liggghts.log"
-    counts = shear_particle_counts(log.read_text(errors="replace")) if log.is_file() else None
+    text = log.read_text(errors="replace") if log.is_file() else ""
+    counts = shear_particle_counts(text) if text else None
     return {"sigma_Pa": float(np.mean(sigma)), "sigma_target_Pa": done["meta"]["normal_stress_Pa"],
-            "j": j, "tau": tau, "peak": peak, "janosi": fits.fit_janosi(j, tau),
-            "loss": shear_particle_loss(counts, peak.j_peak_m), "done": done}
+            "j": j, "tau": tau, "lid_dz": t["lid_z_m"][s] - t["lid_z_m"][s][0], "peak": peak,
+            "janosi": fits.fit_janosi(j, tau), "loss": shear_particle_loss(counts, peak.j_peak_m),
+            "consolidation": shear_consolidation(t["time_s"], t["sigma_Pa"], t["lid_z_m"],
+                                                 t["phase"], text),
+            "done": done}
 
 
 # A shear box whose smoothed shear stress falls below -UNSTABLE_SHEAR_FRACTION x its peak pulls
@@ -219,6 +238,37 @@ def shear_peak_warnings(shears):
                        "fitted through it, are lower bounds (the strength at this displacement, "
                        f"not a peak); a longer travel than {travel} of the box side "
                        "(--shear-travel) would show whether it levels off")
+    return out
+
+
+# A box whose normal stress over the first 2 % of its shear is below this share of its mean over
+# the shear began shearing before the lid had loaded the sample (before 2026-11-27 the box sheared
+# after a fixed 0.5 s: clayey loam with tangential_reduce and rolling friction 0.01 began at 0.12).
+SHEAR_START_SIGMA_WARNING = 0.9
+
+
+def shear_consolidation_warnings(shears):
+    """A line for each shear box that began shearing before its sample had consolidated: the deck
+    said so (still creeping at consolidate_max), or its normal stress at the start of the shear
+    was below SHEAR_START_SIGMA_WARNING x its mean."""
+    out = []
+    for s in shears:
+        c = s.get("consolidation")
+        if c is None:
+            continue
+        at = f"shear box at {s['sigma_Pa'] / 1e3:.3g} kPa: "
+        if c["sigma_start_ratio"] < SHEAR_START_SIGMA_WARNING:
+            out.append(at + f"the shear began at {100 * c['sigma_start_ratio']:.0f} % of the normal "
+                       f"stress (after {c['consolidation_s']:.3g} s of consolidation): the sample "
+                       "was loaded while it was sheared, so its strength is not that of a "
+                       "consolidated sample; re-run the box (in.lab_shear waits for consolidation "
+                       "since 2026-11-27)")
+        elif c["not_consolidated"]:
+            out.append(at + f"the sample still settled when the shear began (after "
+                       f"{c['consolidation_s']:.3g} s: the log's WARNING); its lid moved "
+                       f"{1e3 * c['lid_travel_m']:+.3g} mm over the shear (sample "
+                       f"{1e3 * c['lid_z_start_m']:.4g} mm high): a soil that creeps under its "
+                       "load, whose density changes while it is sheared")
     return out
 
 
@@ -382,12 +432,18 @@ def summary(r: Results):
              "janosi_K_m": s["janosi"].K_m, "janosi_tau_max_Pa": s["janosi"].tau_max_Pa,
              "janosi_rms_Pa": s["janosi"].rms_Pa,
              "rise_at_end": shear_rise_at_end(s["j"], s["tau"]),
+             **({} if s.get("consolidation") is None else {
+                 "consolidation_s": s["consolidation"]["consolidation_s"],
+                 "sigma_start_ratio": s["consolidation"]["sigma_start_ratio"],
+                 "sample_height_m": s["consolidation"]["lid_z_start_m"],
+                 "lid_travel_m": s["consolidation"]["lid_travel_m"]}),
              **({} if s.get("loss") is None else {
                  "particles": s["loss"]["particles"],
                  "particles_lost_by_peak": s["loss"]["lost_by_peak"],
                  "particles_lost_at_end": s["loss"]["lost_at_end"]})} for s in r.shears]}
         warnings = (shear_count_warnings(r.shears) + shear_stability_errors(r.shears)
-                    + shear_peak_warnings(r.shears) + shear_loss_warnings(r.shears))
+                    + shear_consolidation_warnings(r.shears) + shear_peak_warnings(r.shears)
+                    + shear_loss_warnings(r.shears))
         if warnings:
             out["shear"]["warnings"] = warnings
         if r.mc_peak:
@@ -448,7 +504,8 @@ def write_report(r: Results, quiet=False):
     if r.shears:
         report.plot_shear_curves(d / "shear_curves.png", name,
                                  [(s["sigma_Pa"], s["j"], s["tau"]) for s in r.shears],
-                                 [s["janosi"] for s in r.shears])
+                                 [s["janosi"] for s in r.shears],
+                                 [s["lid_dz"] for s in r.shears])
         written.append(d / "shear_curves.png")
     if r.mc_peak:
         sig = [s["sigma_Pa"] for s in r.shears]

@@ -198,7 +198,9 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
                            "normal_stress": _f(s), "shear_speed": _f(speed),
                            "shear_distance": _f(distance),
                            "shear_xhi": _f(L + distance + wall + 2.0 * d),
-                           "consolidate": "0.3" if quick else "0.5"},
+                           # shortest and longest consolidation [s] (in.lab_shear)
+                           "consolidate": "0.2" if quick else "0.3",
+                           "consolidate_max": "1.5" if quick else "3.0"},
                 meta={"normal_stress_Pa": s, "box_m": L, "speed_m_s": speed}))
 
     if "repose" in tests:

@@ -58,16 +58,32 @@ def _bekker_text(fit):
     )
 
 
-def plot_shear_curves(path, soil_name, curves, fits=None):
-    """Shear stress–displacement curves, one per normal stress, with their Janosi fits.
+def plot_shear_curves(path, soil_name, curves, fits=None, lid_dz=None):
+    """Shear stress–displacement curves, one per normal stress, with their Janosi fits, and below
+    them (when lid_dz is given) the lid's vertical displacement, as a lab's direct shear report
+    shows it (contraction or dilation of the sample while it is sheared).
 
     curves: sequence of (sigma_n_Pa, j_m, tau_Pa); fits: a JanosiFit (or None) per curve, or
-    None. x: shear displacement j [mm]; y: shear stress tau [kPa]."""
-    fig = Figure(figsize=(7, 5))
-    ax = fig.add_subplot()
+    None; lid_dz: per curve the lid's height minus its height when the shear began [m], at the
+    curve's j. x: shear displacement j [mm]; y: shear stress tau [kPa] (and vertical displacement
+    [mm], > 0 dilation)."""
     fits = list(fits) if fits is not None else [None] * len(curves)
     if len(fits) != len(curves):
         raise ValueError(f"plot_shear_curves: {len(curves)} curves but {len(fits)} fits")
+    if lid_dz is not None and len(lid_dz) != len(curves):
+        raise ValueError(f"plot_shear_curves: {len(curves)} curves but {len(lid_dz)} lid records")
+    fig = Figure(figsize=(7, 5 if lid_dz is None else 7.5))
+    if lid_dz is None:
+        ax = fig.add_subplot()
+    else:
+        ax, ax_v = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [2, 1]})
+        for k, ((sigma, j, _), dz) in enumerate(zip(curves, lid_dz)):
+            ax_v.plot(np.asarray(j, float) * 1e3, np.asarray(dz, float) * 1e3, "-", lw=1,
+                      color=f"C{k}", label=f"σn = {sigma / 1e3:.3g} kPa")
+        ax_v.axhline(0.0, color="k", lw=0.5)
+        ax_v.set_xlabel("shear displacement j [mm]")
+        ax_v.set_ylabel("vertical displacement [mm]\n(lid; > 0 dilation)")
+        ax_v.grid(True, alpha=0.3)
     for k, ((sigma, j, tau), fit) in enumerate(zip(curves, fits)):
         j = np.asarray(j, float)
         tau = np.asarray(tau, float)

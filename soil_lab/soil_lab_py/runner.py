@@ -26,9 +26,10 @@ from .checkpoints import Checkpoints
 from .plan import LabInputError, SoilInfo
 
 DECKS = Path(__file__).resolve().parent.parent / "decks"
-# Tests whose decks write checkpoints (lab_start.in and lab_run.in); the repose test does not (its
+# Tests whose decks write checkpoints (lab_start.in, lab_checkpoints.in, lab_run.in); the repose test does not (its
 # frozen base is a group made from positions at its start, and its output is one dump at the end).
 CHECKPOINTED_TESTS = ("plate", "shear")
+SHEAR_START_FILE = "shear_start_step.txt"  # in.lab_shear's record of the step its shear began
 DEFAULT_CHECKPOINTS = 10  # restart files over a plate or shear run: at most 10 % of it is redone
 
 
@@ -251,6 +252,8 @@ class Lab:
             variables = {**variables, "lab_decks": str(DECKS),
                          "checkpoint_count": self.checkpoints, "checkpoint_dir": str(ckpt.dir),
                          **resume}
+            if run.test == "shear":
+                variables.update(self._shear_start(d, ckpt))
             if ckpt.resuming:
                 self.say(f"{progress}{run.name}: resuming from its checkpoint at step "
                          f"{ckpt.resumed_step} ({ckpt.resumed_step - ckpt.start_step} steps done)")
@@ -281,6 +284,19 @@ class Lab:
         self.say(f"{progress}{run.name}: {n_steps} steps, {particles} particles, {wall:.0f} s "
                  f"({rate / 1e6:.2f} M particle-steps/s)")
         return wall
+
+    @staticmethod
+    def _shear_start(d, ckpt):
+        """in.lab_shear's variables for the step its shear began: the deck writes that step to
+        shear_start_file when the sample has consolidated, and a resumed attempt that had got so
+        far passes it back (it does not consolidate again). A fresh start removes the file."""
+        f = d / SHEAR_START_FILE
+        out = {"shear_start_file": str(f)}
+        if not ckpt.resuming:
+            f.unlink(missing_ok=True)
+        elif f.is_file():
+            out["shear_start_step"] = int(f.read_text().split()[0])
+        return out
 
     def run_plan(self, plan):
         self.out.mkdir(parents=True, exist_ok=True)

@@ -2,10 +2,13 @@
 """The whole soil lab on the ci soil with the quick preset (CI smoke; docs/soil-lab.md):
 
   soil-lab run ci --preset quick --speed-check
-                                  -> SIGKILLed in its first shear box once it has two checkpoints;
-                                     the same command resumes that box from its newest complete
-                                     checkpoint (done.json: resumed_at_step; the CSV's rows evenly
-                                     spaced to the end, no gap, no repeat; no checkpoint left)
+                                  -> SIGKILLed in its first shear box once it has consolidated
+                                     and has two checkpoints; the same command resumes that box
+                                     from its newest complete checkpoint (done.json:
+                                     resumed_at_step; the CSV's rows evenly spaced to the end, no
+                                     gap, no repeat, one change from consolidation to shear, at
+                                     the step the first attempt began shearing; no checkpoint
+                                     left)
                                   -> every test's output, results.toml/csv and the PNGs; the
                                      fitted values finite and in physically plausible ranges; the
                                      half-speed comparisons (quasi-static check) reported
@@ -63,14 +66,20 @@ def main():
         p = subprocess.Popen([str(LAB), *command], stdout=log, stderr=subprocess.STDOUT, env=env)
         deadline = time.monotonic() + 600
         while p.poll() is None and time.monotonic() < deadline:
-            if len(list((box / "checkpoints").glob("lab-*.restart"))) >= 2:
+            # killed while shearing, after the box consolidated: the resumed attempt must shear
+            # on from the step the first one began at (runner.SHEAR_START_FILE), not consolidate
+            if (box / "shear_start_step.txt").is_file() and \
+                    len(list((box / "checkpoints").glob("lab-*.restart"))) >= 2:
                 break
             time.sleep(0.05)
         killed = p.poll() is None
         p.send_signal(signal.SIGKILL)
         p.wait()
-    check(killed and not (box / "done.json").exists(),
-          f"lab SIGKILLed in its first shear box after two checkpoints "
+    start_file = box / "shear_start_step.txt"
+    shear_start = int(start_file.read_text().split()[0]) if start_file.is_file() else None
+    check(killed and not (box / "done.json").exists() and shear_start is not None,
+          f"lab SIGKILLed in its first shear box after it consolidated (shear from step "
+          f"{shear_start}) and two checkpoints "
           f"({time.monotonic() - t0:.0f} s; log {Path(a.work) / 'killed_lab.log'})")
     time.sleep(1.0)  # mpirun and the rank die with the lab (soil_lab.kill_kill)
     r = lab(*command, env=env)
@@ -92,6 +101,13 @@ def main():
             (box / "shear.csv").read_text().splitlines() if line and not line.startswith("#")] \
         if (box / "shear.csv").is_file() else []
     gaps = [b[0] - a_[0] for a_, b in zip(rows, rows[1:])]
+    phases = [int(r_[6]) for r_ in rows]
+    turns = [k for k in range(1, len(phases)) if phases[k] != phases[k - 1]]
+    log = (box / "liggghts.log").read_text(errors="replace") if (box / "liggghts.log").is_file() else ""
+    check(phases[:1] == [1] and phases[-1:] == [2] and len(turns) == 1 and
+          f"consolidated in an attempt before this one; shearing from step {shear_start}" in log,
+          f"the resumed box sheared on from step {shear_start} (consolidation, then shear: "
+          f"{len(turns)} phase change(s) in the CSV)")
     check(done.get("resumed_at_step", 0) > 0 and done.get("wall_s_before_resume", 0) > 0 and
           not (box / "checkpoints").exists(),
           f"done.json: resumed at step {done.get('resumed_at_step')}, wall before "

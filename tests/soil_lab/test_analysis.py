@@ -114,6 +114,44 @@ class Analysis(unittest.TestCase):
         self.assertIn("2.0 % of its 1000 particles had left the box by the peak (j 0.07 m", warn[1])
         self.assertEqual(analysis.shear_loss_warnings([box({**early, "lost_at_end": 0.005})]), [])
 
+    def test_a_box_sheared_before_it_consolidated_is_named(self):
+        # 100 consolidation rows, then 1000 shear rows; the lid sinks 2 mm over the shear.
+        t = np.arange(1100) * 1e-3
+        phase = np.where(np.arange(1100) < 100, 1, 2)
+        lid = 0.2 - 0.002 * np.clip(t - 0.1, 0, None) / 0.999
+        loaded = np.full(1100, 1e4)
+        late = np.where(t < 0.2, 1.5e3, 1e4)  # the lid loads the sample 0.1 s into the shear
+        good = analysis.shear_consolidation(t, loaded, lid, phase)
+        self.assertAlmostEqual(good["consolidation_s"], 0.1)
+        self.assertAlmostEqual(good["sigma_start_ratio"], 1.0)
+        self.assertAlmostEqual(good["lid_z_start_m"], 0.2)
+        self.assertAlmostEqual(good["lid_travel_m"], -0.002, places=6)
+        self.assertFalse(good["not_consolidated"])
+        bad = analysis.shear_consolidation(t, late, lid, phase)
+        self.assertAlmostEqual(bad["sigma_start_ratio"], 1.5e3 / np.mean(late[100:]))
+        creeping = analysis.shear_consolidation(
+            t, loaded, lid, phase, "soil-lab: shear: WARNING: not consolidated after 3.0 s")
+        self.assertTrue(creeping["not_consolidated"])
+
+        def box(c):
+            return {"sigma_Pa": 1e4, "consolidation": c}
+        warn = analysis.shear_consolidation_warnings([box(good), box(bad), box(creeping), {}])
+        self.assertEqual(len(warn), 2)
+        self.assertIn("the shear began at 16 % of the normal stress (after 0.1 s", warn[0])
+        self.assertIn("still settled when the shear began", warn[1])
+        self.assertIn("its lid moved -2 mm over the shear (sample 200 mm high)", warn[1])
+
+    def test_shear_thermo_blocks_of_the_consolidation_checks_are_all_read(self):
+        # in.lab_shear runs its consolidation in checks: one thermo block per LIGGGHTS run.
+        head = "    Step    Atoms              j            tau          sigma          lid_z \n"
+        log = (head + "       0     1000 0 0 0 0.2\n     100     1000 0 0 0 0.2\n"
+               "Loop time of 1.0 on 1 procs for 100 steps with 1000 atoms\n"
+               + head + "     100     1000 0 0 0 0.2\n     200      990 0.01 0 0 0.2\n"
+               "Loop time of 1.0 on 1 procs for 100 steps with 990 atoms\n")
+        j, n = analysis.shear_particle_counts(log)
+        self.assertEqual(list(n), [1000, 1000, 1000, 990])
+        self.assertAlmostEqual(j[-1], 0.01)
+
     def test_too_few_shear_boxes_for_mohr_coulomb_are_named(self):
         self.assertEqual(analysis.shear_count_warnings([]), [])
         self.assertEqual(analysis.shear_count_warnings([{}] * 3), [])

@@ -64,6 +64,15 @@ class ReportTest(unittest.TestCase):
         texts = legend_texts(fig)
         self.assertEqual(sum("K = 6 mm" in t for t in texts), 3, texts)
         self.assertIn("σn = 10 kPa", texts)
+        # With the lid's record: a second panel, the vertical displacement in mm.
+        dz = [-0.002 * (1 - np.exp(-j / 0.01)) for _ in sigma]
+        fig = report.plot_shear_curves(self.png("shear_v.png"), SOIL, curves, jf, dz)
+        self.assertPlot(fig, self.png("shear_v.png"), "[kPa]", "[mm]")
+        self.assertEqual(len(fig.axes), 2)
+        self.assertIn("vertical displacement [mm]", fig.axes[1].get_ylabel())
+        self.assertAlmostEqual(fig.axes[1].get_lines()[0].get_ydata()[-1], 1e3 * dz[0][-1])
+        with self.assertRaisesRegex(ValueError, "3 curves but 2 lid records"):
+            report.plot_shear_curves(self.png("bad.png"), SOIL, curves, jf, dz[:2])
 
         peak = [fits.peak_and_residual(jj, t) for _, jj, t in curves]
         tp = [p.tau_peak_Pa for p in peak]
