@@ -287,15 +287,17 @@ class Lab:
 
     @staticmethod
     def _shear_start(d, ckpt):
-        """in.lab_shear's variables for the step its shear began: the deck writes that step to
-        shear_start_file when the sample has consolidated, and a resumed attempt that had got so
-        far passes it back (it does not consolidate again). A fresh start removes the file."""
+        """in.lab_shear's variables for the step its shear began: the deck writes that step
+        and whether the sample had consolidated (1/0) to shear_start_file when its consolidation
+        ends, and a resumed attempt that had got so far passes them back (it does not consolidate
+        again). A fresh start removes the file."""
         f = d / SHEAR_START_FILE
         out = {"shear_start_file": str(f)}
         if not ckpt.resuming:
             f.unlink(missing_ok=True)
         elif f.is_file():
-            out["shear_start_step"] = int(f.read_text().split()[0])
+            step, consolidated = f.read_text().split()[:2]
+            out.update(shear_start_step=int(step), shear_start_consolidated=int(consolidated))
         return out
 
     def run_plan(self, plan):

@@ -105,7 +105,7 @@ def main():
     turns = [k for k in range(1, len(phases)) if phases[k] != phases[k - 1]]
     log = (box / "liggghts.log").read_text(errors="replace") if (box / "liggghts.log").is_file() else ""
     check(phases[:1] == [1] and phases[-1:] == [2] and len(turns) == 1 and
-          f"consolidated in an attempt before this one; shearing from step {shear_start}" in log,
+          f"consolidation ended in an attempt before this one; shearing from step {shear_start}" in log,
           f"the resumed box sheared on from step {shear_start} (consolidation, then shear: "
           f"{len(turns)} phase change(s) in the CSV)")
     check(done.get("resumed_at_step", 0) > 0 and done.get("wall_s_before_resume", 0) > 0 and
