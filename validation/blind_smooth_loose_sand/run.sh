@@ -67,7 +67,8 @@ sweep() {
   mapfile -t runs < <(find "$out/$name" -mindepth 4 -name run.h5 -not -path "*/beds/*" | sort)
   ((${#runs[@]})) || { echo "run.sh: no finished run under $out/$name" >&2; exit 1; }
   "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start "$w0" --window-end "$w1" \
-    --results "$results" --csv "$out/$name/curves.csv"
+    --results "$results.new" --csv "$out/$name/curves.csv"
+  keep_table "$results.new" "$results"
 }
 
 if ((scm)); then

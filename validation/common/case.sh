@@ -15,3 +15,14 @@ stop_if_signalled() {
     exit "$1"
   fi
 }
+
+# keep_table NEW DEST: DEST becomes NEW, unless DEST already holds the same rows (its lines other
+# than the # comments): a re-run that skipped every finished point computes the same numbers under
+# a new git and command line, and the committed table keeps the record of the run that made them.
+keep_table() {
+  if [[ -f $2 ]] && cmp -s <(grep -v '^#' "$1") <(grep -v '^#' "$2"); then
+    rm -f "$1"
+  else
+    mv -f "$1" "$2"
+  fi
+}

@@ -66,7 +66,8 @@ if ((sensitivity)); then
     mapfile -t runs < <(find "$out/sensitivity/$name" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
     ((${#runs[@]})) || { echo "run.sh: no finished run under $out/sensitivity/$name" >&2; return 1; }
     "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start "$w0" --window-end "$w1" \
-      --results "$here/results_$name.csv" --csv "$out/sensitivity/$name/curves.csv"
+      --results "$here/results_$name.csv.new" --csv "$out/sensitivity/$name/curves.csv"
+    keep_table "$here/results_$name.csv.new" "$here/results_$name.csv"
     "$python" "$here/compare.py" "$here/results_$name.csv" "$here/reference.csv" --r-eff 0.11 \
       --md "$here/comparison_$name.md"
     write_provenance "$here/provenance_$name.toml" validation/nakanishi_2020 \
@@ -110,7 +111,8 @@ if ((smoke)); then window=(--window-start 0.15 --window-end 0.3); dest=$out curv
 else window=(--window-start 1.0 --window-end 2.4); dest=$here; fi
 if ((scm)); then tag=_scm mode=" --scm" curves_dir=$out extra=(--scm "$here/results_scm.csv"); fi
 "$root/postprocess/wheelsim-post" curves "${runs[@]}" "${window[@]}" \
-  --results "$dest/results$tag.csv" --csv "$curves_dir/curves.csv"
+  --results "$dest/results$tag.csv.new" --csv "$curves_dir/curves.csv"
+keep_table "$dest/results$tag.csv.new" "$dest/results$tag.csv"
 "$python" "$here/compare.py" "$dest/results.csv" "$here/reference.csv" --r-eff 0.11 "${extra[@]}" \
   --png "$dest/comparison$tag.png" --md "$dest/comparison$tag.md"
 write_provenance "$dest/provenance$tag.toml" validation/nakanishi_2020 \

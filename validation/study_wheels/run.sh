@@ -69,8 +69,8 @@ part() {
   # every finished point (a failed point is reported by wheel-sweep and left out)
   mapfile -t runs < <(find "$dir" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" | sort)
   ((${#runs[@]})) || { echo "run.sh: no finished run under $dir" >&2; status=1; return 0; }
-  "$root/postprocess/wheelsim-post" curves "${runs[@]}" "${window[@]}" --results "$results" \
-    --csv "$dir/curves.csv" || status=1
+  if "$root/postprocess/wheelsim-post" curves "${runs[@]}" "${window[@]}" --results "$results.new" \
+    --csv "$dir/curves.csv"; then keep_table "$results.new" "$results"; else status=1; fi
   write_provenance "$provenance" validation/study_wheels \
     "validation/study_wheels/run.sh${args[*]:+ }${args[*]}" "$t0_utc" "$t0" "$dir"
 }
