@@ -241,13 +241,12 @@ def shear_peak_warnings(shears):
     return out
 
 
-def _boxes_with(shears, key, with_box=False):
-    """(a warning's "shear box at <sigma> kPa: " prefix, box[key][, box]) for each box that has
+def _boxes_with(shears, key):
+    """(a warning's "shear box at <sigma> kPa: " prefix, box[key], box) for each box that has
     `key` (a summary without it is skipped)."""
     for s in shears:
         if s.get(key) is not None:
-            at = f"shear box at {s['sigma_Pa'] / 1e3:.3g} kPa: "
-            yield (at, s[key], s) if with_box else (at, s[key])
+            yield f"shear box at {s['sigma_Pa'] / 1e3:.3g} kPa: ", s[key], s
 
 
 # A box whose normal stress over the first 2 % of its shear is below this share of its mean over
@@ -261,7 +260,7 @@ def shear_consolidation_warnings(shears):
     said so (still creeping at consolidate_max), or its normal stress at the start of the shear
     was below SHEAR_START_SIGMA_WARNING x its mean."""
     out = []
-    for at, c in _boxes_with(shears, "consolidation"):
+    for at, c, _ in _boxes_with(shears, "consolidation"):
         if c["sigma_start_ratio"] < SHEAR_START_SIGMA_WARNING:
             out.append(at + f"the shear began at {100 * c['sigma_start_ratio']:.0f} % of the normal "
                        f"stress (after {c['consolidation_s']:.3g} s of consolidation): the sample "
@@ -289,7 +288,7 @@ def shear_count_warnings(shears):
 def shear_loss_warnings(shears):
     """A line for each shear box that lost more than SHEAR_LOSS_WARNING of its particles."""
     out = []
-    for at, loss, s in _boxes_with(shears, "loss", with_box=True):
+    for at, loss, s in _boxes_with(shears, "loss"):
         if loss["lost_by_peak"] > SHEAR_LOSS_WARNING:
             out.append(at + f"{100 * loss['lost_by_peak']:.1f} % of its {loss['particles']} "
                        f"particles had left the box by the peak (j {s['peak'].j_peak_m:.3g} m, over "

@@ -26,8 +26,9 @@ from .checkpoints import Checkpoints
 from .plan import LabInputError, SoilInfo
 
 DECKS = Path(__file__).resolve().parent.parent / "decks"
-# Tests whose decks write checkpoints (lab_start.in, lab_checkpoints.in, lab_run.in); the repose test does not (its
-# frozen base is a group made from positions at its start, and its output is one dump at the end).
+# Tests whose decks write checkpoints (lab_start.in, lab_checkpoints.in, lab_run.in); the repose
+# test does not (its frozen base is a group made from positions at its start, and its output is
+# one dump at the end).
 CHECKPOINTED_TESTS = ("plate", "shear")
 SHEAR_START_FILE = "shear_start_step.txt"  # in.lab_shear's record of the step its shear began
 DEFAULT_CHECKPOINTS = 10  # restart files over a plate or shear run: at most 10 % of it is redone
