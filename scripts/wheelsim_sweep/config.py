@@ -28,7 +28,8 @@ TOP_KEYS = ("description", "terrain", "base", "override", "wheels", "soils", "sl
 # the wheel); "wheel_speed" keeps the base's carriage.mode = "imposed_speed" (carriage speed v)
 # and sets motor.omega from the target slip in the signed convention (wheel_omega).
 SLIP_CONTROLS = ("imposed_slip", "wheel_speed")
-DEM_KEYS = ("np", "bed_np", "deck", "liggghts_args", "budget_h")
+DEM_KEYS = ("np", "bed_np", "deck", "liggghts_args", "budget_h", "checkpoint_every_s",
+            "checkpoint_every_steps")
 WHEEL_ENTRY_KEYS = ("name", "mesh", "mesh_scale", "mass", "inertia", "density", "effective_radius")
 # inputs/in.soilbin variables a DEM bed recipe may set (docs/soil-bins.md); inputs_dir, out_dir
 # and restart_file are the driver's.
@@ -93,6 +94,10 @@ class Sweep:
     deck: Path | None = None
     liggghts_args: list = field(default_factory=list)
     budget_h: float | None = None  # dem.budget_h: refuse a sweep estimated longer (estimate.py)
+    # dem.checkpoint_every_s / _steps: wheel-cosim's checkpoint interval (None: its default);
+    # not part of a point's inputs (a checkpoint changes no result)
+    checkpoint_every_s: float | None = None
+    checkpoint_every_steps: int | None = None
     slip_control: str = "imposed_slip"  # SLIP_CONTROLS
 
 
@@ -685,6 +690,18 @@ def load(path, repo, build_dir):
             if isinstance(b, bool) or not isinstance(b, (int, float)) or not b > 0:
                 raise ctx.err(f"dem.budget_h must be a number of hours > 0, got {b!r}")
             sweep.budget_h = float(b)
+        if "checkpoint_every_s" in dem:
+            v = dem["checkpoint_every_s"]
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not v >= 0:
+                raise ctx.err("dem.checkpoint_every_s must be a wall time in s >= 0 (0: not by "
+                              f"time), got {v!r}")
+            sweep.checkpoint_every_s = float(v)
+        if "checkpoint_every_steps" in dem:
+            v = dem["checkpoint_every_steps"]
+            if isinstance(v, bool) or not isinstance(v, int) or v < 0:
+                raise ctx.err("dem.checkpoint_every_steps must be an integer >= 0 (0: not by "
+                              f"steps), got {v!r}")
+            sweep.checkpoint_every_steps = v
 
     # The points.
     n = 0

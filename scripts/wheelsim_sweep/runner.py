@@ -33,6 +33,19 @@ DONE_FILE = "done.json"
 KILL_GRACE_S = 5.0
 
 
+def _run_wall_time(path):
+    """The run's wall time [s] as its run file records it (/parameters/run/wall_time: for a
+    point resumed from a checkpoint, the attempts before it up to the checkpoint plus the last
+    one; wheel-rig, docs/hdf5-layout.md); None if it cannot be read."""
+    from wheelsim_post.runfile import RunFile  # h5py: only a resumed DEM point needs it
+    try:
+        with RunFile(path) as run:
+            value = float(run.parameter("run/wall_time"))
+    except Exception:  # any unreadable record: the caller says so in done.json
+        return None
+    return value if value >= 0.0 else None
+
+
 def _write_atomic(path, text):
     tmp = path.with_name(path.name + ".tmp")
     with open(tmp, "w") as f:
@@ -238,6 +251,11 @@ class Runner:
                    "--work", str(d / "cosim"), "--mesh", str(p.wheel.mesh)] + params
             if resume:
                 cmd.append("--resume")
+            if self.sweep.checkpoint_every_s is not None:
+                cmd += ["--checkpoint-every-seconds",
+                        f"{self.sweep.checkpoint_every_s:.6f}".rstrip("0").rstrip(".")]
+            if self.sweep.checkpoint_every_steps is not None:
+                cmd += ["--checkpoint-every-steps", str(self.sweep.checkpoint_every_steps)]
             if self.sweep.liggghts_args:
                 cmd += ["--"] + self.sweep.liggghts_args
             return cmd
@@ -419,10 +437,19 @@ class Runner:
             note = ""
         if rc == 0:
             os.replace(d / PART_FILE, d / RUN_FILE)
+        attempt = wall
+        total = _run_wall_time(d / RUN_FILE) if rc == 0 and resume else None
+        if total is not None:  # the point's cost: the attempts before the checkpoint too
+            wall = total
         done = {"wheel": p.wheel.label, "soil": p.soil.name, "slip": p.slip,
                 "terrain": self.sweep.terrain, "exit_status": rc,
                 "status": "done" if rc == 0 else "failed", "wall_time_s": round(wall, 3),
                 "run_file": RUN_FILE if rc == 0 else None, "inputs_sha256": self.inputs_hash(p)}
+        if resume:
+            done.update(resumed_from_checkpoint=True, wall_time_s_this_attempt=round(attempt, 3))
+            if rc == 0 and total is None:
+                done["wall_time_note"] = ("the run file records no run/wall_time: wall_time_s "
+                                          "is this attempt's only")
         if included is not None:
             done["included_sha256"] = included
         _write_atomic(d / DONE_FILE, json.dumps(done, indent=2) + "\n")
@@ -437,8 +464,10 @@ class Runner:
             del counter["running"][p.index]
             eta = self._eta(counter)
         if rc == 0:
+            also = (f" ({estimate.fmt_time(attempt)} in this attempt, resumed from its "
+                    "checkpoint)" if resume else "")
             self.say(f"[{k}/{counter['total']}] {self.describe(p)} done in "
-                     f"{estimate.fmt_time(wall)}{eta}")
+                     f"{estimate.fmt_time(wall)}{also}{eta}")
         else:
             why = note or _last_error(d / "run.log")
             self.say(f"[{k}/{counter['total']}] {self.describe(p)} FAILED (exit {rc}) after "

@@ -4,7 +4,7 @@
   test_sweep.py CASE --sweep scripts/wheel-sweep --build-dir BUILD --work DIR
 
 CASE: matrix, resume_marker, resume_sigterm, bad_config, examples_dry_run, scm_smoke, kill_flat,
-kill_dem, dem_soil_file, dem_tiled_bed, wheel_speed_flat, ... (see each function and tests/sweep/CMakeLists.txt).
+kill_dem, dem_soil_file, dem_tiled_bed, dem_resume, wheel_speed_flat, ... (see each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (wheel-rig or the wheel meshes not built).
 """
 
@@ -695,6 +695,9 @@ BAD = [
     ("scm_soils_missing", None, r"missing key 'soils'"),
     ("dem_recipe_key", None, r"unknown key 'soils\[0\]\.bin_lenght'; did you mean 'bin_length'\?"),
     ("toml_syntax", 'slips = [0.1,\n', r"TOML syntax error"),
+    ("dem_checkpoint_steps", None,
+     r"dem\.checkpoint_every_steps must be an integer >= 0 \(0: not by steps\), got -5"),
+    ("dem_checkpoint_s", None, r"dem\.checkpoint_every_s must be a wall time in s >= 0"),
 ]
 
 
@@ -720,6 +723,12 @@ def case_bad_config(a, work):
                     'soils = [{ soil = "ci", bin_lenght = 0.3 }]\n[override.run]\ndt = 1e-3\n')
         elif name == "toml_syntax":
             text = good.replace("slips = [0.1, 0.2]\n", "") + extra
+        elif name.startswith("dem_checkpoint"):
+            value = "checkpoint_every_steps = -5" if name.endswith("steps") else \
+                'checkpoint_every_s = "1h"'
+            text = ('terrain = "dem"\nwheels = ["wheel1"]\nslips = [0.1]\n'
+                    'soils = [{ soil = "ci" }]\n[override.run]\ndt = 1e-3\n'
+                    f'[dem]\n{value}\n')
         cfg = work / f"{name}.toml"
         cfg.write_text(text)
         r = run_sweep(a, cfg, "--out-dir", str(work / "out"), "--dry-run")
@@ -1065,6 +1074,86 @@ def case_dem_archive_bed(a, work):
                   timeout=120)
     check(r.returncode == 0 and f"{rel} (restored from the archive) ran on another preparation "
           "of its bed" in r.stdout, "a point restored onto a different bed file is not named")
+
+
+def case_dem_resume(a, work):
+    """A DEM point stopped by SIGKILL of the driver after its first checkpoint
+    (dem.checkpoint_every_steps = 300) is resumed by the same command: it says "resuming from its
+    checkpoint", its run file records /parameters/resume/1, and done.json's wall_time_s is the
+    run's (/parameters/run/wall_time: the stopped attempt up to its checkpoint plus the last
+    one), longer than wall_time_s_this_attempt. test_small at 20 % on the ci bed of
+    tests/wheel_cosim (0.05 s of test phase), 1 rank; ~1 min."""
+    repo = dem_repo(a)
+    bed = Path(a.build_dir) / "tests" / "wheel_cosim" / "bed" / "soilbin_ci.restart"
+    if not bed.is_file():
+        raise Skip(f"the ci bed {bed} is not prepared (test wheel_cosim.bed)")
+    cfg = work / "sweep.toml"
+    cfg.write_text(f"""terrain = "dem"
+base = "{repo}/inputs/rigs/ci_small_wheel.toml"
+wheels = ["test_small"]
+soils = ["{bed}"]
+slips = [0.2]
+[override.run]
+duration = 0.05
+release_gap = 0.002
+[dem]
+np = 1
+deck = "{repo}/inputs/examples/in.wheel_coupled"
+liggghts_args = ["-var", "output_every", "0"]
+checkpoint_every_steps = 300
+""")
+    out = work / "out"
+    point = out / "test_small" / "soilbin_ci" / "s0.200"
+    ckpt = point / "cosim" / "checkpoints"
+    cmd = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--out-dir", str(out)]
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                         start_new_session=True)
+    t0 = time.monotonic()
+    try:
+        pairs = []
+        while time.monotonic() - t0 < 240 and p.poll() is None:
+            if ckpt.is_dir():
+                rig = {m.group(1) for f in os.listdir(ckpt)
+                       if (m := re.fullmatch(r"rig-(\d+)\.ckpt", f))}
+                lmp = {m.group(1) for f in os.listdir(ckpt)
+                       if (m := re.fullmatch(r"liggghts-(\d+)\.restart\.info", f))}
+                pairs = sorted(rig & lmp, key=int)
+                if pairs:
+                    break
+            time.sleep(0.2)
+        check(pairs, f"no checkpoint pair in {ckpt} after {time.monotonic() - t0:.0f} s "
+              f"(driver exit {p.poll()})")
+        time.sleep(2.0)  # the attempt goes on past its checkpoint: that part is redone
+        tree = descendants(p.pid)
+        p.kill()  # SIGKILL: the driver's children die with it (PR_SET_PDEATHSIG)
+        first = time.monotonic() - t0
+        print(p.communicate()[0])
+        deadline = time.monotonic() + 10
+        while still_alive(tree) and time.monotonic() < deadline:
+            time.sleep(0.1)
+        check(not still_alive(tree), f"processes left after SIGKILL: {still_alive(tree)}")
+    finally:
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGKILL)
+    print(f"first attempt killed after {first:.1f} s, checkpoints at steps {pairs}")
+    check(not (point / "done.json").exists(), "the killed point has a done.json")
+    r = run_sweep(a, cfg, "--out-dir", str(out), timeout=600)
+    check(r.returncode == 0, "the resumed sweep failed")
+    check("resuming from its checkpoint" in r.stdout, "the point was not resumed")
+    done = json.loads((point / "done.json").read_text())
+    with h5py.File(point / "run.h5", "r") as f:
+        run_wall = float(f["parameters/run/wall_time"][()])
+        check("parameters/resume/1/step" in f, "the run file records no resume")
+        resume_step = int(f["parameters/resume/1/step"][()])
+    print(f"done.json {done}; run/wall_time {run_wall:.3f} s, resumed at step {resume_step}")
+    check(done.get("resumed_from_checkpoint") is True, "done.json does not say resumed")
+    check(abs(done["wall_time_s"] - run_wall) < 1e-3,
+          f"done.json wall_time_s {done['wall_time_s']} != the run file's {run_wall}")
+    attempt = done["wall_time_s_this_attempt"]
+    check(done["wall_time_s"] > attempt,
+          f"wall_time_s {done['wall_time_s']} not above this attempt's {attempt}")
+    check(r.stdout.count("in this attempt, resumed from its checkpoint") == 1,
+          "the progress line does not give both wall times")
 
 
 def case_point_archive(a, work):
