@@ -1081,7 +1081,7 @@ def case_dem_resume(a, work):
     (dem.checkpoint_every_steps = 300) is resumed by the same command: it says "resuming from its
     checkpoint", its run file records /parameters/resume/1, and done.json's wall_time_s is the
     run's (/parameters/run/wall_time: the stopped attempt up to its checkpoint plus the last
-    one), longer than wall_time_s_this_attempt. test_small at 20 % on the ci bed of
+    one; the driver's clock for this attempt beside it). test_small at 20 % on the ci bed of
     tests/wheel_cosim (0.05 s of test phase), 1 rank; ~1 min."""
     repo = dem_repo(a)
     bed = Path(a.build_dir) / "tests" / "wheel_cosim" / "bed" / "soilbin_ci.restart"
@@ -1145,13 +1145,17 @@ checkpoint_every_steps = 300
         run_wall = float(f["parameters/run/wall_time"][()])
         check("parameters/resume/1/step" in f, "the run file records no resume")
         resume_step = int(f["parameters/resume/1/step"][()])
-    print(f"done.json {done}; run/wall_time {run_wall:.3f} s, resumed at step {resume_step}")
+        session_wall = float(f["parameters/resume/1/wall_time"][()])
+    print(f"done.json {done}; run/wall_time {run_wall:.3f} s (this session's {session_wall:.3f} s), "
+          f"resumed at step {resume_step}")
     check(done.get("resumed_from_checkpoint") is True, "done.json does not say resumed")
+    # the driver's own clock (this attempt, with LIGGGHTS' start-up) never equals the rig's record
+    # to 1 ms: before the fix wall_time_s was the former
     check(abs(done["wall_time_s"] - run_wall) < 1e-3,
           f"done.json wall_time_s {done['wall_time_s']} != the run file's {run_wall}")
-    attempt = done["wall_time_s_this_attempt"]
-    check(done["wall_time_s"] > attempt,
-          f"wall_time_s {done['wall_time_s']} not above this attempt's {attempt}")
+    check(run_wall > session_wall, f"the run file's wall time {run_wall} s does not count the "
+          f"attempt before the checkpoint (this session's {session_wall} s)")
+    check(done["wall_time_s_this_attempt"] > 0, "done.json lacks this attempt's wall time")
     check(r.stdout.count("in this attempt, resumed from its checkpoint") == 1,
           "the progress line does not give both wall times")
 
