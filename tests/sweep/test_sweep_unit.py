@@ -4,7 +4,8 @@
   test_sweep_unit.py CASE --sweep scripts/wheel-sweep --work DIR
 
 CASE: toml_roundtrip, cli, soil_names, tiled_recipe, estimate_arithmetic, estimate_active,
-rate_cache, budget, slip_control, accept_change, included_at_start, terrain_switch (see
+rate_cache, budget, slip_control, accept_change, included_at_start, terrain_switch,
+resumed_wall (see
 each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (a prerequisite missing).
 """
@@ -995,6 +996,27 @@ def case_terrain_switch(a, work):
         raise Fail("a dem base for a flat sweep without override.terrain.type was accepted")
     except config.ConfigError as e:
         check("override.terrain.type" in str(e) and '"dem"' in str(e), f"message: {e}")
+
+
+def case_resumed_wall(a, work):
+    """The wall time a resumed DEM point records (runner._run_wall_time): the run file's
+    /parameters/run/wall_time (synthetic run files, tests/postprocess/synthetic.py); None for a
+    run file without it, with a negative or non-numeric value, a file that is not HDF5, and a
+    missing file (done.json then keeps the attempt's time and says so)."""
+    sys.path.insert(0, str(Path(a.sweep).resolve().parents[1] / "tests" / "postprocess"))
+    import synthetic
+    from wheelsim_sweep.runner import _run_wall_time
+    cases = {"recorded": 10844.14, "absent": None, "negative": -1.0, "text": "ten minutes"}
+    for name, value in cases.items():
+        path = work / f"{name}.h5"
+        synthetic.write_rig_run(path, parameters={} if value is None else
+                                {"run/wall_time": value})
+        got = _run_wall_time(path)
+        want = value if name == "recorded" else None
+        check(got == want, f"{name}: run/wall_time {value!r} -> {got!r}, expected {want!r}")
+    (work / "not_hdf5.h5").write_text("a stopped attempt's partial file\n")
+    check(_run_wall_time(work / "not_hdf5.h5") is None, "a file that is not HDF5: not None")
+    check(_run_wall_time(work / "missing.h5") is None, "a missing file: not None")
 
 
 def main():
