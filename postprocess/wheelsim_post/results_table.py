@@ -78,7 +78,7 @@ def _count(run, name, expected):
     return int(number)
 
 
-def _wall_time(run):
+def wall_time(run):
     """``/parameters/run/wall_time`` [s] as float, None if absent; PostError if not >= 0."""
     value = run.parameter(WALL_TIME_PARAMETER)
     if value is None:
@@ -103,7 +103,7 @@ def run_cost(path):
     ``/parameters/liggghts/np``, else 1 when the rig config's terrain is not "dem" (SCM and
     the flat ground run in the rig process alone)."""
     with RunFile(path) as run:
-        wall = _wall_time(run)
+        wall = wall_time(run)
         particles = _count(run, PARTICLES_PARAMETER, "the number of particles")
         ranks = _count(run, RANKS_PARAMETER, "the number of MPI ranks of LIGGGHTS")
         terrain = rig_config(run).get("terrain", {}).get("type")

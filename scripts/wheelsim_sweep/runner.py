@@ -36,14 +36,15 @@ KILL_GRACE_S = 5.0
 def _run_wall_time(path):
     """The run's wall time [s] as its run file records it (/parameters/run/wall_time: for a
     point resumed from a checkpoint, the attempts before it up to the checkpoint plus the last
-    one; wheel-rig, docs/hdf5-layout.md); None if it cannot be read."""
-    from wheelsim_post.runfile import RunFile  # h5py: only a resumed DEM point needs it
+    one; wheel-rig, docs/hdf5-layout.md); None if it is missing or cannot be read."""
+    from wheelsim_post.errors import PostError  # h5py: only a resumed DEM point needs these
+    from wheelsim_post.results_table import wall_time
+    from wheelsim_post.runfile import RunFile
     try:
         with RunFile(path) as run:
-            value = float(run.parameter("run/wall_time"))
-    except Exception:  # any unreadable record: the caller says so in done.json
+            return wall_time(run)
+    except PostError:  # the caller says so in done.json
         return None
-    return value if value >= 0.0 else None
 
 
 def _write_atomic(path, text):
