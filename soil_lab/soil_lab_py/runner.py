@@ -6,7 +6,10 @@ Layout of the output directory (docs/soil-lab.md, "Outputs"):
   beds/<bed>/                in.soilbin's restart, .vars and log (bulk density, porosity)
   <run>/                     one directory per deck run: its CSV or dump, log, done.json
 Every step writes done.json (inputs hash, wall time, particles) last; a step whose done.json
-matches its inputs is skipped on a re-run, so an interrupted lab resumes where it stopped. A plate
+matches its inputs is skipped on a re-run, so an interrupted lab resumes where it stopped. A test
+run's inputs name its bed by the bed's recipe (what in.soilbin made it from, and on how many
+ranks), not by the restart file's bytes: a multisphere bed's restart holds memory addresses, so
+the same recipe never writes the same file twice (docs/soil-lab.md "A lab across sessions"). A plate
 or shear run that was stopped goes on from its last checkpoint (<run>/checkpoints/: restart files
 lab-<start step>-<step>.restart, soil_lab/decks/lab_run.in), not from its start.
 """
@@ -18,6 +21,7 @@ import re
 import subprocess
 import time
 from pathlib import Path
+from typing import NamedTuple
 
 from wheelsim_post import mpi_launch, step_archive
 from wheelsim_post.deck_files import deck_includes
@@ -36,6 +40,21 @@ DEFAULT_CHECKPOINTS = 10  # restart files over a plate or shear run: at most 10 
 
 class LabRunError(RuntimeError):
     """A LIGGGHTS or wheel-mesh run failed; the message names it and its log."""
+
+
+class StepKey(NamedTuple):
+    """What decides a step's result (Lab._key)."""
+    inputs: str  #: hash of the settings and the files' contents
+    included: dict  #: {path: sha256} of the files the LIGGGHTS inputs include in turn
+    parts: dict  #: {"settings": sha256, path: sha256 per file}: which of them changed (done.json)
+
+
+class Bed(NamedTuple):
+    """A prepared bed: its restart, in.soilbin's measurements, and its recipe (what test runs on
+    it name it by)."""
+    restart: str
+    result: dict
+    recipe: dict  #: {"inputs", "included_sha256", "np"}: the bed's StepKey and the ranks that made it
 
 
 def _sha256(path):
@@ -131,7 +150,6 @@ class Lab:
     # --- steps with resume -----------------------------------------------------------------------
     def _done(self, directory, key):
         """The step's done.json if it finished with these inputs (a key of _key), else None."""
-        inputs, included = key
         f = Path(directory) / "done.json"
         if not f.is_file():
             return None
@@ -139,25 +157,44 @@ class Lab:
             done = json.loads(f.read_text())
         except ValueError:
             return None
-        if done.get("inputs") != inputs:
+        if done.get("inputs") != key.inputs:
             return None
         # a record from before the included files were recorded is compared without them
-        if "included_sha256" in done and done["included_sha256"] != included:
+        if "included_sha256" in done and done["included_sha256"] != key.included:
             return None
         return done
 
+    @staticmethod
+    def changed_inputs(directory, key):
+        """Why the step's done.json does not match `key`: the names of what changed (the settings,
+        files, included files), as far as the record tells; [] without a record."""
+        try:
+            done = json.loads((Path(directory) / "done.json").read_text())
+        except (OSError, ValueError):
+            return []
+        old = done.get("inputs_parts")
+        changed = ([name for name in sorted(set(old) | set(key.parts))
+                    if old.get(name) != key.parts.get(name)] if isinstance(old, dict) else [])
+        old_included = done.get("included_sha256") or {}
+        changed += [f for f in sorted(set(old_included) | set(key.included))
+                    if old_included.get(f) != key.included.get(f)]
+        if not changed and done.get("inputs") != key.inputs:
+            changed = ["its inputs (recorded before a step kept what they were made of)"]
+        return changed
+
     def _finish(self, directory, key, **info):
-        inputs, included = key
         tmp = Path(directory) / "done.json.tmp"
-        tmp.write_text(json.dumps({"inputs": inputs, "included_sha256": included, **info},
-                                  indent=1) + "\n")
+        tmp.write_text(json.dumps({"inputs": key.inputs, "included_sha256": key.included,
+                                   "inputs_parts": key.parts, **info}, indent=1) + "\n")
         os.replace(tmp, Path(directory) / "done.json")
 
     def _restore_step(self, directory, name):
         """Copies the archived files of step `name` into `directory` when it has no done.json
-        (the resume check then decides whether it counts as finished)."""
+        (the resume check then decides whether it counts as finished); True if it did."""
         if step_archive.restore(self.archive / name, directory):
             self.say(f"{name}: restored from the archive {self.archive}")
+            return True
+        return False
 
     def _keep_step(self, directory, name):
         """Copies a finished step's files (its CSV or dump, log, done.json) to the archive, unless
@@ -165,20 +202,31 @@ class Lab:
         if not step_archive.holds(self.archive / name, directory):
             step_archive.keep(directory, self.archive / name)
 
-    def _key(self, *parts, files=()):
-        """(a hash of `parts` and the contents of `files`, {path: sha256} of the files the LIGGGHTS
-        inputs among `files` (decks, soil files) include in turn, e.g. a soil file's base soil)."""
+    def _key(self, *parts, files=(), named=None):
+        """The StepKey of `parts` (settings), `named` ({name: settings}, each told apart when it
+        changes, e.g. the bed's recipe) and the contents of `files`: a hash of all, the
+        {path: sha256} of the files the LIGGGHTS inputs among `files` (decks, soil files) include
+        in turn (e.g. a soil file's base soil), and each part's hash."""
         h = hashlib.sha256()
+        settings = hashlib.sha256()
         for p in parts:
-            h.update(json.dumps(p, sort_keys=True).encode())
+            text = json.dumps(p, sort_keys=True).encode()
+            h.update(text)
+            settings.update(text)
+        components = {"settings": settings.hexdigest()}
+        for name, p in (named or {}).items():
+            text = json.dumps({name: p}, sort_keys=True).encode()
+            h.update(text)
+            components[name] = hashlib.sha256(text).hexdigest()
         included = {}
         for f in files:
-            h.update(_sha256(f).encode())
+            components[str(f)] = _sha256(f)
+            h.update(components[str(f)].encode())
             name = Path(f).name
             if name.endswith(".in") or name.startswith("in."):
                 for g in deck_includes(f, {"inputs_dir": str(self.inputs)}):
                     included[str(g)] = _sha256(g)
-        return h.hexdigest()[:16], included
+        return StepKey(h.hexdigest()[:16], included, components)
 
     def mesh(self, name, args):
         """The tool mesh wheel-mesh tool ARGS, as meshes/<name>.obj (made once)."""
@@ -197,7 +245,7 @@ class Lab:
         return path
 
     def bed(self, soil, bed):
-        """Prepares `bed` with inputs/in.soilbin (skipped if done); returns (restart, result dict)."""
+        """Prepares `bed` with inputs/in.soilbin (skipped if done); returns its Bed."""
         d = self.out / "beds" / bed.name
         d.mkdir(parents=True, exist_ok=True)
         variables = {"soil_file": soil.file, "bin_length": f"{bed.length_m:.6g}",
@@ -222,11 +270,14 @@ class Lab:
                      f"{float(result.get('bulk_density', 'nan')):.5g} kg/m^3 ({done['wall_s']} s)")
         else:
             self.say(f"bed '{bed.name}': done before, skipped")
-        return done["result"]["restart"], done["result"]
+        return Bed(done["result"]["restart"], done["result"],
+                   {"inputs": key.inputs, "included_sha256": key.included, "np": done.get("np")})
 
-    def run(self, soil, run, restart, progress=""):
-        """Runs one plate, shear or repose deck (skipped when done before, resumed from its newest
-        checkpoint when stopped); returns its wall time [s] (a skipped run's from its done.json)."""
+    def run(self, soil, run, bed, progress=""):
+        """Runs one plate, shear or repose deck on `bed` (a Bed; skipped when done before, resumed
+        from its newest checkpoint when stopped); returns its wall time [s] (a skipped run's from
+        its done.json)."""
+        restart = bed.restart
         d = self.out / run.name
         d.mkdir(parents=True, exist_ok=True)
         base = run.meta.get("half_of", run.name)  # a half-speed run uses its model's meshes
@@ -236,12 +287,20 @@ class Lab:
         variables = {"restart_file": restart, **meshes, **run.variables,
                      **{k: str(d / v) for k, v in outputs.items()}}
         deck = DECKS / run.deck
-        key = self._key(variables, run.meta, files=(deck, soil.file, restart, *meshes.values()))
-        if self.archive is not None:
-            self._restore_step(d, run.name)
+        # the bed by its recipe, not its restart's bytes (the module's docstring)
+        key = self._key(variables, run.meta, named={"bed recipe": bed.recipe},
+                        files=(deck, soil.file, *meshes.values()))
+        restored = self.archive is not None and self._restore_step(d, run.name)
         done = self._done(d, key)
+        if done is None and restored:
+            self.say(f"{progress}{run.name}: the archived record does not match this lab's inputs "
+                     f"(changed: {', '.join(self.changed_inputs(d, key)) or 'unknown'}): runs again")
         if done is not None:
-            self.say(f"{progress}{run.name}: done before, skipped")
+            bed_sha = done.get("bed_restart_sha256")
+            other_bed = bed_sha is not None and bed_sha != _sha256(restart)
+            self.say(f"{progress}{run.name}: done before"
+                     + (" on another preparation of the same bed recipe" if other_bed else "")
+                     + ", skipped")
             if self.archive is not None:
                 self._keep_step(d, run.name)
             return done.get("wall_s")
@@ -276,7 +335,8 @@ class Lab:
                        "wall_s_before_resume": round(ckpt.wall_before_s, 1)}
             wall += ckpt.wall_before_s
         self._finish(d, key, wall_s=round(wall, 1), np=self.np, steps=n_steps,
-                     particles=particles, dt_s=soil.dt_s, meta=run.meta, **resumed)
+                     particles=particles, dt_s=soil.dt_s, meta=run.meta,
+                     bed_restart_sha256=_sha256(restart), **resumed)
         if ckpt:
             ckpt.clear()
         if self.archive is not None:
@@ -303,16 +363,14 @@ class Lab:
 
     def run_plan(self, plan):
         self.out.mkdir(parents=True, exist_ok=True)
-        restarts = {}
-        for name, bed in plan.beds.items():
-            restarts[name], _ = self.bed(plan.soil, bed)
+        beds = {name: self.bed(plan.soil, bed) for name, bed in plan.beds.items()}
         walls = []  # wall time of each run finished so far, in this lab or before (done.json)
         for i, run in enumerate(plan.runs):
             eta = ""
             if walls:  # runs skipped as done before count at their own cost, not at 0 s
                 per = sum(walls) / len(walls)
                 eta = f", ~{per * (len(plan.runs) - i) / 60:.1f} min left"
-            wall_s = self.run(plan.soil, run, restarts[run.bed],
+            wall_s = self.run(plan.soil, run, beds[run.bed],
                               progress=f"[{i + 1}/{len(plan.runs)}{eta}] ")
             if wall_s:
                 walls.append(float(wall_s))

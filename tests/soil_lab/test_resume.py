@@ -5,13 +5,14 @@ invocation records for a later resume can be pasted back."""
 
 import json
 import shlex
+import shutil
 import sys
 import tempfile
 import unittest
 from pathlib import Path
 from unittest import mock
 
-from soil_lab_py import cli
+from soil_lab_py import cli, runner
 from soil_lab_py.runner import Lab
 
 
@@ -80,9 +81,99 @@ class Resume(unittest.TestCase):
         self.assertIsNone(lab._done(step, other))
 
     def test_a_record_from_before_included_files_is_kept(self):
-        inputs, _ = self.key()
-        (self.step / "done.json").write_text(json.dumps({"inputs": inputs, "wall_s": 1.0}))
+        (self.step / "done.json").write_text(json.dumps({"inputs": self.key().inputs,
+                                                         "wall_s": 1.0}))
         self.assertIsNotNone(self.lab._done(self.step, self.key()))
+
+
+    def test_the_record_says_what_changed(self):
+        self.lab._finish(self.step, self.key(), wall_s=1.0)
+        self.assertEqual(Lab.changed_inputs(self.step, self.key()), [])
+        other = self.lab._key({"bin_length": "0.3"}, files=(self.variant,))
+        self.assertEqual(Lab.changed_inputs(self.step, other), ["settings"])
+        self.base.write_text("variable soil_mur index 0.2\n")
+        self.assertEqual(Lab.changed_inputs(self.step, self.key()), [str(self.base)])
+        self.variant.write_text("variable soil_size_scale index 3.0\n"
+                                "include ${inputs_dir}/soils/base_sand.in\n")
+        self.assertEqual(Lab.changed_inputs(self.step, self.key()),
+                         [str(self.variant), str(self.base)])
+
+
+class BedIdentity(unittest.TestCase):
+    """A test run names its bed by the bed's recipe, not by the restart's bytes: a multisphere
+    bed's restart holds memory addresses (fix multisphere), so preparing the same recipe again
+    writes another file, and an archived run must still count (docs/soil-lab.md)."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.root = Path(self.tmp.name)
+        (self.root / "build" / "bin").mkdir(parents=True)
+        for exe in ("liggghts-wheel", "wheel-mesh"):
+            (self.root / "build" / "bin" / exe).write_text("")
+        (self.root / "repo" / "inputs").mkdir(parents=True)
+        (self.root / "repo" / "inputs" / "in.soilbin").write_text("# the bed deck\n")
+        self.soil = self.root / "sand.in"
+        self.soil.write_text("variable soil_mur index 0.3\n")
+        self.lab = Lab(self.root / "repo", self.root / "build", self.root / "out", quiet=True,
+                       archive=self.root / "arch")
+        self.messages = []
+        self.lab.say = self.messages.append
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def prepare_bed(self, restart_bytes):
+        """A bed 'prepared' by a fake LIGGGHTS that writes `restart_bytes` (the same recipe)."""
+        beds = self.root / "out" / "beds" / "b"
+        for f in beds.glob("*"):
+            f.unlink()
+        restart = beds / "bed.restart"
+
+        def fake_liggghts(deck, variables, log, cwd, while_running=None):
+            restart.write_bytes(restart_bytes)
+            return f"soilbin: restart = {restart}\nsoilbin: spheres = 10\n"
+        spec = mock.Mock(length_m=0.2, width_m=0.2, fill_height_m=0.1, extra_vars={})
+        spec.name = "b"
+        with mock.patch.object(self.lab, "_liggghts", side_effect=fake_liggghts):
+            return self.lab.bed(mock.Mock(file=str(self.soil)), spec)
+
+    def run_on(self, bed):
+        """Lab.run of a repose-like run with the LIGGGHTS call faked; True if it ran."""
+        ran = []
+
+        def fake_liggghts(deck, variables, log, cwd, while_running=None):
+            ran.append(deck)
+            return "Loop time of 1.0 on 1 procs for 100 steps with 10 atoms\n"
+        run = mock.Mock(test="repose", deck="in.lab_repose", meshes={}, variables={"x": "1"},
+                        meta={})
+        run.name = "repose"
+        soil = mock.Mock(file=str(self.soil), dt_s=1e-5)
+        with mock.patch.object(self.lab, "_liggghts", side_effect=fake_liggghts):
+            self.lab.run(soil, run, bed)
+        return bool(ran)
+
+    def test_an_archived_run_counts_on_a_bed_of_the_same_recipe(self):
+        first = self.prepare_bed(b"bodies at 0x7f5ddb5f1ce0")
+        self.assertTrue(self.run_on(first))
+        done = json.loads((self.root / "out" / "repose" / "done.json").read_text())
+        self.assertEqual(done["bed_restart_sha256"], runner._sha256(first.restart))
+        shutil.rmtree(self.root / "out")  # a new machine: only the archive is left
+        again = self.prepare_bed(b"bodies at 0x7f0a01234560")  # same recipe, other bytes
+        self.assertEqual(again.recipe, first.recipe)
+        self.assertFalse(self.run_on(again), "the archived run was run again")
+        self.assertTrue(any("another preparation of the same bed recipe" in m
+                            for m in self.messages), self.messages)
+
+    def test_a_bed_of_another_recipe_runs_again_and_says_why(self):
+        first = self.prepare_bed(b"bed")
+        self.assertTrue(self.run_on(first))
+        shutil.rmtree(self.root / "out")
+        self.soil.write_text("variable soil_mur index 0.2\n")  # another recipe
+        other = self.prepare_bed(b"bed")
+        self.assertNotEqual(other.recipe, first.recipe)
+        self.assertTrue(self.run_on(other))
+        self.assertTrue(any("does not match" in m and f"changed: {self.soil}, bed recipe" in m
+                            for m in self.messages), self.messages)
 
 
 class Provenance(unittest.TestCase):
