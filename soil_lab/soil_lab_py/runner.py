@@ -50,10 +50,10 @@ class StepKey(NamedTuple):
 
 
 class Bed(NamedTuple):
-    """A prepared bed: its restart, in.soilbin's measurements, and its recipe (what test runs on
-    it name it by)."""
+    """A prepared bed: its restart, that file's sha256 (read once per lab), and its recipe (what
+    test runs on it name it by)."""
     restart: str
-    result: dict
+    restart_sha256: str
     recipe: dict  #: {"inputs", "included_sha256", "np"}: the bed's StepKey and the ranks that made it
 
 
@@ -270,7 +270,8 @@ class Lab:
                      f"{float(result.get('bulk_density', 'nan')):.5g} kg/m^3 ({done['wall_s']} s)")
         else:
             self.say(f"bed '{bed.name}': done before, skipped")
-        return Bed(done["result"]["restart"], done["result"],
+        restart = done["result"]["restart"]
+        return Bed(restart, _sha256(restart),
                    {"inputs": key.inputs, "included_sha256": key.included, "np": done.get("np")})
 
     def run(self, soil, run, bed, progress=""):
@@ -297,7 +298,7 @@ class Lab:
                      f"(changed: {', '.join(self.changed_inputs(d, key)) or 'unknown'}): runs again")
         if done is not None:
             bed_sha = done.get("bed_restart_sha256")
-            other_bed = bed_sha is not None and bed_sha != _sha256(restart)
+            other_bed = bed_sha is not None and bed_sha != bed.restart_sha256
             self.say(f"{progress}{run.name}: done before"
                      + (" on another preparation of the same bed recipe" if other_bed else "")
                      + ", skipped")
@@ -336,7 +337,7 @@ class Lab:
             wall += ckpt.wall_before_s
         self._finish(d, key, wall_s=round(wall, 1), np=self.np, steps=n_steps,
                      particles=particles, dt_s=soil.dt_s, meta=run.meta,
-                     bed_restart_sha256=_sha256(restart), **resumed)
+                     bed_restart_sha256=bed.restart_sha256, **resumed)
         if ckpt:
             ckpt.clear()
         if self.archive is not None:
