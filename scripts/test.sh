@@ -12,4 +12,15 @@ build_dir=${WHEELSIM_BUILD_DIR:-$root/build}
 # directly: ctest --test-dir build -L long.
 skip_long=(-LE long)
 [[ ${WHEELSIM_TEST_LONG:-0} == 1 ]] && skip_long=()
-ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" "${skip_long[@]}" "$@"
+# At the end, the slowest tests of this run (scripts/test_times.py, from ctest's JUnit report):
+# CI's budget is 25 min for the whole .ci/run, build included (README "Tests").
+junit=$build_dir/Testing/ctest-junit.xml
+rm -f "$junit"
+start=$(date +%s)
+rc=0
+ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" "${skip_long[@]}" \
+  --output-junit "$junit" "$@" || rc=$?
+if [[ -f $junit ]]; then
+  /usr/bin/python3 "$root/scripts/test_times.py" "$junit" --wall "$(($(date +%s) - start))" || true
+fi
+exit "$rc"
