@@ -8,6 +8,7 @@
 // Exit status (wheelsim/cli.h): 0 done (also help and version), 1 LIGGGHTS stopped with an
 // error, 2 bad command line. Works under mpirun. See docs/liggghts-wheel.md.
 #include "flush_before_abort.h"
+#include "precompiled_contact_models.h"
 #include "style_registration.h"
 #include "wheelsim/cli.h"
 #include "wheelsim_version.h"
@@ -118,6 +119,11 @@ void print_project_help() {
               WHEELSIM_VERSION, WHEELSIM_GIT_REVISION);
   for (const std::string &name : wheelsim::wheelsim_fix_style_names())
     std::printf("  fix %s\n", name.c_str());
+  std::printf("\nContact-model combinations compiled by wheelsim (not in Debian's LIGGGHTS build,\n"
+              "which runs them through its slower generic class; %s=1 to use that):\n",
+              wheelsim::kGenericContactModelsEnv);
+  for (const std::string &keywords : wheelsim::precompiled_contact_model_names())
+    std::printf("  pair_style gran / fix wall/gran %s\n", keywords.c_str());
   std::printf("\nLIGGGHTS' own help follows.\n\n");
   std::fflush(stdout);
 }
@@ -172,18 +178,22 @@ int main(int argc, char **argv) {
     line_buffer(lmp->screen);
   line_buffer(lmp->logfile);
 
+  int precompiled = 0;
   try {
     wheelsim::register_wheelsim_styles(lmp);
+    precompiled = wheelsim::register_precompiled_contact_models();
   } catch (const std::exception &e) {
     if (rank == 0)
       std::fprintf(stderr, "liggghts-wheel: %s\n", e.what());
     MPI_Abort(MPI_COMM_WORLD, 1);
   }
   if (rank == 0) {
-    char banner[160];
+    char banner[256];
     std::snprintf(banner, sizeof(banner),
-                  "liggghts-wheel: wheelsim %s (git %s) styles registered\n", WHEELSIM_VERSION,
-                  WHEELSIM_GIT_REVISION);
+                  "liggghts-wheel: wheelsim %s (git %s) styles registered; %d contact-model "
+                  "combination(s) precompiled%s\n",
+                  WHEELSIM_VERSION, WHEELSIM_GIT_REVISION, precompiled,
+                  precompiled == 0 ? " (WHEELSIM_GENERIC_CONTACT_MODELS=1)" : "");
     if (lmp->screen)
       std::fputs(banner, lmp->screen);
     if (lmp->logfile)

@@ -1,0 +1,5 @@
+// Stand-in for LIGGGHTS' generated style_surface_model.h (not installed by Debian's
+// libliggghts-dev): the models precompiled_contact_models.cpp instantiates. Each model header gives
+// its own id (e.g. ROLLING_MODEL(ROLLING_CDT,cdt,1)), the same the library was built with. No
+// include guard: LIGGGHTS reads this file once per X_MODEL macro definition. See README.md here.
+#include "surface_model_default.h"
