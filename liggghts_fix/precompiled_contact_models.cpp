@@ -18,6 +18,8 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 namespace wheelsim {
 namespace {
@@ -79,6 +81,11 @@ int register_precompiled_contact_models() {
   const char *off = std::getenv(kGenericContactModelsEnv);
   if (off != nullptr && std::strcmp(off, "1") == 0)
     return 0;
+  if (off != nullptr && *off != '\0' && std::strcmp(off, "0") != 0)
+    throw std::runtime_error(std::string("environment variable ") + kGenericContactModelsEnv +
+                             "='" + off +
+                             "': expected 1 (LIGGGHTS' own contact-model classes "
+                             "only) or 0 / unset (liggghts-wheel's precompiled combinations)");
   PairStyles::Factory &pairs = PairStyles::Factory::instance();
   Walls::Factory &walls = Walls::Factory::instance();
   int registered = 0;
