@@ -856,6 +856,7 @@ void FixWheelCosim::contact_particle(int i, wheelsim::ContactPass &pass) {
     cs.vRel = wheelsim::contact::relativeContactVelocity(vi, wi, state.velocity_at(point), normal,
                                                          r, c.overlap_m);
     cs.omega = wi;
+    cs.omegaSurface = state.w_WB_W;
     wheelsim::contact::ContactHistory fresh{};
     wheelsim::contact::ContactHistory &history =
         slot_of[j] >= 0 ? slots[slot_of[j]].history : fresh;

@@ -21,7 +21,8 @@
 /// `cohesion ...`: a normal force added to the normal law's.
 #define WHEELSIM_COHESION_MODELS(X) X(Off, cohesion_off) X(Sjkr, cohesion_sjkr)
 /// `rolling_friction ...`: rolling resistance (a torque on the particle).
-#define WHEELSIM_ROLLING_MODELS(X) X(Off, rolling_off) X(Epsd2, rolling_epsd2) X(Cdt, rolling_cdt)
+#define WHEELSIM_ROLLING_MODELS(X)                                                                 \
+  X(Off, rolling_off) X(Epsd2, rolling_epsd2) X(Cdt, rolling_cdt) X(Krot, rolling_krot)
 
 #endif
 
@@ -32,6 +33,7 @@
 #include "models/normal_hertz.h"
 #include "models/rolling_cdt.h"
 #include "models/rolling_epsd2.h"
+#include "models/rolling_krot.h"
 #include "models/rolling_off.h"
 #include "models/tangential_history.h"
 #endif

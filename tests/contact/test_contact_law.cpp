@@ -2,6 +2,7 @@
 // Golden numbers come from tests/contact/golden_values.py (an independent transcription of the
 // LIGGGHTS 3.8 formulas; run it to regenerate them).
 #include "contact_law.h"
+#include "contact_model.h"
 
 #include <gtest/gtest.h>
 
@@ -312,6 +313,79 @@ TEST(RollingCdt, ConstantTorqueMuRollElasticForceLeverAgainstTheSpin) {
   s.omega *= 10.0; // constant: the spin rate does not matter
   const auto r10 = wc::evaluate(pc, s, 1e-6, true, h);
   EXPECT_NEAR(r10.torque.norm(), expected, 1e-12 * expected);
+}
+
+TEST(RollingKrot, LinearSpringOnTheRotationRelativeToTheWheelWithoutCap) {
+  // M = k_r θ_rel,t (θ_rel = (ω − ω_w) t, twist part removed), against the relative rotation,
+  // elastic however far it winds up: after N steps |M| = k_r |ω_rel,t| N dt exactly.
+  wc::PairMaterial pair;
+  pair.rollingSpringStiffness = 5e-5;
+  wc::ContactSettings settings;
+  settings.rolling = wc::RollingModel::Krot;
+  const auto pc = constants(pair, settings);
+  const double delta = 1e-5, dt = 1e-4;
+  wc::ContactHistory h{};
+  auto s = state(delta); // normal +z
+  s.omega = Vector3d(3.0, -4.0, 7.0);
+  s.omegaSurface = Vector3d(1.0, 0.0, -2.0); // the wheel's spin: ω_rel,t = (2, -4, 0)
+  const Vector3d wRelT(2.0, -4.0, 0.0);
+  const int n = 20000; // θ = 8.9 rad: far beyond any rolling-friction cap
+  wc::ContactResult r;
+  for (int i = 1; i <= n; ++i) {
+    r = wc::evaluate(pc, s, dt, true, h); // vRel = 0: the torque is all rolling
+    if (i == 1) {
+      const Vector3d expected = -5e-5 * dt * wRelT;
+      EXPECT_NEAR((r.torque - expected).norm(), 0.0, 1e-12 * expected.norm());
+    }
+  }
+  const Vector3d expected = -5e-5 * dt * n * wRelT;
+  EXPECT_NEAR((r.torque - expected).norm(), 0.0, 1e-9 * expected.norm());
+  // without history update the torque is the next step's and the spring keeps its state
+  const auto probe = wc::evaluate(pc, s, dt, false, h);
+  EXPECT_NEAR((probe.torque - (-5e-5 * dt * (n + 1) * wRelT)).norm(), 0.0, 1e-9 * expected.norm());
+  EXPECT_NEAR((Eigen::Map<const Vector3d>(h.rollTorque) + expected).norm(), 0.0,
+              1e-9 * expected.norm());
+  // spinning back unwinds it: elastic, no cap, no loss
+  s.omega = s.omegaSurface - Vector3d(2.0, -4.0, 5.0);
+  for (int i = 0; i < n; ++i)
+    r = wc::evaluate(pc, s, dt, true, h);
+  EXPECT_LT(r.torque.norm(), 1e-9 * expected.norm());
+  // the particle turning with the wheel winds nothing
+  wc::ContactHistory h2{};
+  s.omega = s.omegaSurface;
+  EXPECT_EQ(wc::evaluate(pc, s, dt, true, h2).torque.norm(), 0.0);
+}
+
+TEST(RollingKrot, StoredMomentFollowsTheContactPlane) {
+  // a wound spring whose contact normal turns by 90° keeps its magnitude, in the new plane
+  wc::PairMaterial pair;
+  pair.rollingSpringStiffness = 1e-4;
+  wc::ContactSettings settings;
+  settings.rolling = wc::RollingModel::Krot;
+  const auto pc = constants(pair, settings);
+  wc::ContactHistory h{};
+  h.rollTorque[0] = 2e-6; // in the plane of normal +z, and 1e-6 along y
+  h.rollTorque[1] = 1e-6;
+  auto s = state(1e-5);
+  s.normal = Vector3d(1.0, 0.0, 0.0); // x is now the normal: the y part remains, scaled up
+  const auto r = wc::evaluate(pc, s, 1e-4, true, h);
+  EXPECT_NEAR(r.torque.x(), 0.0, 1e-18);
+  EXPECT_NEAR(r.torque.y(), -std::sqrt(5.0) * 1e-6, 1e-15);
+}
+
+TEST(RollingKrot, TimestepRuleFromTheRotationalInertia) {
+  wc::PairMaterial pair;
+  pair.rollingSpringStiffness = 5e-5;
+  wc::ContactSettings settings;
+  settings.rolling = wc::RollingModel::Krot;
+  const auto pc = constants(pair, settings);
+  const auto *entry = wc::find_model(wc::ModelKind::Rolling, "krot");
+  ASSERT_NE(entry, nullptr);
+  ASSERT_NE(entry->spec->timestep, nullptr);
+  const double m = 1e-4, R = 2.5e-3; // 0.5 sqrt(0.4 m R² / k_r) = 2.236e-3 s
+  EXPECT_NEAR(entry->spec->timestep(pc, R, m), 0.5 * std::sqrt(0.4 * m * R * R / 5e-5), 1e-15);
+  pair.rollingSpringStiffness = 0.0;
+  EXPECT_TRUE(std::isinf(entry->spec->timestep(constants(pair, settings), R, m)));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -15,11 +15,12 @@
 #          own bed (sweep_mur.toml), a bed poured frictionless at 35.42 % (sweep_pour_mu0.toml),
 #          the grain size: every diameter x 1.25 and x 0.8 at 35.42 %, each on its own bed
 #          (sweep_grain_x1.25.toml, sweep_grain_x0.8.toml; the x 0.8 point ~2.5 x a main point),
-#          and a frictionless box (wall_mu 0) at 35.42 % on its own bed (sweep_wallmu0.toml);
-#          writes results_<name>.csv, comparison_<name>.md and provenance_<name>.toml here.
+#          and a frictionless box (wall_mu 0) at 35.42 % on its own bed (sweep_wallmu0.toml), and
+#          Yade's rolling spring itself (krot 5e-5 N m/rad, no cap) at 35.42 % on its own bed
+#          (sweep_krot.toml); writes results_<name>.csv, comparison_<name>.md and provenance_<name>.toml here.
 #          --only NAMES: just these, comma-separated from bed_repeat, dt_0.6e-4, window_3.25, mur,
-#          pour_mu0, grain_x1.25, grain_x0.8, wall_mu0 (mur, pour_mu0, grain_* and wall_mu0
-#          prepare their own beds: they need no main bed).
+#          pour_mu0, grain_x1.25, grain_x0.8, wall_mu0, krot (mur, pour_mu0, grain_*, wall_mu0 and
+#          krot prepare their own beds: they need no main bed).
 # --scm: the SCM half (sweep_scm.toml: the same rig on the SCM soil the soil lab fitted to the DEM
 #          soil, inputs/scm_soils/from_dem/nakanishi_2020.toml; seconds per point): writes
 #          results_scm.csv, comparison_scm.md/png (DEM against SCM) and provenance_scm.toml here.
@@ -27,7 +28,7 @@
 #          outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
-sensitivities="bed_repeat,dt_0.6e-4,window_3.25,mur,pour_mu0,grain_x1.25,grain_x0.8,wall_mu0"  # --only takes a subset of these
+sensitivities="bed_repeat,dt_0.6e-4,window_3.25,mur,pour_mu0,grain_x1.25,grain_x0.8,wall_mu0,krot"  # --only takes a subset of these
 smoke=0 sensitivity=0 scm=0 only=$sensitivities out="" sweep_args=() args=("$@")
 while (($#)); do
   case "$1" in
@@ -89,7 +90,7 @@ if ((sensitivity)); then
     echo "run.sh: --sensitivity runs in the default runs directory (its sweeps name the main sweep's bed there): leave out --out-dir" >&2; exit 2; }
   if wanted bed_repeat || wanted dt_0.6e-4 || wanted window_3.25; then
     [[ -f $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart ]] || {
-      echo "run.sh: --sensitivity runs on the main sweep's bed, $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart: run the case first (or --only mur,pour_mu0,grain_x1.25,grain_x0.8,wall_mu0)" >&2; exit 2; }
+      echo "run.sh: --sensitivity runs on the main sweep's bed, $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart: run the case first (or --only mur,pour_mu0,grain_x1.25,grain_x0.8,wall_mu0,krot)" >&2; exit 2; }
   fi
   # the two one-point sweeps side by side (one rank each), then the three window points
   pids=()
@@ -103,6 +104,7 @@ if ((sensitivity)); then
     if wanted $name; then sens $name sweep_$name.toml 1.0 2.4 || status=1; fi
   done
   if wanted wall_mu0; then sens wall_mu0 sweep_wallmu0.toml 1.0 2.4 || status=1; fi
+  if wanted krot; then sens krot sweep_krot.toml 1.0 2.4 || status=1; fi
   exit $status
 fi
 "$root/scripts/wheel-sweep" "$config" --out-dir "$out" --build-dir "$build_dir" "${sweep_args[@]}" || status=$?
