@@ -315,14 +315,19 @@ TEST(RollingCdt, ConstantTorqueMuRollElasticForceLeverAgainstTheSpin) {
   EXPECT_NEAR(r10.torque.norm(), expected, 1e-12 * expected);
 }
 
+/// Pair constants with rolling_friction krot of stiffness kr [N·m/rad].
+wc::PairConstants krot(double kr) {
+  wc::PairMaterial pair;
+  pair.rollingSpringStiffness = kr;
+  wc::ContactSettings settings;
+  settings.rolling = wc::RollingModel::Krot;
+  return constants(pair, settings);
+}
+
 TEST(RollingKrot, LinearSpringOnTheRotationRelativeToTheWheelWithoutCap) {
   // M = k_r θ_rel,t (θ_rel = (ω − ω_w) t, twist part removed), against the relative rotation,
   // elastic however far it winds up: after N steps |M| = k_r |ω_rel,t| N dt exactly.
-  wc::PairMaterial pair;
-  pair.rollingSpringStiffness = 5e-5;
-  wc::ContactSettings settings;
-  settings.rolling = wc::RollingModel::Krot;
-  const auto pc = constants(pair, settings);
+  const auto pc = krot(5e-5);
   const double delta = 1e-5, dt = 1e-4;
   wc::ContactHistory h{};
   auto s = state(delta); // normal +z
@@ -358,11 +363,7 @@ TEST(RollingKrot, LinearSpringOnTheRotationRelativeToTheWheelWithoutCap) {
 
 TEST(RollingKrot, StoredMomentFollowsTheContactPlane) {
   // a wound spring whose contact normal turns by 90° keeps its magnitude, in the new plane
-  wc::PairMaterial pair;
-  pair.rollingSpringStiffness = 1e-4;
-  wc::ContactSettings settings;
-  settings.rolling = wc::RollingModel::Krot;
-  const auto pc = constants(pair, settings);
+  const auto pc = krot(1e-4);
   wc::ContactHistory h{};
   h.rollTorque[0] = 2e-6; // in the plane of normal +z, and 1e-6 along y
   h.rollTorque[1] = 1e-6;
@@ -374,18 +375,13 @@ TEST(RollingKrot, StoredMomentFollowsTheContactPlane) {
 }
 
 TEST(RollingKrot, TimestepRuleFromTheRotationalInertia) {
-  wc::PairMaterial pair;
-  pair.rollingSpringStiffness = 5e-5;
-  wc::ContactSettings settings;
-  settings.rolling = wc::RollingModel::Krot;
-  const auto pc = constants(pair, settings);
+  const auto pc = krot(5e-5);
   const auto *entry = wc::find_model(wc::ModelKind::Rolling, "krot");
   ASSERT_NE(entry, nullptr);
   ASSERT_NE(entry->spec->timestep, nullptr);
   const double m = 1e-4, R = 2.5e-3; // 0.5 sqrt(0.4 m R² / k_r) = 2.236e-3 s
   EXPECT_NEAR(entry->spec->timestep(pc, R, m), 0.5 * std::sqrt(0.4 * m * R * R / 5e-5), 1e-15);
-  pair.rollingSpringStiffness = 0.0;
-  EXPECT_TRUE(std::isinf(entry->spec->timestep(constants(pair, settings), R, m)));
+  EXPECT_TRUE(std::isinf(entry->spec->timestep(krot(0.0), R, m)));
 }
 
 // ---------------------------------------------------------------------------------------------
