@@ -39,7 +39,7 @@ template <> class RollingModel<ROLLING_KROT> : public RollingModelBase {
 public:
   RollingModel(LAMMPS_NS::LAMMPS *lmp, IContactHistorySetup *hsetup, ContactModelBase *c)
       : RollingModelBase(lmp, hsetup, c) {
-    // "1": the values are turned with the particles' swap in a pair, like epsd2's
+    // "1": the values change sign when the pair's i and j swap (as epsd2's)
     history_offset_ = hsetup->add_history_value("r_torquex_old", "1");
     hsetup->add_history_value("r_torquey_old", "1");
     hsetup->add_history_value("r_torquez_old", "1");
