@@ -2,7 +2,8 @@
 """Validation case 1 (Nakanishi et al. 2020): our results.csv against the published curves.
 
     compare.py RESULTS.csv REFERENCE.csv --r-eff 0.11 [--scm RESULTS_SCM.csv]
-               [--png comparison.png] [--md comparison.md]
+               [--png comparison.png] [--md comparison.md] [--label TEXT]
+               [--also LABEL=RESULTS.csv ...]
 
 Net traction = drawbar pull; gross traction = driving torque / R_eff; motion resistance = net -
 gross. Each of our rows is matched to the reference row of the same slip (within 0.5 percentage
@@ -10,7 +11,9 @@ points). The goal (issue 11): net within 25 % or 1 N (the larger) of Nakanishi a
 13 % to 78 %, gross within 20 %. Prints one line per slip and the verdict; exit 0 whatever the
 verdict (it is a report, not a test), 2 on bad input. --scm: also the SCM half (the same rig on
 the SCM soil fitted to the DEM soil, matched by target slip): a table of DEM against SCM and SCM's
-curves in the plot.
+curves in the plot. --label names our curve in the plot's legend (default "wheelsim"); --also
+adds another of our results tables to the plot only (net and gross, grey), e.g. the same case with
+another contact model.
 """
 import argparse
 import math
@@ -40,7 +43,19 @@ def main():
     ap.add_argument("--scm", help="the SCM half's results table (run.sh --scm)")
     ap.add_argument("--png")
     ap.add_argument("--md")
+    ap.add_argument("--label", default="wheelsim", help="our curve's name in the legend")
+    ap.add_argument("--also", action="append", default=[], metavar="LABEL=CSV",
+                    help="another results table of ours, plotted in grey (repeatable)")
     a = ap.parse_args()
+    also = []
+    for item in a.also:
+        label, sep, path = item.partition("=")
+        if not sep or not label or not path:
+            ap.error(f"--also expects LABEL=RESULTS.csv, got '{item}'")
+        rows = read_csv(path)
+        also.append((label, sorted(
+            (100.0 * number(r, "slip", path), number(r, "drawbar_pull_N", path),
+             number(r, "driving_torque_Nm", path) / a.r_eff) for r in rows)))
     if not a.r_eff > 0:
         ap.error(f"--r-eff must be > 0 m, got {a.r_eff}")
     ours = read_csv(a.results)
@@ -123,10 +138,17 @@ def main():
                 alpha=0.6, label="net, Yade re-run")
         s = [t["slip"] for t in table]
         ax.errorbar(s, [t["net"] for t in table], yerr=[t["net_sem"] for t in table], fmt="o--",
-                    color="C0", mfc="white", capsize=3, label="net, wheelsim (± SEM)")
+                    color="C0", mfc="white", capsize=3, label=f"net, {a.label} (± SEM)")
         ax.errorbar(s, [t["gross"] for t in table],
                     yerr=[0 if math.isnan(t["gross_sem"]) else t["gross_sem"] for t in table],
-                    fmt="o--", color="C1", mfc="white", capsize=3, label="gross T/R_eff, wheelsim")
+                    fmt="o--", color="C1", mfc="white", capsize=3,
+                    label=f"gross T/R_eff, {a.label}")
+        for k, (label, rows) in enumerate(also):
+            style = ("v", "D", "P")[k % 3]
+            ax.plot([r[0] for r in rows], [r[1] for r in rows], style + ":", color="0.45",
+                    mfc="white", label=f"net, {label}")
+            ax.plot([r[0] for r in rows], [r[2] for r in rows], style + ":", color="0.7",
+                    mfc="white", label=f"gross, {label}")
         if scm:
             ss = [m["slip"] for m in scm]
             ax.plot(ss, [m["scm_net"] for m in scm], "x-.", color="C0",

@@ -104,7 +104,15 @@ if ((sensitivity)); then
     if wanted $name; then sens $name sweep_$name.toml 1.0 2.4 || status=1; fi
   done
   if wanted wall_mu0; then sens wall_mu0 sweep_wallmu0.toml 1.0 2.4 || status=1; fi
-  if wanted krot; then sens krot sweep_krot.toml 1.0 2.4 || status=1; fi
+  if wanted krot; then
+    sens krot sweep_krot.toml 1.0 2.4 || status=1
+    # the krot curve against the references, the main table (cdt mapping) in grey
+    if [[ -f $here/results_krot.csv ]]; then
+      "$python" "$here/compare.py" "$here/results_krot.csv" "$here/reference.csv" --r-eff 0.11 \
+        --label "wheelsim, krot" --also "wheelsim, cdt μr 0.05 (mapping)=$here/results.csv" \
+        --png "$here/comparison_krot.png" > /dev/null || status=1
+    fi
+  fi
   exit $status
 fi
 "$root/scripts/wheel-sweep" "$config" --out-dir "$out" --build-dir "$build_dir" "${sweep_args[@]}" || status=$?
