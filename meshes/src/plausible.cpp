@@ -23,4 +23,11 @@ std::optional<std::string> implausible_size(const std::string &name, double valu
   return os.str();
 }
 
+std::string bad_value_message(const std::string &name, double value, const char *unit,
+                              const std::string &expected) {
+  std::ostringstream os;
+  os << name << " " << value << (unit[0] ? " " : "") << unit << ": " << expected;
+  return os.str();
+}
+
 } // namespace wheelsim::meshes

@@ -28,4 +28,24 @@ std::string metres_hint(const std::string &name, double value, PlausibleRange ra
 std::optional<std::string> implausible_size(const std::string &name, double value,
                                             PlausibleRange range, const char *what);
 
+/// "NAME VALUE UNIT: EXPECTED" (no unit when `unit` is empty), e.g. "--width -1 m: the width
+/// must be > 0 m": the message of a size or count out of its valid range.
+std::string bad_value_message(const std::string &name, double value, const char *unit,
+                              const std::string &expected);
+
+/// Throws Error (WheelSpecError, ToolSpecError) with bad_value_message(...).
+template <class Error>
+[[noreturn]] void fail_value(const std::string &name, double value, const char *unit,
+                             const std::string &expected) {
+  throw Error(bad_value_message(name, value, unit, expected));
+}
+
+/// Throws Error with the implausible_size message when `value` is outside `range`.
+template <class Error>
+void check_plausible(const std::string &name, double value, PlausibleRange range,
+                     const char *what) {
+  if (auto message = implausible_size(name, value, range, what))
+    throw Error(*message);
+}
+
 } // namespace wheelsim::meshes

@@ -9,22 +9,9 @@ namespace {
 
 const double kPi = std::acos(-1.0);
 
-[[noreturn]] void fail(const std::string &name, double value, const char *unit,
-                       const std::string &expected) {
-  std::ostringstream os;
-  os << name << " " << value << (unit[0] ? " " : "") << unit << ": " << expected;
-  throw ToolSpecError(os.str());
-}
-
 void check_positive(const std::string &name, double value, const char *what) {
   if (!(value > 0.0) || !std::isfinite(value))
-    fail(name, value, "m", std::string(what) + " must be > 0 m");
-}
-
-void check_plausible(const std::string &name, double value, PlausibleRange range,
-                     const char *what) {
-  if (auto message = implausible_size(name, value, range, what))
-    throw ToolSpecError(*message);
+    fail_value<ToolSpecError>(name, value, "m", std::string(what) + " must be > 0 m");
 }
 
 /// Parts of an interval of `length_m` with edges no longer than `max_edge_m` (1 when 0).
@@ -131,29 +118,32 @@ void validate(const ToolSpec &s) {
     check_positive("LX", s.lx_m, "the plate length");
     check_positive("LY", s.ly_m, "the plate width");
     check_positive("T", s.height_m, "the plate thickness");
-    check_plausible("LX", s.lx_m, kPlausibleToolLength_m, "a plate length");
-    check_plausible("LY", s.ly_m, kPlausibleToolLength_m, "a plate width");
-    check_plausible("T", s.height_m, kPlausibleToolThickness_m, "a plate thickness");
+    check_plausible<ToolSpecError>("LX", s.lx_m, kPlausibleToolLength_m, "a plate length");
+    check_plausible<ToolSpecError>("LY", s.ly_m, kPlausibleToolLength_m, "a plate width");
+    check_plausible<ToolSpecError>("T", s.height_m, kPlausibleToolThickness_m, "a plate thickness");
     break;
   case ToolKind::plate_disc:
     check_positive("R", s.radius_m, "the plate radius");
     check_positive("T", s.height_m, "the plate thickness");
-    check_plausible("R", s.radius_m, kPlausibleToolLength_m, "a plate radius");
-    check_plausible("T", s.height_m, kPlausibleToolThickness_m, "a plate thickness");
+    check_plausible<ToolSpecError>("R", s.radius_m, kPlausibleToolLength_m, "a plate radius");
+    check_plausible<ToolSpecError>("T", s.height_m, kPlausibleToolThickness_m, "a plate thickness");
     break;
   case ToolKind::frame:
     check_positive("LX", s.lx_m, "the hole length");
     check_positive("LY", s.ly_m, "the hole width");
     if (!(s.wall_m > 0.0) || !std::isfinite(s.wall_m)) {
-      fail("WALL", s.wall_m, "m",
-           "the wall thickness must be > 0 m (the frame is the hole LX x LY with a wall WALL on "
-           "every side; without a wall the hole would be as large as the body)");
+      fail_value<ToolSpecError>(
+          "WALL", s.wall_m, "m",
+          "the wall thickness must be > 0 m (the frame is the hole LX x LY with a wall WALL on "
+          "every side; without a wall the hole would be as large as the body)");
     }
     check_positive("H", s.height_m, "the frame height");
-    check_plausible("LX", s.lx_m, kPlausibleToolLength_m, "the hole length of a frame");
-    check_plausible("LY", s.ly_m, kPlausibleToolLength_m, "the hole width of a frame");
-    check_plausible("WALL", s.wall_m, kPlausibleToolThickness_m, "a frame wall");
-    check_plausible("H", s.height_m, kPlausibleToolHeight_m, "a frame height");
+    check_plausible<ToolSpecError>("LX", s.lx_m, kPlausibleToolLength_m,
+                                   "the hole length of a frame");
+    check_plausible<ToolSpecError>("LY", s.ly_m, kPlausibleToolLength_m,
+                                   "the hole width of a frame");
+    check_plausible<ToolSpecError>("WALL", s.wall_m, kPlausibleToolThickness_m, "a frame wall");
+    check_plausible<ToolSpecError>("H", s.height_m, kPlausibleToolHeight_m, "a frame height");
     break;
   case ToolKind::ring: {
     check_positive("RI", s.inner_radius_m, "the inner radius");
@@ -165,9 +155,10 @@ void validate(const ToolSpec &s) {
       throw ToolSpecError(os.str());
     }
     check_positive("H", s.height_m, "the ring height");
-    check_plausible("RO", s.radius_m, kPlausibleToolLength_m, "the outer radius of a ring");
-    check_plausible("RI", s.inner_radius_m, kPlausibleToolInnerRadius_m,
-                    "the inner radius of a ring");
+    check_plausible<ToolSpecError>("RO", s.radius_m, kPlausibleToolLength_m,
+                                   "the outer radius of a ring");
+    check_plausible<ToolSpecError>("RI", s.inner_radius_m, kPlausibleToolInnerRadius_m,
+                                   "the inner radius of a ring");
     const double wall = s.radius_m - s.inner_radius_m;
     if (wall < kPlausibleToolThickness_m.min_m) {
       std::ostringstream os;
@@ -175,7 +166,7 @@ void validate(const ToolSpec &s) {
          << " m): the ring wall must be at least " << kPlausibleToolThickness_m.min_m << " m thick";
       throw ToolSpecError(os.str());
     }
-    check_plausible("H", s.height_m, kPlausibleToolHeight_m, "a ring height");
+    check_plausible<ToolSpecError>("H", s.height_m, kPlausibleToolHeight_m, "a ring height");
     break;
   }
   }
@@ -194,7 +185,8 @@ void validate(const ToolSpec &s) {
     }
   }
   if (!(s.max_edge_m >= 0.0) || !std::isfinite(s.max_edge_m)) {
-    fail("--max-edge", s.max_edge_m, "m", "must be > 0 m (or 0 for no subdivision)");
+    fail_value<ToolSpecError>("--max-edge", s.max_edge_m, "m",
+                              "must be > 0 m (or 0 for no subdivision)");
   }
   const double n = estimated_triangle_count(s);
   if (n > kMaxEstimatedTriangles) {

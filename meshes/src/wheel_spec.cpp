@@ -5,23 +5,6 @@
 #include <sstream>
 
 namespace wheelsim::meshes {
-namespace {
-
-[[noreturn]] void fail(const std::string &option, double value, const char *unit,
-                       const std::string &expected) {
-  std::ostringstream os;
-  os << option << " " << value << (unit[0] ? " " : "") << unit << ": " << expected;
-  throw WheelSpecError(os.str());
-}
-
-/// Throws the implausible_size message (plausible.h) when `value` is outside `range`.
-void check_plausible(const std::string &option, double value, PlausibleRange range,
-                     const char *what) {
-  if (auto message = implausible_size(option, value, range, what))
-    throw WheelSpecError(*message);
-}
-
-} // namespace
 
 double estimated_triangle_count(const WheelSpec &s) {
   const double pi = std::acos(-1.0);
@@ -75,25 +58,27 @@ void check_triangle_count(const WheelSpec &s) {
 
 void validate(const WheelSpec &s) {
   if (!(s.diameter_m > 0.0) || !std::isfinite(s.diameter_m)) {
-    fail("--diameter", s.diameter_m, "m", "the outer diameter must be > 0 m");
+    fail_value<WheelSpecError>("--diameter", s.diameter_m, "m", "the outer diameter must be > 0 m");
   }
   if (!(s.width_m > 0.0) || !std::isfinite(s.width_m)) {
-    fail("--width", s.width_m, "m", "the width must be > 0 m");
+    fail_value<WheelSpecError>("--width", s.width_m, "m", "the width must be > 0 m");
   }
-  check_plausible("--diameter", s.diameter_m, kPlausibleDiameter_m, "a wheel diameter");
-  check_plausible("--width", s.width_m, kPlausibleWidth_m, "a wheel width");
+  check_plausible<WheelSpecError>("--diameter", s.diameter_m, kPlausibleDiameter_m,
+                                  "a wheel diameter");
+  check_plausible<WheelSpecError>("--width", s.width_m, kPlausibleWidth_m, "a wheel width");
   const Resolution &r = s.resolution;
   if (!(r.max_arc_m > 0.0))
-    fail("--max-arc", r.max_arc_m, "m", "must be > 0 m");
+    fail_value<WheelSpecError>("--max-arc", r.max_arc_m, "m", "must be > 0 m");
   if (!(r.max_angle_deg > 0.0 && r.max_angle_deg <= 45.0)) {
-    fail("--max-angle", r.max_angle_deg, "deg", "must be in (0, 45] deg");
+    fail_value<WheelSpecError>("--max-angle", r.max_angle_deg, "deg", "must be in (0, 45] deg");
   }
   if (!(r.max_width_edge_m > 0.0)) {
-    fail("--max-width-edge", r.max_width_edge_m, "m", "must be > 0 m");
+    fail_value<WheelSpecError>("--max-width-edge", r.max_width_edge_m, "m", "must be > 0 m");
   }
   if (s.smooth) {
     if (s.lug_count != 0) {
-      fail("--lugs", s.lug_count, "", "a smooth wheel has no lugs: drop --lugs or --smooth");
+      fail_value<WheelSpecError>("--lugs", s.lug_count, "",
+                                 "a smooth wheel has no lugs: drop --lugs or --smooth");
     }
     check_triangle_count(s);
     return;
@@ -105,30 +90,34 @@ void validate(const WheelSpec &s) {
     throw WheelSpecError(os.str());
   }
   if (s.lug_count > 1000)
-    fail("--lugs", s.lug_count, "", "at most 1000 lugs");
+    fail_value<WheelSpecError>("--lugs", s.lug_count, "", "at most 1000 lugs");
   if (!(s.lug_height_m > 0.0)) {
-    fail("--lug-height", s.lug_height_m, "m", "must be > 0 m (use --smooth for no lugs)");
+    fail_value<WheelSpecError>("--lug-height", s.lug_height_m, "m",
+                               "must be > 0 m (use --smooth for no lugs)");
   }
   if (!(s.lug_height_m < 0.5 * s.diameter_m)) {
     std::ostringstream os;
     os << "must be less than the outer radius D0/2 = " << 0.5 * s.diameter_m
        << " m (the rim radius D0/2 - lh must stay > 0)"
        << metres_hint("--lug-height", s.lug_height_m, kPlausibleLugHeight_m);
-    fail("--lug-height", s.lug_height_m, "m", os.str());
+    fail_value<WheelSpecError>("--lug-height", s.lug_height_m, "m", os.str());
   }
-  check_plausible("--lug-height", s.lug_height_m, kPlausibleLugHeight_m, "a lug height");
+  check_plausible<WheelSpecError>("--lug-height", s.lug_height_m, kPlausibleLugHeight_m,
+                                  "a lug height");
   if (!(s.lug_width_m > 0.0))
-    fail("--lug-width", s.lug_width_m, "m", "must be > 0 m");
-  check_plausible("--lug-width", s.lug_width_m, kPlausibleLugWidth_m, "a lug width");
+    fail_value<WheelSpecError>("--lug-width", s.lug_width_m, "m", "must be > 0 m");
+  check_plausible<WheelSpecError>("--lug-width", s.lug_width_m, kPlausibleLugWidth_m,
+                                  "a lug width");
   if (!(s.lug_angle_deg >= 0.0 && s.lug_angle_deg <= 70.0)) {
-    fail("--lug-angle", s.lug_angle_deg, "deg", "must be in [0, 70] deg (angle to the axle)");
+    fail_value<WheelSpecError>("--lug-angle", s.lug_angle_deg, "deg",
+                               "must be in [0, 70] deg (angle to the axle)");
   }
   if (s.type != LugType::straight) {
     if (!(s.centre_length_m >= 0.0 && s.centre_length_m < s.width_m)) {
       std::ostringstream os;
       os << "the centre length must be in [0, w) = [0, " << s.width_m << ") m for "
          << to_string(s.type) << " lugs";
-      fail("--centre-length", s.centre_length_m, "m", os.str());
+      fail_value<WheelSpecError>("--centre-length", s.centre_length_m, "m", os.str());
     }
   }
   check_triangle_count(s);
