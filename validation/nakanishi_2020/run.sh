@@ -28,7 +28,13 @@
 #          outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
-sensitivities="bed_repeat,dt_0.6e-4,window_3.25,mur,pour_mu0,grain_x1.25,grain_x0.8,wall_mu0,krot"  # --only takes a subset of these
+# The sensitivity sweeps: on the main sweep's bed, and on beds of their own (NAME:CONFIG, run one
+# after the other, window test seconds 1.0-2.4). --only takes a subset of the names.
+main_bed_sensitivities="bed_repeat,dt_0.6e-4,window_3.25"
+own_bed_sweeps=(mur:sweep_mur.toml pour_mu0:sweep_pour_mu0.toml grain_x1.25:sweep_grain_x1.25.toml
+                grain_x0.8:sweep_grain_x0.8.toml wall_mu0:sweep_wallmu0.toml krot:sweep_krot.toml)
+own_bed_names=$(IFS=,; echo "${own_bed_sweeps[*]%%:*}")
+sensitivities="$main_bed_sensitivities,$own_bed_names"
 smoke=0 sensitivity=0 scm=0 only=$sensitivities out="" sweep_args=() args=("$@")
 while (($#)); do
   case "$1" in
@@ -90,7 +96,7 @@ if ((sensitivity)); then
     echo "run.sh: --sensitivity runs in the default runs directory (its sweeps name the main sweep's bed there): leave out --out-dir" >&2; exit 2; }
   if wanted bed_repeat || wanted dt_0.6e-4 || wanted window_3.25; then
     [[ -f $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart ]] || {
-      echo "run.sh: --sensitivity runs on the main sweep's bed, $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart: run the case first (or --only mur,pour_mu0,grain_x1.25,grain_x0.8,wall_mu0,krot)" >&2; exit 2; }
+      echo "run.sh: --sensitivity runs on the main sweep's bed, $out/beds/nakanishi_bin/soilbin_nakanishi_2020.restart: run the case first (or --only $own_bed_names)" >&2; exit 2; }
   fi
   # the two one-point sweeps side by side (one rank each), then the three window points
   pids=()
@@ -98,14 +104,10 @@ if ((sensitivity)); then
   if wanted dt_0.6e-4; then sens dt_0.6e-4 sweep_dt.toml 1.0 2.4 & pids+=($!); fi
   for pid in "${pids[@]}"; do wait "$pid" || status=1; done
   if wanted window_3.25; then sens window_3.25 sweep_window.toml 1.0 3.25 || status=1; fi
-  if wanted mur; then sens mur sweep_mur.toml 1.0 2.4 || status=1; fi
-  if wanted pour_mu0; then sens pour_mu0 sweep_pour_mu0.toml 1.0 2.4 || status=1; fi
-  for name in grain_x1.25 grain_x0.8; do
-    if wanted $name; then sens $name sweep_$name.toml 1.0 2.4 || status=1; fi
+  for entry in "${own_bed_sweeps[@]}"; do
+    if wanted "${entry%%:*}"; then sens "${entry%%:*}" "${entry#*:}" 1.0 2.4 || status=1; fi
   done
-  if wanted wall_mu0; then sens wall_mu0 sweep_wallmu0.toml 1.0 2.4 || status=1; fi
   if wanted krot; then
-    sens krot sweep_krot.toml 1.0 2.4 || status=1
     # the krot curve against the references, the main table (cdt mapping) in grey
     if [[ -f $here/results_krot.csv ]]; then
       "$python" "$here/compare.py" "$here/results_krot.csv" "$here/reference.csv" --r-eff 0.11 \
