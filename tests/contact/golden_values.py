@@ -4,7 +4,8 @@
 An independent, straight-line transcription (plain floats, no shared code with the C++) of the
 wall-contact formulas documented in docs/contact-law.md:
 global_properties.cpp (Yeff, Geff, betaeff), normal_model_hertz.h, normal_model_edinburgh.h,
-cohesion_model_sjkr.h, tangential_model_history.h, rolling_model_epsd2.h, with the wall
+cohesion_model_sjkr.h, tangential_model_history.h, rolling_model_epsd2.h, and wheelsim's own
+rolling_friction krot (docs/contact-law.md, no LIGGGHTS source), with the wall
 conventions of fix_wall_gran.cpp (reff = R, meff = m, r = R - delta, c_r = R - delta/2).
 Each case is one evaluation from a given history. Run: python3 golden_values.py (prints the
 numbers pasted into the Golden.* tests, 17 significant digits).
@@ -95,9 +96,27 @@ def eepa_fixkc_case():
     return dict(Fn=Fc + f0, deltaMax=newmax, branch=ftmp)
 
 
+def krot_case():
+    # k_r = 5e-5 N m/rad; a stored moment partly along the new normal n = (0.6, 0, 0.8); particle
+    # spin (3, -4, 7), wheel spin (0, 1.5, 0); vRel = 0 (the torque is the rolling moment alone)
+    kr = 5.0e-5
+    n = (0.6, 0.0, 0.8)
+    m_old = (2.0e-7, -1.0e-7, 3.0e-8)
+    w = (3.0 - 0.0, -4.0 - 1.5, 7.0 - 0.0)
+    before = math.sqrt(sum(x * x for x in m_old))
+    mn = sum(a * b for a, b in zip(m_old, n))
+    m_t = [a - mn * b for a, b in zip(m_old, n)]
+    after = math.sqrt(sum(x * x for x in m_t))
+    m_t = [x * before / after for x in m_t]
+    wn = sum(a * b for a, b in zip(w, n))
+    w_t = [a - wn * b for a, b in zip(w, n)]
+    m_new = [a + kr * DT * b for a, b in zip(m_t, w_t)]
+    return dict(torque=[-x for x in m_new], rollTorque=m_new)
+
+
 if __name__ == "__main__":
     for name, case in (("hertz+sjkr+epsd2", hertz_case()), ("eepa default", eepa_default_case()),
-                       ("eepa fixKc", eepa_fixkc_case())):
+                       ("eepa fixKc", eepa_fixkc_case()), ("krot", krot_case())):
         print(name)
         for k, v in case.items():
             if isinstance(v, list):

@@ -549,4 +549,23 @@ TEST(Golden, EepaFixKcAdhesiveStep) {
   EXPECT_NEAR(relErr(h.deltaMax, 2.1725000000000003e-05), 0.0, 1e-12);
 }
 
+TEST(Golden, KrotTurnedMomentAndRelativeSpinOneStep) {
+  // golden_values.py krot_case: a stored moment partly along the new normal, the spin relative
+  // to the wheel's, vRel = 0 (the torque is the rolling moment alone)
+  const auto pc = krot(5e-5);
+  auto s = state(1.0e-5, Vector3d::Zero(), Vector3d(0.6, 0.0, 0.8));
+  s.omega = Vector3d(3.0, -4.0, 7.0);
+  s.omegaSurface = Vector3d(0.0, 1.5, 0.0);
+  wc::ContactHistory h{};
+  h.rollTorque[0] = 2.0e-7;
+  h.rollTorque[1] = -1.0e-7;
+  h.rollTorque[2] = 3.0e-8;
+  const auto r = wc::evaluate(pc, s, 1.0e-6, true, h);
+  const Vector3d expected(-1.4749619204537486e-07, 1.3017657750473138e-07, 1.1062214403403115e-07);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(relErr(r.torque[k], expected[k]), 0.0, 1e-12);
+    EXPECT_NEAR(relErr(h.rollTorque[k], -expected[k]), 0.0, 1e-12);
+  }
+}
+
 } // namespace
