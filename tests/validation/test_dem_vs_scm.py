@@ -6,10 +6,10 @@ one line naming the file).
 
     test_dem_vs_scm.py --work DIR
 """
-import argparse
-import subprocess
 import sys
 from pathlib import Path
+
+from script_test import run_script, work_dir
 
 SCRIPT = Path(__file__).resolve().parents[2] / "validation" / "common" / "dem_vs_scm.py"
 HEAD = ("# wheelsim-post curves --results (synthetic)\n"
@@ -22,17 +22,11 @@ def table(path, rows):
 
 
 def run(*args):
-    r = subprocess.run([sys.executable, str(SCRIPT), *map(str, args)], capture_output=True,
-                       text=True, timeout=60)
-    print(f"$ dem_vs_scm.py {' '.join(map(str, args))} -> {r.returncode}\n{r.stdout}{r.stderr}")
-    return r
+    return run_script(SCRIPT, *args)
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--work", required=True)
-    work = Path(ap.parse_args().work)
-    work.mkdir(parents=True, exist_ok=True)
+    work = work_dir()
     fails = []
 
     def check(cond, msg):

@@ -6,10 +6,10 @@ comparison PNG with another table of ours overlaid (--also, --label), and a malf
 
     test_nakanishi_compare.py --work DIR
 """
-import argparse
-import subprocess
 import sys
 from pathlib import Path
+
+from script_test import run_script, work_dir
 
 CASE = Path(__file__).resolve().parents[2] / "validation" / "nakanishi_2020"
 HEAD = ("# wheelsim-post curves --results (synthetic)\n"
@@ -23,17 +23,11 @@ def table(path, rows):
 
 
 def run(*args):
-    r = subprocess.run([sys.executable, str(CASE / "compare.py"), *map(str, args)],
-                       capture_output=True, text=True, timeout=60)
-    print(f"$ compare.py {' '.join(map(str, args))} -> {r.returncode}\n{r.stdout}{r.stderr}")
-    return r
+    return run_script(CASE / "compare.py", *args)
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--work", required=True)
-    work = Path(ap.parse_args().work)
-    work.mkdir(parents=True, exist_ok=True)
+    work = work_dir()
     ref = CASE / "reference.csv"
     # 13.05 %: net 2.54 + 0.9 N (inside 1 N), gross 4.95 * 1.1 (inside 20 %);
     # 35.42 %: net 7.53 * 0.7 (outside 25 %), gross 10.06 * 0.85 (inside)

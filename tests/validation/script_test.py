@@ -1,0 +1,25 @@
+"""Shared by the tests of the validation cases' scripts (test_dem_vs_scm.py,
+test_nakanishi_compare.py): the work directory from --work, and a script run on this interpreter
+with its call and output echoed to the test log."""
+import argparse
+import subprocess
+import sys
+from pathlib import Path
+
+
+def work_dir():
+    """The directory given by --work, created if missing."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--work", required=True)
+    work = Path(ap.parse_args().work)
+    work.mkdir(parents=True, exist_ok=True)
+    return work
+
+
+def run_script(script, *args, timeout=60):
+    """Runs `script` with `args` (str() of each); echoes the call, exit status and output."""
+    r = subprocess.run([sys.executable, str(script), *map(str, args)], capture_output=True,
+                       text=True, timeout=timeout)
+    print(f"$ {Path(script).name} {' '.join(map(str, args))} -> {r.returncode}\n"
+          f"{r.stdout}{r.stderr}")
+    return r
