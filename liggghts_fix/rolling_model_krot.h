@@ -2,12 +2,11 @@
 // 3.8 has no force-independent rolling spring). A linear rotational spring of stiffness k_r
 // [N·m/rad] (per type pair property `rollingSpringStiffness`) on the relative rolling rotation,
 // without a cap: Yade's Hertz–Mindlin moment law with krot set, ktwist 0 and eta 0, as the
-// Nakanishi et al. 2020 wheel case uses it. Per contact and step:
-//   M <- M turned into the current tangent plane (normal part removed, magnitude kept),
-//   M <- M + k_r dt ω_rel,t,   ω_rel = ω_i − ω_j (a wall: ω_i; LIGGGHTS' walls do not spin),
-//   torque −M on i, +M on j;  ω_rel,t is ω_rel without its part along the normal (no twist).
-// The same law on the wheel is liggghts_fix/contact/models/rolling_krot.h (there ω_rel is taken
-// relative to the wheel's spin). docs/contact-law.md, "Rolling: rolling_friction krot".
+// Nakanishi et al. 2020 wheel case uses it. Per contact and step the spring of
+// contact/rolling_spring.h (turned into the tangent plane, then M += k_r dt ω_rel,t) on
+// ω_rel = ω_i − ω_j (a wall: ω_i; LIGGGHTS' walls do not spin); torque −M on i, +M on j. The same
+// spring on the wheel is contact/models/rolling_krot.h (there ω_rel is relative to the wheel's
+// spin). docs/contact-law.md, "Rolling: rolling_friction krot".
 //
 // Written after LIGGGHTS' rolling_model_epsd2.h (its history slots and hooks): this header is
 // read like one of LIGGGHTS' own model headers, once with ROLLING_MODEL defined (the id line,
@@ -22,11 +21,10 @@ ROLLING_MODEL(ROLLING_KROT, krot, 20)
 #ifndef WHEELSIM_ROLLING_MODEL_KROT_H
 #define WHEELSIM_ROLLING_MODEL_KROT_H
 
+#include "contact/rolling_spring.h"
 #include "contact_models.h"
 #include "global_properties.h"
 #include "rolling_model_base.h"
-
-#include <cmath>
 
 namespace LIGGGHTS {
 namespace ContactModels {
@@ -64,27 +62,10 @@ public:
     if (!sidata.is_wall)
       for (int k = 0; k < 3; ++k)
         w[k] -= omega[sidata.j][k];
-    const double *n = sidata.en;
-    const double wn = w[0] * n[0] + w[1] * n[1] + w[2] * n[2];
-    for (int k = 0; k < 3; ++k)
-      w[k] -= wn * n[k];
-
     double *const hist = &sidata.contact_history[history_offset_];
     double M[3] = {hist[0], hist[1], hist[2]};
-    const double before = std::sqrt(M[0] * M[0] + M[1] * M[1] + M[2] * M[2]);
-    if (before > 0.0) {
-      const double mn = M[0] * n[0] + M[1] * n[1] + M[2] * n[2];
-      for (int k = 0; k < 3; ++k)
-        M[k] -= mn * n[k];
-      const double after = std::sqrt(M[0] * M[0] + M[1] * M[1] + M[2] * M[2]);
-      const double scale = after > 0.0 ? before / after : 0.0;
-      for (int k = 0; k < 3; ++k)
-        M[k] *= scale;
-    }
-    const double step = update->dt * stiffness_[sidata.itype][sidata.jtype];
-    for (int k = 0; k < 3; ++k)
-      M[k] += step * w[k];
-
+    wheelsim::contact::advance_rolling_spring(M, sidata.en, w,
+                                              update->dt * stiffness_[sidata.itype][sidata.jtype]);
     if (sidata.computeflag && sidata.shearupdate)
       for (int k = 0; k < 3; ++k)
         hist[k] = M[k];

@@ -1,6 +1,6 @@
 """Shared by the tests of the validation cases' scripts (test_dem_vs_scm.py,
-test_nakanishi_compare.py): the work directory from --work, and a script run on this interpreter
-with its call and output echoed to the test log."""
+test_nakanishi_compare.py): the work directory from --work, a script run on this interpreter
+with its call and output echoed to the test log, and the verdict."""
 import argparse
 import subprocess
 import sys
@@ -23,3 +23,11 @@ def run_script(script, *args, timeout=60):
     print(f"$ {Path(script).name} {' '.join(map(str, args))} -> {r.returncode}\n"
           f"{r.stdout}{r.stderr}")
     return r
+
+
+def report(failures):
+    """Prints each failure and the verdict; returns the exit status (0 pass, 1 fail)."""
+    for f in failures:
+        print("FAIL:", f)
+    print("PASS" if not failures else f"{len(failures)} failure(s)")
+    return 1 if failures else 0

@@ -9,7 +9,7 @@ one line naming the file).
 import sys
 from pathlib import Path
 
-from script_test import run_script, work_dir
+from script_test import report, run_script, work_dir
 
 SCRIPT = Path(__file__).resolve().parents[2] / "validation" / "common" / "dem_vs_scm.py"
 HEAD = ("# wheelsim-post curves --results (synthetic)\n"
@@ -53,10 +53,7 @@ def main():
     r = run(dem, bad, "--md", work / "y.md")
     check(r.returncode == 2 and str(bad) in r.stderr and "missing" in r.stderr
           and len(r.stderr.strip().splitlines()) == 1, "a missing column: one line naming the file")
-    for f in fails:
-        print("FAIL:", f)
-    print("PASS" if not fails else f"{len(fails)} failure(s)")
-    return 1 if fails else 0
+    return report(fails)
 
 
 if __name__ == "__main__":

@@ -9,7 +9,7 @@ comparison PNG with another table of ours overlaid (--also, --label), and a malf
 import sys
 from pathlib import Path
 
-from script_test import run_script, work_dir
+from script_test import report, run_script, work_dir
 
 CASE = Path(__file__).resolve().parents[2] / "validation" / "nakanishi_2020"
 HEAD = ("# wheelsim-post curves --results (synthetic)\n"
@@ -50,10 +50,7 @@ def main():
     bad = run(ours, ref, "--r-eff", "0.11", "--also", str(other))
     if bad.returncode != 2 or "--also expects LABEL=RESULTS.csv" not in bad.stderr:
         failures.append("a malformed --also is not named (exit 2)")
-    for f in failures:
-        print("FAIL:", f)
-    print("PASS" if not failures else f"{len(failures)} failure(s)")
-    return 1 if failures else 0
+    return report(failures)
 
 
 if __name__ == "__main__":

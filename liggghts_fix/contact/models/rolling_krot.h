@@ -6,6 +6,7 @@
 #pragma once
 
 #include "contact_model.h"
+#include "rolling_spring.h"
 
 #include <cmath>
 
@@ -39,27 +40,15 @@ constexpr ModelSpec spec{"krot",
                          maxTimestep,
                          "the rolling spring needs dt <= 0.5 sqrt(I / k_r), I = 2/5 m R²"};
 
-/// The stored moment M (on the wheel's side of the contact, i.e. the particle feels −M) is first
-/// turned into the current tangent plane (its normal part removed, its magnitude kept: the
-/// contact frame's rotation, as LIGGGHTS turns the tangential spring), then grows by
-/// k_r dt ω_rel,t with ω_rel = ω_particle − ω_wheel and its part along the normal (twist)
-/// removed. No cap: the spring is elastic however far it is wound.
+/// The spring of rolling_spring.h on ω_rel = ω_particle − ω_wheel: the particle feels −M.
 inline void apply(const ContactStep &c, const NormalPart &, double, ContactResult &out) {
   const ContactState &s = c.state;
-  const Eigen::Vector3d &n = s.normal;
-  Eigen::Vector3d wRel = s.omega - s.omegaSurface;
-  wRel -= wRel.dot(n) * n;
-  Eigen::Map<Eigen::Vector3d> rollTorque(c.history.rollTorque);
-  Eigen::Vector3d M = rollTorque;
-  const double before = M.norm();
-  if (before > 0.0) {
-    M -= M.dot(n) * n;
-    const double after = M.norm();
-    M = after > 0.0 ? Eigen::Vector3d(M * (before / after)) : Eigen::Vector3d::Zero();
-  }
-  M += (c.dt * c.pc.pair.rollingSpringStiffness) * wRel;
+  const Eigen::Vector3d wRel = s.omega - s.omegaSurface;
+  Eigen::Vector3d M(c.history.rollTorque[0], c.history.rollTorque[1], c.history.rollTorque[2]);
+  advance_rolling_spring(M.data(), s.normal.data(), wRel.data(),
+                         c.dt * c.pc.pair.rollingSpringStiffness);
   if (c.updateHistory)
-    rollTorque = M;
+    Eigen::Map<Eigen::Vector3d>(c.history.rollTorque) = M;
   out.torque -= M;
 }
 
