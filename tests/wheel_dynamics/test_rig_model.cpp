@@ -3,7 +3,6 @@
 #include <cmath>
 #include <vector>
 
-#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include "wheelsim/rig/flat_ground.h"
@@ -146,11 +145,14 @@ EnergyRun run_energy(double dt, int steps) {
   const double E0 = total(rig);
   const double E_osc = E0 - total(at_eq);
 
-  Eigen::Matrix2d K, M;
-  K << gp.stiffness_N_m + p.spring_k_N_m, -p.spring_k_N_m, -p.spring_k_N_m, p.spring_k_N_m;
-  M << rig.spindle_dof_mass_kg(), 0, 0, p.suspended_mass_kg;
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> es(K, M);
-  const double w_max = std::sqrt(es.eigenvalues().maxCoeff());
+  // Highest mode of the two vertical DOFs (spindle on the ground spring, suspended mass on the
+  // suspension spring): the larger root of det(K - w^2 M) = 0 with diagonal M,
+  // m1 m2 w^4 - (K11 m2 + K22 m1) w^2 + (K11 K22 - K12^2) = 0.
+  const double k11 = gp.stiffness_N_m + p.spring_k_N_m, k22 = p.spring_k_N_m, k12 = -p.spring_k_N_m;
+  const double m1 = rig.spindle_dof_mass_kg(), m2 = p.suspended_mass_kg;
+  const double half_b = 0.5 * (k11 * m2 + k22 * m1) / (m1 * m2);
+  const double c = (k11 * k22 - k12 * k12) / (m1 * m2);
+  const double w_max = std::sqrt(half_b + std::sqrt(half_b * half_b - c));
   const double a = w_max * dt / 2;
 
   EnergyRun r;
