@@ -16,11 +16,12 @@
 #          the grain size: every diameter x 1.25 and x 0.8 at 35.42 %, each on its own bed
 #          (sweep_grain_x1.25.toml, sweep_grain_x0.8.toml; the x 0.8 point ~2.5 x a main point),
 #          and a frictionless box (wall_mu 0) at 35.42 % on its own bed (sweep_wallmu0.toml), and
-#          Yade's rolling spring itself (krot 5e-5 N m/rad, no cap) at 35.42 % on its own bed
-#          (sweep_krot.toml); writes results_<name>.csv, comparison_<name>.md and provenance_<name>.toml here.
+#          Yade's rolling spring itself (krot 5e-5 N m/rad, no cap) at the 8 slips on its own bed
+#          (sweep_krot.toml) and with spheres x 1.25 at 35.42 % (sweep_krot_x1.25.toml); writes
+#          results_<name>.csv, comparison_<name>.md and provenance_<name>.toml here.
 #          --only NAMES: just these, comma-separated from bed_repeat, dt_0.6e-4, window_3.25, mur,
-#          pour_mu0, grain_x1.25, grain_x0.8, wall_mu0, krot (mur, pour_mu0, grain_*, wall_mu0 and
-#          krot prepare their own beds: they need no main bed).
+#          pour_mu0, grain_x1.25, grain_x0.8, wall_mu0, krot, krot_x1.25 (all but the first three
+#          prepare their own beds: they need no main bed).
 # --scm: the SCM half (sweep_scm.toml: the same rig on the SCM soil the soil lab fitted to the DEM
 #          soil, inputs/scm_soils/from_dem/nakanishi_2020.toml; seconds per point): writes
 #          results_scm.csv, comparison_scm.md/png (DEM against SCM) and provenance_scm.toml here.
@@ -32,7 +33,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_
 # after the other, window test seconds 1.0-2.4). --only takes a subset of the names.
 main_bed_sensitivities="bed_repeat,dt_0.6e-4,window_3.25"
 own_bed_sweeps=(mur:sweep_mur.toml pour_mu0:sweep_pour_mu0.toml grain_x1.25:sweep_grain_x1.25.toml
-                grain_x0.8:sweep_grain_x0.8.toml wall_mu0:sweep_wallmu0.toml krot:sweep_krot.toml)
+                grain_x0.8:sweep_grain_x0.8.toml wall_mu0:sweep_wallmu0.toml krot:sweep_krot.toml
+                krot_x1.25:sweep_krot_x1.25.toml)
 own_bed_names=$(IFS=,; echo "${own_bed_sweeps[*]%%:*}")
 sensitivities="$main_bed_sensitivities,$own_bed_names"
 smoke=0 sensitivity=0 scm=0 only=$sensitivities out="" sweep_args=() args=("$@")
