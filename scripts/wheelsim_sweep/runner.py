@@ -414,8 +414,9 @@ class Runner:
             counter["started"] += 1
             self.say(f"[started {counter['started']}/{counter['total']}] {self.describe(p)} "
                      f"({p.reldir}{', resuming from its checkpoint' if resume else ''})")
-        # the included files as this point reads them: an edit while it runs (a later point's
-        # inputs) must not be recorded as what this one ran with
+        # its inputs and included files as this point reads them: an edit while it runs (a later
+        # point's inputs) must not be recorded as what this one ran with
+        inputs = self.inputs_hash(p)
         included = self.included_hashes(p) if self.sweep.terrain == "dem" else None
         t0 = time.monotonic()
         with self.lock:
@@ -445,7 +446,7 @@ class Runner:
         done = {"wheel": p.wheel.label, "soil": p.soil.name, "slip": p.slip,
                 "terrain": self.sweep.terrain, "exit_status": rc,
                 "status": "done" if rc == 0 else "failed", "wall_time_s": round(wall, 3),
-                "run_file": RUN_FILE if rc == 0 else None, "inputs_sha256": self.inputs_hash(p)}
+                "run_file": RUN_FILE if rc == 0 else None, "inputs_sha256": inputs}
         if resume:
             done.update(resumed_from_checkpoint=True, wall_time_s_this_attempt=round(attempt, 3))
             if rc == 0 and total is None:

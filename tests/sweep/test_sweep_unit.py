@@ -906,11 +906,14 @@ def case_accept_change(a, work):
 
 
 def case_included_at_start(a, work):
-    """A DEM point records the included files' hashes as they were when it started, and an edit
-    while the driver runs is seen (file_hash keeps a hash only while size and mtime stay): the
-    include is hashed before the point (as the driver's start-up check does), edited, the point
-    runs with a stand-in child that edits it again and writes the run file; done.json holds the
-    hash of the version the point started with, and the point then counts as stale."""
+    """A DEM point records the included files' hashes, and its inputs hash (the soil file's among
+    them), as they were when it started, and an edit while the driver runs is seen (file_hash
+    keeps a hash only while size and mtime stay): the include is hashed before the point (as the
+    driver's start-up check does), edited, the point runs with a stand-in child that edits it and
+    the soil file again and writes the run file; done.json holds the hashes of the versions the
+    point started with, and the point then counts as stale. (Until 2026-11-28 the inputs hash was
+    taken when the point ended: a soil file's comment edited during a long point was recorded as
+    what that point ran with.)"""
     import hashlib
     from wheelsim_sweep import config, runner
     repo = Path(a.sweep).resolve().parents[1]
@@ -923,8 +926,10 @@ def case_included_at_start(a, work):
     (work / "rig.toml").write_text('[run]\ndt = 1e-4\nduration = 0.5\n[motor]\nomega = 1.0\n'
                                    '[terrain]\ntype = "dem"\n')
     cfg = work / "sweep.toml"
+    soil = work / "my_soil.in"
+    soil.write_text((repo / "inputs" / "soils" / "ci.in").read_text())
     cfg.write_text('terrain = "dem"\nbase = "rig.toml"\nwheels = ["wheel.stl"]\n'
-                   f'soils = [{{ soil = "{repo / "inputs" / "soils" / "ci.in"}", bin_length = 0.3 }}]\n'
+                   f'soils = [{{ soil = "{soil}", bin_length = 0.3 }}]\n'
                    'slips = [0.1]\n[dem]\nnp = 1\ndeck = "in.deck"\n')
     sw = config.load(cfg, repo, build)
     r = runner.Runner(sw, work / "out", repo, build, 1)
@@ -933,9 +938,11 @@ def case_included_at_start(a, work):
     time.sleep(0.01)
     inc.write_text("# v1: edited after the driver started\n")
     v1 = hashlib.sha256(inc.read_bytes()).hexdigest()
+    inputs_at_start = r.inputs_hash(p)
 
-    def child(cmd, log, cwd):  # the point "runs": meanwhile the include is edited
+    def child(cmd, log, cwd):  # the point "runs": meanwhile the include and the soil are edited
         inc.write_text("# v2: edited while the point ran\n")
+        soil.write_text(soil.read_text() + "# edited while the point ran\n")
         (Path(cwd) / runner.PART_FILE).write_text("")
         return 0
     r.command = lambda p_, resume: ["true"]
@@ -946,9 +953,11 @@ def case_included_at_start(a, work):
     got = done.get("included_sha256", {}).get(str(inc.resolve()))
     check(done.get("exit_status") == 0, f"the stand-in point finished ({done})")
     check(got == v1, f"recorded hash of {inc.name} is the one at the start ({got} vs {v1})")
+    check(done.get("inputs_sha256") == inputs_at_start,
+          "recorded inputs hash is the one at the start (the soil file as the point read it)")
     ok, why = r.finished(p)
     check(not ok and "changed since it finished" in why,
-          f"so the point counts as run with the old include and re-runs ({why!r})")
+          f"so the point counts as run with the old inputs and re-runs ({why!r})")
 
 
 def _rewrite(path, old, new):
