@@ -28,8 +28,12 @@ import re
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
+from wheelsim_post.liggghts_log import loops  # noqa: E402  (the shared parser of LIGGGHTS' "Loop time" lines)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -105,9 +109,7 @@ def run_wheel(a, restart, length, active):
     text = open(os.path.join(name, "out.txt")).read()
     if r.returncode != 0 or "active_domain: done" not in text:
         sys.exit(f"bench: {name} failed (see its out.txt)")
-    loops = re.findall(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms",
-                       text)
-    seconds, steps, atoms = [(float(s), int(n), int(m)) for s, n, m in loops if int(n) > 0][-1]
+    seconds, _procs, steps, atoms = [r for r in loops(text) if r.steps > 0][-1]
     share = re.findall(r"([0-9.]+) of ([0-9.]+) particles active on average", text)
     h, rows = thermo(text)
     start = rows[0, 0]

@@ -30,8 +30,8 @@ import sys
 import time
 from pathlib import Path
 
-LOOP_RE = re.compile(r"^Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms",
-                     re.M)
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
+from wheelsim_post.liggghts_log import loops  # noqa: E402  (the shared parser of LIGGGHTS' "Loop time" lines)
 PAIR_RE = re.compile(r"^Pair  time \(%\) = ([0-9.eE+-]+)", re.M)
 RESULT_RE = re.compile(r"^soilbin: ([a-z_]+) = (.*)$", re.M)
 ENV = "WHEELSIM_GENERIC_CONTACT_MODELS"
@@ -63,11 +63,11 @@ def run_bed(a, mode, out):
         sys.exit(f"bench: {mode} run: liggghts-wheel's banner does not match the mode "
                  f"(is this build's registration working?):\n{res.stdout[:500]}")
     logs = "".join(p.read_text() for p in sorted(out.glob("log.soilbin*")))
-    loops = LOOP_RE.findall(logs)
+    runs = loops(logs)
     result = dict(RESULT_RE.findall(res.stdout))
     return {
         "pair": sum(float(x) for x in PAIR_RE.findall(logs)),
-        "loop": sum(float(t) for t, _, _, _ in loops),
+        "loop": sum(r.seconds for r in runs),
         "cpu": (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime),
         "wall": wall,
         "particles": int(result.get("particles", "0")),

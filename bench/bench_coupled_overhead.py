@@ -15,11 +15,15 @@ import os
 import re
 import subprocess
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
+from wheelsim_post.liggghts_log import loops  # noqa: E402  (the shared parser of LIGGGHTS' "Loop time" lines)
 
 
 def loop_time(text):
-    m = re.findall(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps", text)
-    return float(m[-1][0]), int(m[-1][1])
+    last = loops(text)[-1]
+    return last.seconds, last.steps
 
 
 def main():

@@ -36,7 +36,8 @@ from pathlib import Path
 
 import numpy as np
 
-LOOP_RE = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
+from wheelsim_post.liggghts_log import loops  # noqa: E402  (the shared parser of LIGGGHTS' "Loop time" lines)
 RESULT_RE = re.compile(r"^soilbin: ([a-z_]+) = (.*)$", re.M)
 
 
@@ -74,9 +75,9 @@ def bed_cost(out):
         sys.exit(f"bench: {out / 'wall.txt'}: the preparation failed or did not finish")
     screen = (out / "screen.txt").read_text(errors="replace")
     loop = sphere_steps = 0.0
-    for t, _p, s, n in LOOP_RE.findall(screen):
-        loop += float(t)
-        sphere_steps += float(s) * float(n)
+    for r in loops(screen):
+        loop += r.seconds
+        sphere_steps += float(r.steps) * r.atoms
     res = dict(RESULT_RE.findall(screen))
     return float(m.group(2)), loop, sphere_steps, res
 

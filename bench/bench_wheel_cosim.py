@@ -21,6 +21,10 @@ import os
 import re
 import subprocess
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
+from wheelsim_post.liggghts_log import loops  # noqa: E402  (the shared parser of LIGGGHTS' "Loop time" lines)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DECK = os.path.join(HERE, "..", "tests", "wheel_cosim", "in.wheel_roll")
@@ -47,8 +51,7 @@ def bed(a, size):
 
 
 def timing(text, steps):
-    m = re.findall(r"Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms", text)
-    loop, _, n, atoms = [x for x in m if int(x[2]) == steps][-1]
+    loop, _procs, _steps, atoms = [r for r in loops(text) if r.steps == steps][-1]
     tail = text[text.rfind(f"for {steps} steps"):]
     share = {}
     for key in ("Pair", "Neigh", "Comm", "Outpt", "Modify", "Other"):
@@ -57,9 +60,9 @@ def timing(text, steps):
             share[key] = (float(mm.group(1)), float(mm.group(2)))
     # the fix's own wall time, printed by fix wheel/cosim at the end of each run
     fix = re.findall(r"fix wheel/cosim \S+: (\d+) steps, contacts (\S+) s", text)
-    share["wheel/cosim"] = (float(fix[-1][1]), 100.0 * float(fix[-1][1]) / float(loop)) if fix \
+    share["wheel/cosim"] = (float(fix[-1][1]), 100.0 * float(fix[-1][1]) / loop) if fix \
         else None
-    return float(loop) / steps, int(atoms), share
+    return loop / steps, atoms, share
 
 
 def run(a, restart, impl, x0, sink):

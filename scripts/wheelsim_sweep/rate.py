@@ -19,7 +19,6 @@ About a CPU-minute; the load average at the time is recorded (a shared machine m
 import datetime
 import os
 import platform
-import re
 import shutil
 import subprocess
 import tempfile
@@ -28,7 +27,7 @@ import tomllib
 from pathlib import Path
 
 import tomli_w
-from wheelsim_post import mpi_launch
+from wheelsim_post import liggghts_log, mpi_launch
 
 from .estimate import Rate, EstimateError
 
@@ -42,7 +41,6 @@ BENCH_BIN = {"bin_length": 0.30, "bin_width": 0.15, "fill_height": 0.04, "check_
              "max_settle_time": 0.2}
 BENCH_STEPS = 2000
 KEYS = ("host", "cpu", "liggghts_wheel")
-_LOOP_RE = re.compile(r"Loop time of (\S+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 
 
 def cache_path():
@@ -170,7 +168,7 @@ def _launch(np_):
 
 
 def _loop(text, what):
-    m = _LOOP_RE.findall(text)
+    m = liggghts_log.loops(text)
     if not m:
         raise EstimateError(f"rate benchmark: {what}: no 'Loop time' in LIGGGHTS' output")
     return m
@@ -202,8 +200,8 @@ def measure(liggghts, repo, mesh, say=print, np2=True):
             cmd += ["-var", k, str(v)]
         out, _ = _run(cmd, tmp, "bed (in.soilbin, 1 rank)", say)
         loops = _loop(out, "bed")
-        bed_time = sum(float(m[0]) for m in loops)
-        bed_psteps = sum(int(m[2]) * int(m[3]) for m in loops)
+        bed_time = sum(m.seconds for m in loops)
+        bed_psteps = sum(m.steps * m.atoms for m in loops)
         runs = {}
         for np_ in ((1, 2) if np2 else (1,)):
             cmd = _launch(np_) + [str(liggghts), "-in", str(deck), "-log", "none", "-echo", "none",
@@ -211,8 +209,8 @@ def measure(liggghts, repo, mesh, say=print, np2=True):
                                   str(restart), "-var", "mesh", str(mesh),
                                   "-var", "steps", str(BENCH_STEPS)]
             out, wall = _run(cmd, tmp, f"wheel run ({np_} rank(s), {BENCH_STEPS} steps)", say)
-            last = [m for m in _loop(out, f"wheel run np {np_}") if int(m[2]) == BENCH_STEPS][-1]
-            runs[np_] = (float(last[0]), int(last[3]), wall)
+            last = [m for m in _loop(out, f"wheel run np {np_}") if m.steps == BENCH_STEPS][-1]
+            runs[np_] = (last.seconds, last.atoms, wall)
     loop1, atoms, wall1 = runs[1]
     rate1 = atoms * BENCH_STEPS / loop1
     e2 = runs[1][0] / runs[2][0] / 2.0 if np2 else DEFAULT["efficiency_np2"]

@@ -23,7 +23,7 @@ import time
 from pathlib import Path
 from typing import NamedTuple
 
-from wheelsim_post import mpi_launch, step_archive
+from wheelsim_post import liggghts_log, mpi_launch, step_archive
 from wheelsim_post.deck_files import deck_includes
 
 from .checkpoints import Checkpoints
@@ -324,10 +324,9 @@ class Lab:
         text = self._liggghts(deck, variables, d / "liggghts.log", d,
                               while_running=ckpt.prune if ckpt else None)
         wall = time.monotonic() - t0
-        steps = re.findall(r"^Loop time of \S+ on \d+ procs for (\d+) steps with (\d+) atoms", text,
-                           re.M)
-        n_steps = sum(int(s) for s, _ in steps)
-        particles = max((int(a) for _, a in steps), default=0)
+        runs = liggghts_log.loops(text)
+        n_steps = sum(r.steps for r in runs)
+        particles = max((r.atoms for r in runs), default=0)
         resumed = {}
         if ckpt and ckpt.resuming:
             # the attempts before: the steps up to the checkpoint and their wall time
