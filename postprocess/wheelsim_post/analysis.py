@@ -4,7 +4,8 @@ import dataclasses
 import math
 
 from .health import (ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, BIN_LENGTH_PARAMETER,
-                     RIM_RADIUS_PARAMETER, WHEEL_WIDTH_PARAMETER, Health, postprocess_findings)
+                     PARTICLES_END_PARAMETER, PARTICLES_START_PARAMETER, RIM_RADIUS_PARAMETER,
+                     WHEEL_WIDTH_PARAMETER, Health, postprocess_findings)
 from .metadata import read_metadata
 from .runfile import RunFile
 from .steady import steady_state
@@ -49,7 +50,8 @@ def analyse_run(path, window, lugs=None):
         health = run.health()
         parameters = [run.parameter(name) for name in (
             ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, WHEEL_WIDTH_PARAMETER,
-            BIN_LENGTH_PARAMETER, RIM_RADIUS_PARAMETER)]
+            BIN_LENGTH_PARAMETER, RIM_RADIUS_PARAMETER, PARTICLES_START_PARAMETER,
+            PARTICLES_END_PARAMETER)]
     health.findings = health.findings + postprocess_findings(
         stats, *(None if v is None else float(v) for v in parameters))
     return RunResult(path, metadata, stats, health)

@@ -91,6 +91,15 @@ def read_health(h5file):
     return Health(status, findings)
 
 
+#: LIGGGHTS' atom count at the start and at the end of a DEM run, recorded by wheel-cosim from the
+#: "Loop time" lines of its log (first and last run command).
+PARTICLES_START_PARAMETER = "liggghts/atoms_start"
+PARTICLES_END_PARAMETER = "liggghts/atoms"
+#: particles_lost: a warning when more than this fraction of the particles left the box during a
+#: run. LIGGGHTS drops an atom that crosses a fixed boundary (the decks ignore lost atoms, so the
+#: run goes on): in a bin with walls, grains thrown or carried above the box's top. A few grains
+#: are harmless; a thousandth of the bed is soil the wheel no longer meets.
+PARTICLES_LOST_FRACTION = 1e-3
 #: The run-file parameter wheel-cosim records from fix wheel/active's setup line [m].
 ACTIVE_ALLOWANCE_PARAMETER = "liggghts/active_sinkage_allowance"
 #: The DEM bed's depth (surface above the bin's rigid floor) wheel-cosim records [m].
@@ -112,13 +121,29 @@ FLOOR_CLEARANCE_WIDTHS = 1.0
 
 
 def postprocess_findings(stats, active_allowance_m=None, bed_depth_m=None, wheel_width_m=None,
-                         bin_length_m=None, rim_radius_m=None):
+                         bin_length_m=None, rim_radius_m=None, particles_start=None,
+                         particles_end=None):
     """Findings of the window statistics (steady.steady_state's dict); ``active_allowance_m``:
     the active domain's sinkage allowance (ACTIVE_ALLOWANCE_PARAMETER; None: no active domain);
     ``bed_depth_m``, ``wheel_width_m``: a DEM bed's depth and the wheel's width (None: unknown,
     no floor check); ``bin_length_m``, ``rim_radius_m``: the bin's length and the wheel's outer
-    radius (None: no end-wall check)."""
+    radius (None: no end-wall check); ``particles_start``, ``particles_end``: LIGGGHTS' atom
+    counts at the run's start and end (None: not recorded, no check)."""
     findings = []
+    if particles_start is not None and particles_end is not None and particles_start > 0:
+        lost = particles_start - particles_end
+        if lost > PARTICLES_LOST_FRACTION * particles_start:
+            findings.append(
+                Finding(
+                    "particles_lost",
+                    "warning",
+                    f"{lost:.0f} of {particles_start:.0f} particles ({100.0 * lost / particles_start:.2g} %) "
+                    "left the simulation box during the run (LIGGGHTS drops atoms that cross a "
+                    "fixed boundary; in a walled bin, grains thrown or carried above the box's "
+                    "top): that soil is gone from the bin; give the box more height above the bed "
+                    "(docs/run-health.md)",
+                )
+            )
     sinkage = stats["sinkage"].mean
     x_max = stats.get("wheel_x_max", math.nan)
     if (bin_length_m is not None and rim_radius_m is not None and math.isfinite(x_max)

@@ -14,6 +14,7 @@ import subprocess
 
 from .csvio import write_csv
 from .errors import PostError
+from .health import PARTICLES_END_PARAMETER
 from .metadata import rig_config
 from .quantities import of_means
 from .runfile import RunFile
@@ -55,9 +56,9 @@ COLUMNS = (
     "run_file",
 )
 
-#: Run-file parameters the cost columns come from (docs/hdf5-layout.md).
+#: Run-file parameters the cost columns come from (docs/hdf5-layout.md; the particle count:
+#: health.PARTICLES_END_PARAMETER).
 WALL_TIME_PARAMETER = "run/wall_time"
-PARTICLES_PARAMETER = "liggghts/atoms"
 RANKS_PARAMETER = "liggghts/np"
 
 
@@ -104,7 +105,7 @@ def run_cost(path):
     the flat ground run in the rig process alone)."""
     with RunFile(path) as run:
         wall = wall_time(run)
-        particles = _count(run, PARTICLES_PARAMETER, "the number of particles")
+        particles = _count(run, PARTICLES_END_PARAMETER, "the number of particles")
         ranks = _count(run, RANKS_PARAMETER, "the number of MPI ranks of LIGGGHTS")
         terrain = rig_config(run).get("terrain", {}).get("type")
         revision = run.creator()["git_revision"]

@@ -19,8 +19,8 @@ MODE
                  dir is too deep for <work>/rig.sock (over 107 bytes): the socket goes to a
                  short private dir under TMPDIR, removed at the end.
   cost_recorded  the run file of a coupled run records its cost for `wheelsim-post results`:
-                 /parameters/liggghts/atoms = the bed's sphere count (the bed's own log,
-                 'soilbin: spheres = N'), liggghts/np = --np, run/wall_time in (0, the
+                 /parameters/liggghts/atoms and atoms_start = the bed's sphere count (the bed's
+                 own log, 'soilbin: spheres = N'; none lost), liggghts/np = --np, run/wall_time in (0, the
                  launcher's elapsed time]; and, its rig config setting run.dt, that dt and
                  "the rig config's run.dt" as its source (launcher line and run file).
 """
@@ -293,6 +293,7 @@ def cost_recorded(a):
     with h5py.File(os.path.join(a.work, "run", "run.h5"), "r") as f:
         p = f["parameters"]
         atoms = int(p["liggghts/atoms"][()]) if "liggghts/atoms" in p else None
+        atoms_start = int(p["liggghts/atoms_start"][()]) if "liggghts/atoms_start" in p else None
         ranks = p["liggghts/np"].asstr()[()] if "liggghts/np" in p else None
         wall = float(p["run/wall_time"][()]) if "run/wall_time" in p else None
         dt = float(p["run/dt"][()])
@@ -301,9 +302,11 @@ def cost_recorded(a):
     rig_dt = float(re.search(r"(?m)^dt\s*=\s*(\S+)", open(rig).read()).group(1))
     dt_ok = (dt == rig_dt and dt_source == "the rig config's run.dt"
              and f"dt {rig_dt!r} s from the rig config's run.dt" in run.stdout)
-    ok = (run.returncode == 0 and atoms == spheres and ranks == str(a.np)
+    ok = (run.returncode == 0 and atoms == spheres and atoms_start == spheres
+          and ranks == str(a.np)
           and wall is not None and 0.0 < wall <= elapsed and dt_ok)
-    print(f"run_cosim_case: atoms {atoms} (bed: {spheres} spheres), np {ranks} (--np {a.np}), "
+    print(f"run_cosim_case: atoms {atoms}, at the start {atoms_start} (bed: {spheres} spheres), "
+          f"np {ranks} (--np {a.np}), "
           f"wall_time {wall} s (launcher {elapsed:.2f} s), dt {dt!r} s from '{dt_source}' "
           f"(rig config {rig_dt!r}) {'PASS' if ok else 'FAIL'}")
     return 0 if ok else 1

@@ -1,7 +1,7 @@
 """Run health in curves and study: the rig's /health group (status and entries), runs
 without it ("unchecked"), and post-processing's own findings over the window
 (efficiency_bound, steady_state_trend, active_domain_sinkage, floor_clearance,
-end_wall_clearance)."""
+end_wall_clearance, particles_lost)."""
 
 import csv
 import os
@@ -95,6 +95,22 @@ class HealthTest(TempDirTestCase):
         for name, kw in (("scm.h5", {"parameters": params, "x_end": 0.5}),
                          ("nopos.h5", {"parameters": {**params, "bed/bin_length_m": ("0.63", "m")}})):
             self.assertEqual(self.verdict(self.write(name, health=("healthy", []), **kw)), ("ok", ""))
+
+    def test_particles_lost(self):
+        # 78 577 at the start (case 1's bed), 77 928 at the end: 649 lost, 0.83 % > 0.1 %
+        start, end = "liggghts/atoms_start", "liggghts/atoms"
+        lost = self.write("lost.h5", parameters={start: (78577, "1"), end: (77928, "1")},
+                          health=("healthy", []))
+        self.assertEqual(self.verdict(lost), ("warning", "particles_lost"))
+        message = analyse_run(lost, HALF).health.findings[0].message
+        self.assertIn("649 of 78577 particles (0.83 %) left the simulation box", message)
+        # 78 of 78 577 (0.099 %): within the tolerance
+        few = self.write("few.h5", parameters={start: (78577, "1"), end: (78499, "1")},
+                         health=("healthy", []))
+        self.assertEqual(self.verdict(few), ("ok", ""))
+        # SCM, flat, runs before the start count was recorded: no finding
+        older = self.write("older.h5", parameters={end: (77928, "1")}, health=("healthy", []))
+        self.assertEqual(self.verdict(older), ("ok", ""))
 
     def verdict(self, path):
         r = analyse_run(path, HALF)
