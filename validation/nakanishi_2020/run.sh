@@ -24,12 +24,15 @@
 #          35.42 % (sweep_mur.toml), a bed poured frictionless at 35.42 % (sweep_pour_mu0.toml),
 #          the grain size: every diameter x 1.25 and x 0.8 at 35.42 % (sweep_grain_x1.25.toml,
 #          sweep_grain_x0.8.toml; the x 0.8 point ~2.5 x a main point), a frictionless box
-#          (wall_mu 0) at 35.42 % (sweep_wallmu0.toml) — all these with cdt — and krot with
-#          spheres x 1.25 at 35.42 % (sweep_krot_x1.25.toml); writes results_<name>.csv,
-#          comparison_<name>.md and provenance_<name>.toml here.
-#          --only NAMES: just these, comma-separated from bed_repeat, dt_0.6e-4, window_3.25, mur,
-#          pour_mu0, grain_x1.25, grain_x0.8, wall_mu0, krot_x1.25 (all but the first three
-#          prepare their own beds: they need no cdt bed).
+#          (wall_mu 0) at 35.42 % (sweep_wallmu0.toml) — all these with cdt — and with krot: on
+#          the case's bed (run the case first) the time step halved at 35.42 %
+#          (sweep_krot_dt.toml) and the published 3.25 s test phase at 77.97-86.8 %
+#          (sweep_krot_window.toml), on a bed of its own spheres x 1.25 at 35.42 %
+#          (sweep_krot_x1.25.toml); writes results_<name>.csv, comparison_<name>.md and
+#          provenance_<name>.toml here.
+#          --only NAMES: just these, comma-separated from bed_repeat, dt_0.6e-4, window_3.25,
+#          krot_dt_0.6e-4, krot_window_3.25, mur, pour_mu0, grain_x1.25, grain_x0.8, wall_mu0,
+#          krot_x1.25 (the last six prepare their own beds).
 # --scm: the SCM half (sweep_scm.toml: the same rig on the SCM soil the soil lab fitted to the
 #          cdt DEM soil, inputs/scm_soils/from_dem/nakanishi_2020.toml; seconds per point):
 #          writes results_scm.csv, comparison_scm.md/png (against the cdt DEM curve, the soil it
@@ -38,14 +41,16 @@
 #          minutes): same pipeline, outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
-# The sensitivity sweeps: on the cdt sweep's bed, and on beds of their own (NAME:CONFIG, run one
-# after the other, window test seconds 1.0-2.4). --only takes a subset of the names.
+# The sensitivity sweeps: on the cdt sweep's bed, on the case's (krot) bed, and on beds of their
+# own (NAME:CONFIG, run one after the other, window test seconds 1.0-2.4). --only takes a subset
+# of the names.
 main_bed_sensitivities="bed_repeat,dt_0.6e-4,window_3.25"
+krot_bed_sensitivities="krot_dt_0.6e-4,krot_window_3.25"
 own_bed_sweeps=(mur:sweep_mur.toml pour_mu0:sweep_pour_mu0.toml grain_x1.25:sweep_grain_x1.25.toml
                 grain_x0.8:sweep_grain_x0.8.toml wall_mu0:sweep_wallmu0.toml
                 krot_x1.25:sweep_krot_x1.25.toml)
 own_bed_names=$(IFS=,; echo "${own_bed_sweeps[*]%%:*}")
-sensitivities="$main_bed_sensitivities,$own_bed_names"
+sensitivities="$main_bed_sensitivities,$krot_bed_sensitivities,$own_bed_names"
 smoke=0 cdt=0 sensitivity=0 scm=0 only=$sensitivities out="" sweep_args=() args=("$@")
 while (($#)); do
   case "$1" in
@@ -118,6 +123,18 @@ if ((sensitivity)); then
   if wanted dt_0.6e-4; then sens dt_0.6e-4 sweep_dt.toml 1.0 2.4 & pids+=($!); fi
   for pid in "${pids[@]}"; do wait "$pid" || status=1; done
   if wanted window_3.25; then sens window_3.25 sweep_window.toml 1.0 3.25 || status=1; fi
+  if wanted krot_dt_0.6e-4 || wanted krot_window_3.25; then
+    krot_bed=$out/sensitivity/krot/beds/krot/soilbin_nakanishi_2020_krot.restart
+    if [[ -f $krot_bed ]]; then
+      if wanted krot_dt_0.6e-4; then sens krot_dt_0.6e-4 sweep_krot_dt.toml 1.0 2.4 || status=1; fi
+      if wanted krot_window_3.25; then
+        sens krot_window_3.25 sweep_krot_window.toml 1.0 3.25 || status=1
+      fi
+    else
+      echo "run.sh: krot_dt_0.6e-4 and krot_window_3.25 run on the case's bed, $krot_bed: run the case first" >&2
+      status=1
+    fi
+  fi
   for entry in "${own_bed_sweeps[@]}"; do
     if wanted "${entry%%:*}"; then sens "${entry%%:*}" "${entry#*:}" 1.0 2.4 || status=1; fi
   done
