@@ -40,6 +40,9 @@
 # --smoke: the CI version (the krot soil on a 0.40 m bin, one slip, 0.3 s of test phase;
 #          minutes): same pipeline, outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
+# The rest is one brace group, read whole before it runs: an edit of this file during a long
+# run (bash otherwise reads a script as it goes) cannot change what the running case does.
+{
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
 # The sensitivity sweeps: on the cdt sweep's bed, on the case's (krot) bed, and on beds of their
 # own (NAME:CONFIG, run one after the other, window test seconds 1.0-2.4). --only takes a subset
@@ -174,3 +177,4 @@ keep_table "$dest/results$tag.csv.new" "$dest/results$tag.csv"
 write_provenance "$dest/provenance$tag.toml" validation/nakanishi_2020 \
   "validation/nakanishi_2020/run.sh$mode" "$started_utc" "$start" "$out"
 exit $status
+}

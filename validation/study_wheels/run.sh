@@ -26,6 +26,9 @@
 # --smoke: the CI version (sweep_smoke.toml: a 1.6 m bin, one slip, 0.2 s of test phase; about a
 #          minute): same pipeline, outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
+# The rest is one brace group, read whole before it runs: an edit of this file during a long
+# run (bash otherwise reads a script as it goes) cannot change what the running case does.
+{
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
 smoke=0 only="dem,scm" out="" sweep_args=() args=("$@")
 while (($#)); do
@@ -118,3 +121,4 @@ if [[ -f $here/results_goal.csv && ( -f $here/results_goal_full.csv || -f $here/
     --label sweep_goal.toml --md "$here/comparison_goal_active_domain.md" || status=1
 fi
 exit $status
+}
