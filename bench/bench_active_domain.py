@@ -28,12 +28,10 @@ import re
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
-from wheelsim_post.liggghts_log import loops  # noqa: E402  (the shared parser of LIGGGHTS' "Loop time" lines)
+from liggghts_log_path import loops  # the shared parser of LIGGGHTS' "Loop time" lines
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)

@@ -30,8 +30,7 @@ import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
-from wheelsim_post.liggghts_log import loops  # noqa: E402  (the shared parser of LIGGGHTS' "Loop time" lines)
+from liggghts_log_path import loops  # the shared parser of LIGGGHTS' "Loop time" lines
 PAIR_RE = re.compile(r"^Pair  time \(%\) = ([0-9.eE+-]+)", re.M)
 RESULT_RE = re.compile(r"^soilbin: ([a-z_]+) = (.*)$", re.M)
 ENV = "WHEELSIM_GENERIC_CONTACT_MODELS"

@@ -15,10 +15,8 @@ import os
 import re
 import subprocess
 import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
-from wheelsim_post.liggghts_log import loops  # noqa: E402  (the shared parser of LIGGGHTS' "Loop time" lines)
+from liggghts_log_path import loops  # the shared parser of LIGGGHTS' "Loop time" lines
 
 
 def loop_time(text):

@@ -36,8 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "postprocess"))
-from wheelsim_post.liggghts_log import loops  # noqa: E402  (the shared parser of LIGGGHTS' "Loop time" lines)
+from liggghts_log_path import loops  # the shared parser of LIGGGHTS' "Loop time" lines
 RESULT_RE = re.compile(r"^soilbin: ([a-z_]+) = (.*)$", re.M)
 
 
