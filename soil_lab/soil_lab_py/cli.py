@@ -182,7 +182,7 @@ def main(argv=None):
     r.add_argument("--plate-speed", type=float, metavar="M_S",
                    help="the plates' speed [m/s] (default 0.02; quick 0.04)")
     r.add_argument("--shear-speed", type=float, metavar="M_S",
-                   help="the shear box's speed [m/s] (default 0.005; quick 0.01)")
+                   help="the shear box's speed [m/s] (default 0.005; quick 0.02)")
     r.add_argument("--speed-check", action="store_true",
                    help="quasi-static check: also run the larger plate, the middle normal stress "
                         "and the repose test (not in the quick preset) at half speed and report "

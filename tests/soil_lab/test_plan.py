@@ -71,7 +71,7 @@ class Plan(unittest.TestCase):
                 self.assertAlmostEqual(float(r.variables["shear_distance"]), expected)
 
     def test_tool_speeds_default_or_as_given(self):
-        for kwargs, plate, shear in (({}, 0.02, 0.005), (dict(preset="quick"), 0.04, 0.01),
+        for kwargs, plate, shear in (({}, 0.02, 0.005), (dict(preset="quick"), 0.04, 0.02),
                                      (dict(plate_speed=0.01, shear_speed=0.01), 0.01, 0.01)):
             p = make_plan(SAND, ("plate", "shear"), **kwargs)
             for r in p.runs:
