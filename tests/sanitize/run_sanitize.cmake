@@ -16,10 +16,21 @@ function(run_step what)
   endif()
 endfunction()
 
-# -g1 (line tables only, not -g's full debug info): ASan and UBSan still report file:line for
-# every frame, and the build's compile CPU fell from 506 s to 440 s (104 TUs, idle 2 cores,
-# 2026-11-28).
-run_step(configure ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BINARY_DIR} -G ${GENERATOR}
+# Compiled by clang (scripts/install-deps.sh installs it) with -g1 (line tables only, not -g's
+# full debug info): ASan and UBSan still report file:line for every frame. CPU of the tier's
+# build (104 TUs, 2026-11-28): gcc -g 568 s, gcc -g1 501 s, clang -g1 345 s (user + sys); its unit tests ran
+# 164 s (gcc) and 175 s (clang) on one core. Without clang++ on PATH it falls back to the default
+# compiler and says so.
+find_program(WHEELSIM_SANITIZE_CXX clang++)
+find_program(WHEELSIM_SANITIZE_CC clang)
+set(compiler "")
+if(WHEELSIM_SANITIZE_CXX AND WHEELSIM_SANITIZE_CC)
+  set(compiler -DCMAKE_CXX_COMPILER=${WHEELSIM_SANITIZE_CXX} -DCMAKE_C_COMPILER=${WHEELSIM_SANITIZE_CC})
+else()
+  message(STATUS "sanitizer tier: clang/clang++ not found, building with the default compiler "
+                 "(slower; scripts/install-deps.sh installs clang)")
+endif()
+run_step(configure ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BINARY_DIR} -G ${GENERATOR} ${compiler}
          -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DWHEELSIM_SANITIZE=ON
          -DWHEELSIM_WITH_LIGGGHTS=OFF)
 run_step(build ${CMAKE_COMMAND} --build ${BINARY_DIR} --parallel ${JOBS})
