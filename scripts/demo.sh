@@ -45,8 +45,8 @@ sweep_config() { # NAME DURATION_S -> path of the config to run
       -e "s#\"\.\./scm_soils/#\"$root/inputs/scm_soils/#" \
       -e "s#^slips = \[0.1, 0.25, 0.4\]#slips = [0.1, 0.4]   \# demo --quick: 2 of the 3 DEM slips#" \
       "$src" > "$dst"
-  # --quick also lowers the wheel onto the bed at 0.2 m/s instead of the rig's 0.05 m/s: in the
-  # full demo the release took 0.46 of a DEM point's 0.66 s (2/3 of its steps)
+  # --quick also lowers the wheel onto the bed at 0.2 m/s instead of the rig's 0.05 m/s: at
+  # 0.05 m/s the release took 0.46 s of a quick DEM point's 0.66 s (2/3 of its steps)
   printf '\n[override.run]\nduration = %s   # s (demo --quick)\nrelease_speed = 0.2   # m/s (demo --quick)\n' \
     "$duration" >> "$dst"
   echo "$dst"

@@ -17,10 +17,10 @@ function(run_step what)
 endfunction()
 
 # Compiled by clang (scripts/install-deps.sh installs it) with -g1 (line tables only, not -g's
-# full debug info): ASan and UBSan still report file:line for every frame. CPU of the tier's
-# build (104 TUs, 2026-11-28): gcc -g 568 s, gcc -g1 501 s, clang -g1 345 s (user + sys); its unit tests ran
-# 164 s (gcc) and 175 s (clang) on one core. Without clang++ on PATH it falls back to the default
-# compiler and says so.
+# full debug info): ASan and UBSan still report file:line for every frame. CPU (user + sys) of
+# the tier's build, 104 TUs, 2026-11-28: gcc -g 568 s, gcc -g1 501 s, clang -g1 345 s; its unit
+# tests ran 164 s (gcc) and 175 s (clang) on one core. Without clang++ on PATH it falls back to
+# the default compiler and says so.
 find_program(WHEELSIM_SANITIZE_CXX clang++)
 find_program(WHEELSIM_SANITIZE_CC clang)
 set(compiler "")
