@@ -30,9 +30,9 @@ struct PlaneRegion {
   std::vector<std::vector<int>> cells;
 };
 
+/// edge_parts as an int: the spec passed validate(), its counts are bounded.
 int parts(double length_m, double max_edge_m) {
-  return max_edge_m > 0.0 ? std::max(1, static_cast<int>(std::ceil(length_m / max_edge_m - 1e-9)))
-                          : 1;
+  return static_cast<int>(edge_parts(length_m, max_edge_m));
 }
 
 /// The breakpoints `edges` (increasing) with every interval split into equal parts no longer

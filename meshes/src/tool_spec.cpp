@@ -14,11 +14,6 @@ void check_positive(const std::string &name, double value, const char *what) {
     fail_value<ToolSpecError>(name, value, "m", std::string(what) + " must be > 0 m");
 }
 
-/// Parts of an interval of `length_m` with edges no longer than `max_edge_m` (1 when 0).
-double parts(double length_m, double max_edge_m) {
-  return max_edge_m > 0.0 ? std::max(1.0, std::ceil(length_m / max_edge_m - 1e-9)) : 1.0;
-}
-
 double round_up_to_4(double n) { return 4.0 * std::ceil(n / 4.0); }
 
 /// segment_count before validation, as a double (max_edge_m may ask for absurdly many).
@@ -81,6 +76,10 @@ double ToolSpec::half_y_m() const {
   }
 }
 
+double edge_parts(double length_m, double max_edge_m) {
+  return max_edge_m > 0.0 ? std::max(1.0, std::ceil(length_m / max_edge_m - 1e-9)) : 1.0;
+}
+
 int segments_for_chord_error(double fraction) {
   const double n = std::ceil(kPi / std::acos(1.0 - fraction) - 1e-9);
   return std::max(kMinSegments, static_cast<int>(round_up_to_4(n)));
@@ -89,24 +88,25 @@ int segments_for_chord_error(double fraction) {
 int segment_count(const ToolSpec &spec) { return static_cast<int>(raw_segment_count(spec)); }
 
 double estimated_triangle_count(const ToolSpec &s) {
-  const double e = s.max_edge_m, nz = parts(s.height_m, e);
+  const double e = s.max_edge_m, nz = edge_parts(s.height_m, e);
   switch (s.kind) {
   case ToolKind::plate_rect: {
-    const double nx = parts(s.lx_m, e), ny = parts(s.ly_m, e);
+    const double nx = edge_parts(s.lx_m, e), ny = edge_parts(s.ly_m, e);
     return 4.0 * nx * ny + 4.0 * (nx + ny) * nz;
   }
   case ToolKind::frame: {
-    const double hx = parts(s.lx_m, e), hy = parts(s.ly_m, e), w = parts(s.wall_m, e);
+    const double hx = edge_parts(s.lx_m, e), hy = edge_parts(s.ly_m, e),
+                 w = edge_parts(s.wall_m, e);
     const double nx = hx + 2.0 * w, ny = hy + 2.0 * w;
     return 4.0 * nx * ny + 4.0 * (nx + ny + hx + hy) * nz;
   }
   case ToolKind::plate_disc: {
     const double n = raw_segment_count(s);
-    return 4.0 * n * parts(s.radius_m, e) + 2.0 * n * nz;
+    return 4.0 * n * edge_parts(s.radius_m, e) + 2.0 * n * nz;
   }
   case ToolKind::ring: {
     const double n = raw_segment_count(s);
-    return 4.0 * n * parts(s.radius_m - s.inner_radius_m, e) + 4.0 * n * nz;
+    return 4.0 * n * edge_parts(s.radius_m - s.inner_radius_m, e) + 4.0 * n * nz;
   }
   }
   return 0.0;

@@ -99,6 +99,11 @@ int segments_for_chord_error(double fraction);
 /// set. 0 for the rectangular tools.
 int segment_count(const ToolSpec &spec);
 
+/// Parts of an interval of `length_m` with edges no longer than `max_edge_m` (1 when it is 0):
+/// the subdivision count the estimate and the builder share. A double, because before
+/// validate() the count can be too large for an int.
+double edge_parts(double length_m, double max_edge_m);
+
 /// Upper estimate of the triangle count, cheap enough to run before the mesh is built.
 double estimated_triangle_count(const ToolSpec &spec);
 
