@@ -10,7 +10,8 @@ packages=(
   # the C++ format check (format.check; Debian 12: clang-format 14)
   clang-format
   # the sanitizer tier's compiler (tests/sanitize/run_sanitize.cmake: a third less CPU than g++)
-  clang
+  # and its ASan/UBSan runtime (only recommended by clang: --no-install-recommends skips it)
+  clang libclang-rt-dev
   # LIGGGHTS 3.8 (library, headers, and Debian's own binary for reference runs) and MPI
   liggghts libliggghts-dev libopenmpi-dev openmpi-bin
   # C++ libraries

@@ -19,16 +19,31 @@ endfunction()
 # Compiled by clang (scripts/install-deps.sh installs it) with -g1 (line tables only, not -g's
 # full debug info): ASan and UBSan still report file:line for every frame. CPU (user + sys) of
 # the tier's build, 104 TUs, 2026-11-28: gcc -g 568 s, gcc -g1 501 s, clang -g1 345 s; its unit
-# tests ran 164 s (gcc) and 175 s (clang) on one core. Without clang++ on PATH it falls back to
-# the default compiler and says so.
+# tests ran 164 s (gcc) and 175 s (clang) on one core. Without a clang++ that links ASan+UBSan
+# (Debian: clang and libclang-rt-dev, only recommended by clang, so --no-install-recommends
+# leaves it out) it falls back to the default compiler and says why.
 find_program(WHEELSIM_SANITIZE_CXX clang++)
 find_program(WHEELSIM_SANITIZE_CC clang)
 set(compiler "")
+set(why "clang/clang++ not found")
 if(WHEELSIM_SANITIZE_CXX AND WHEELSIM_SANITIZE_CC)
-  set(compiler -DCMAKE_CXX_COMPILER=${WHEELSIM_SANITIZE_CXX} -DCMAKE_C_COMPILER=${WHEELSIM_SANITIZE_CC})
-else()
-  message(STATUS "sanitizer tier: clang/clang++ not found, building with the default compiler "
-                 "(slower; scripts/install-deps.sh installs clang)")
+  set(probe_dir ${BINARY_DIR}-probe)
+  file(WRITE ${probe_dir}/probe.cpp "int main() { return 0; }\n")
+  execute_process(COMMAND ${WHEELSIM_SANITIZE_CXX} -fsanitize=address,undefined
+                          ${probe_dir}/probe.cpp -o ${probe_dir}/probe
+                  RESULT_VARIABLE probe_rc OUTPUT_QUIET ERROR_VARIABLE probe_err)
+  file(REMOVE_RECURSE ${probe_dir})
+  if(probe_rc EQUAL 0)
+    set(compiler -DCMAKE_CXX_COMPILER=${WHEELSIM_SANITIZE_CXX}
+                 -DCMAKE_C_COMPILER=${WHEELSIM_SANITIZE_CC})
+  else()
+    string(STRIP "${probe_err}" probe_err)
+    set(why "${WHEELSIM_SANITIZE_CXX} cannot link -fsanitize=address,undefined (${probe_err})")
+  endif()
+endif()
+if(NOT compiler)
+  message(STATUS "sanitizer tier: ${why}; building with the default compiler (slower; "
+                 "scripts/install-deps.sh installs clang and libclang-rt-dev)")
 endif()
 run_step(configure ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BINARY_DIR} -G ${GENERATOR} ${compiler}
          -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DWHEELSIM_SANITIZE=ON
