@@ -137,7 +137,8 @@ def postprocess_findings(stats, active_allowance_m=None, bed_depth_m=None, wheel
                 Finding(
                     "particles_lost",
                     "warning",
-                    f"{lost:.0f} of {particles_start:.0f} particles ({100.0 * lost / particles_start:.2g} %) "
+                    f"{lost:.0f} of {particles_start:.0f} particles "
+                    f"({100.0 * lost / particles_start:.2g} %) "
                     "left the simulation box during the run (LIGGGHTS drops atoms that cross a "
                     "fixed boundary; in a walled bin, grains thrown or carried above the box's "
                     "top): that soil is gone from the bin; give the box more height above the bed "

@@ -20,8 +20,8 @@ MODE
                  short private dir under TMPDIR, removed at the end.
   cost_recorded  the run file of a coupled run records its cost for `wheelsim-post results`:
                  /parameters/liggghts/atoms and atoms_start = the bed's sphere count (the bed's
-                 own log, 'soilbin: spheres = N'; none lost), liggghts/np = --np, run/wall_time in (0, the
-                 launcher's elapsed time]; and, its rig config setting run.dt, that dt and
+                 own log, 'soilbin: spheres = N'; none lost), liggghts/np = --np,
+                 run/wall_time in (0, the launcher's elapsed time]; and, its rig config setting run.dt, that dt and
                  "the rig config's run.dt" as its source (launcher line and run file).
 """
 import argparse

@@ -31,7 +31,8 @@ FRICTION = 0.5
 # the one soil: on the flat ground with regularized friction DP = mu W once v_j >> v_c
 SOIL = (f'{{ name = "mu05", friction = {FRICTION}, friction_model = "regularized", '
         'slip_velocity_scale = 1.0e-3 }')
-DURATION_SIGTERM = 100.0  # s simulated: a point takes ~3 s of wall time (400 s took 12-20 s, 2026-11-28)
+# s simulated: a point takes ~3 s of wall time (400 s took 12-20 s, 2026-11-28)
+DURATION_SIGTERM = 100.0
 DURATION_KILL = 1.0e5  # s simulated: ~10 min of wall time, far longer than a kill test
 
 

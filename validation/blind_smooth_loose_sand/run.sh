@@ -22,8 +22,7 @@
 # --smoke: the CI version (a tiny bin, slip -0.5, 0.05 s of test phase; minutes): same
 #          pipeline, outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
-# The rest is one brace group, read whole before it runs: an edit of this file during a long
-# run (bash otherwise reads a script as it goes) cannot change what the running case does.
+# The rest is one brace group, read whole before it runs (common/case.sh says why).
 {
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
 smoke=0 sensitivity=0 scm=0 out="" sweep_args=() args=("$@")

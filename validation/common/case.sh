@@ -1,6 +1,9 @@
 # Sourced first by validation/<case>/run.sh: sets here (the case's folder), root (the checkout),
 # build_dir ($WHEELSIM_BUILD_DIR, else <root>/build) and python (Debian's, with numpy, h5py and
 # matplotlib), and brings write_provenance (provenance.sh) and stop_if_signalled.
+# Each run.sh wraps everything after `set -euo pipefail` in one brace group, so bash reads it
+# whole before it runs: bash otherwise reads a script as it goes, and an edit of a run.sh (or an
+# update of the checkout) during a run of hours would change what the running case does next.
 here=$(cd "$(dirname "${BASH_SOURCE[1]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
 build_dir=${WHEELSIM_BUILD_DIR:-$root/build}

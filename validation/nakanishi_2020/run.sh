@@ -40,8 +40,7 @@
 # --smoke: the CI version (the krot soil on a 0.40 m bin, one slip, 0.3 s of test phase;
 #          minutes): same pipeline, outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
-# The rest is one brace group, read whole before it runs: an edit of this file during a long
-# run (bash otherwise reads a script as it goes) cannot change what the running case does.
+# The rest is one brace group, read whole before it runs (common/case.sh says why).
 {
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
 # The sensitivity sweeps: on the cdt sweep's bed, on the case's (krot) bed, and on beds of their

@@ -26,8 +26,7 @@
 # --smoke: the CI version (sweep_smoke.toml: a 1.6 m bin, one slip, 0.2 s of test phase; about a
 #          minute): same pipeline, outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
-# The rest is one brace group, read whole before it runs: an edit of this file during a long
-# run (bash otherwise reads a script as it goes) cannot change what the running case does.
+# The rest is one brace group, read whole before it runs (common/case.sh says why).
 {
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
 smoke=0 only="dem,scm" out="" sweep_args=() args=("$@")
