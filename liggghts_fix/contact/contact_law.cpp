@@ -61,7 +61,7 @@ PairConstants makePairConstants(const Material &particle, const Material &wheel,
   pc.Yeff = 1.0 / ((1.0 - v1 * v1) / E1 + (1.0 - v2 * v2) / E2);
   pc.Geff = 1.0 / (2.0 * (2.0 - v1) * (1.0 + v1) / E1 + 2.0 * (2.0 - v2) * (1.0 + v2) / E2);
   pc.logE = std::log(pair.coefficientRestitution);
-  pc.betaeff = pc.logE / std::sqrt(pc.logE * pc.logE + kPi * kPi);
+  pc.betaeff = pc.logE / std::sqrt(pc.logE * pc.logE + M_PI * M_PI);
   switch (settings.limitForce) {
   case Switch::On:
     pc.limitForce = true;

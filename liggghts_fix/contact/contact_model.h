@@ -135,8 +135,6 @@ inline void setLimitForce(ContactSettings &s, bool on) {
 
 // --- The kernels' interface (each model's `apply`, inlined into evaluate()) ---
 
-constexpr double kPi = 3.14159265358979323846;
-
 /// One contact at one step, as every kernel sees it (formed once by evaluate()).
 struct ContactStep {
   const PairConstants &pc;

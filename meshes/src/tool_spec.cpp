@@ -7,8 +7,6 @@
 namespace wheelsim::meshes {
 namespace {
 
-const double kPi = std::acos(-1.0);
-
 void check_positive(const std::string &name, double value, const char *what) {
   if (!(value > 0.0) || !std::isfinite(value))
     fail_value<ToolSpecError>(name, value, "m", std::string(what) + " must be > 0 m");
@@ -26,7 +24,7 @@ double raw_segment_count(const ToolSpec &s) {
   if (s.max_edge_m > 0.0) {
     // A chord of n segments is 2 R sin(pi / n) <= max_edge.
     const double half = std::min(1.0, 0.5 * s.max_edge_m / s.radius_m);
-    n = std::max(n, round_up_to_4(std::ceil(kPi / std::asin(half) - 1e-9)));
+    n = std::max(n, round_up_to_4(std::ceil(M_PI / std::asin(half) - 1e-9)));
   }
   return n;
 }
@@ -81,7 +79,7 @@ double edge_parts(double length_m, double max_edge_m) {
 }
 
 int segments_for_chord_error(double fraction) {
-  const double n = std::ceil(kPi / std::acos(1.0 - fraction) - 1e-9);
+  const double n = std::ceil(M_PI / std::acos(1.0 - fraction) - 1e-9);
   return std::max(kMinSegments, static_cast<int>(round_up_to_4(n)));
 }
 
@@ -204,11 +202,11 @@ double ideal_volume_m3(const ToolSpec &s) {
   case ToolKind::plate_rect:
     return s.lx_m * s.ly_m * s.height_m;
   case ToolKind::plate_disc:
-    return kPi * s.radius_m * s.radius_m * s.height_m;
+    return M_PI * s.radius_m * s.radius_m * s.height_m;
   case ToolKind::frame:
     return (4.0 * s.half_x_m() * s.half_y_m() - s.lx_m * s.ly_m) * s.height_m;
   case ToolKind::ring:
-    return kPi * (s.radius_m * s.radius_m - s.inner_radius_m * s.inner_radius_m) * s.height_m;
+    return M_PI * (s.radius_m * s.radius_m - s.inner_radius_m * s.inner_radius_m) * s.height_m;
   }
   return 0.0;
 }

@@ -14,7 +14,6 @@ using Eigen::Vector3d;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const wc::Material kParticle{5.0e7, 0.3};
 const wc::Material kWheel{2.0e11, 0.3};
 constexpr double kR = 2.0e-3; // particle radius [m]
@@ -54,7 +53,7 @@ TEST(PairConstants, EffectiveModuliAndBetaFollowLiggghts) {
   EXPECT_NEAR(relErr(pc.Yeff, yeff), 0.0, 1e-14);
   EXPECT_NEAR(relErr(pc.Geff, geff), 0.0, 1e-14);
   EXPECT_NEAR(
-      relErr(pc.betaeff, std::log(0.5) / std::sqrt(std::log(0.5) * std::log(0.5) + kPi * kPi)), 0.0,
+      relErr(pc.betaeff, std::log(0.5) / std::sqrt(std::log(0.5) * std::log(0.5) + M_PI * M_PI)), 0.0,
       1e-14);
   EXPECT_FALSE(pc.limitForce); // hertz default
   wc::ContactSettings eepa;
@@ -251,7 +250,7 @@ TEST(Sjkr, WallCohesionIsEnergyDensityTimesContactArea) {
     const auto with = wc::evaluate(pc, state(delta), 1e-6, true, h1);
     const auto without = wc::evaluate(pcNoCoh, state(delta), 1e-6, true, h2);
     const double r = kR - delta;
-    const double expected = -3.0e4 * kPi * (kR * kR - r * r);
+    const double expected = -3.0e4 * M_PI * (kR * kR - r * r);
     EXPECT_NEAR(with.cohesionForce, expected, 1e-12 * std::fabs(expected));
     EXPECT_NEAR(with.force.z() - without.force.z(), expected, 1e-9 * std::fabs(expected));
     EXPECT_EQ(with.normalForce, without.normalForce); // tangential_reduce off by default

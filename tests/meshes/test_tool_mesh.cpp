@@ -16,8 +16,6 @@ using wheelsim::geometry::TriangleMesh;
 
 namespace {
 
-const double kPi = std::acos(-1.0);
-
 ToolSpec plate_rect(double lx, double ly, double t) {
   ToolSpec s;
   s.kind = ToolKind::plate_rect;
@@ -66,7 +64,7 @@ ToolSpec with_max_edge(ToolSpec s, double e) {
 double polygon_volume(const ToolSpec &s) {
   if (!s.round())
     return ideal_volume_m3(s);
-  const double n = segment_count(s), f = 0.5 * n * std::sin(2.0 * kPi / n);
+  const double n = segment_count(s), f = 0.5 * n * std::sin(2.0 * M_PI / n);
   const double ri = s.kind == ToolKind::ring ? s.inner_radius_m : 0.0;
   return f * (s.radius_m * s.radius_m - ri * ri) * s.height_m;
 }
@@ -135,7 +133,7 @@ TEST(ToolMesh, EveryToolIsClosedOutwardAndMatchesTheAnalyticSolid) {
       EXPECT_LT((report.bbox_max_m - half).norm(), 1e-12 * half.norm());
       EXPECT_LT((report.bbox_min_m + half).norm(), 1e-12 * half.norm());
     } else {
-      const double sagitta = s.radius_m * (1.0 - std::cos(kPi / segment_count(s)));
+      const double sagitta = s.radius_m * (1.0 - std::cos(M_PI / segment_count(s)));
       for (int k = 0; k < 3; ++k) {
         EXPECT_LE(report.bbox_max_m[k], half[k] * (1 + 1e-12));
         EXPECT_GE(report.bbox_max_m[k], half[k] - sagitta);
@@ -188,9 +186,9 @@ TEST(ToolMesh, SegmentsFollowTheChordErrorRule) {
     const int n = segments_for_chord_error(f);
     EXPECT_EQ(n % 4, 0) << f;
     EXPECT_GE(n, kMinSegments) << f;
-    EXPECT_LE(1.0 - std::cos(kPi / n), f) << f; // the rule holds
+    EXPECT_LE(1.0 - std::cos(M_PI / n), f) << f; // the rule holds
     if (n > kMinSegments) {
-      EXPECT_GT(1.0 - std::cos(kPi / (n - 4)), f) << f; // and is the smallest multiple of 4
+      EXPECT_GT(1.0 - std::cos(M_PI / (n - 4)), f) << f; // and is the smallest multiple of 4
     }
   }
   // Given segments are used as they are; --max-edge raises the default ones.
@@ -199,7 +197,7 @@ TEST(ToolMesh, SegmentsFollowTheChordErrorRule) {
   const ToolSpec fine = with_max_edge(plate_disc(0.1, 0.01), 0.005);
   const int n = segment_count(fine);
   EXPECT_EQ(n % 4, 0);
-  EXPECT_LE(2.0 * 0.1 * std::sin(kPi / n), 0.005);
+  EXPECT_LE(2.0 * 0.1 * std::sin(M_PI / n), 0.005);
   // The mesh has exactly that many vertices on the outer circle of the top face.
   const auto g = generate_tool(plate_disc(0.1, 0.01, 30), 1.0);
   int on_rim = 0;
@@ -257,7 +255,7 @@ TEST(ToolMesh, FixContactIndexSeesTheOutwardFaces) {
   // Mid-facet of the 72-gon bore (at the vertex lines a grain touches both neighbouring facets
   // of the concave wall: docs/tool-mesh.md, "Contact with the fix").
   const SphereContactIndex bore(generate_tool(ring(0.05, 0.055, 0.1), 1.0).mesh);
-  const double half_step = kPi / 72.0, apothem = 0.05 * std::cos(half_step);
+  const double half_step = M_PI / 72.0, apothem = 0.05 * std::cos(half_step);
   const Eigen::Vector3d direction(std::cos(half_step), std::sin(half_step), 0.0);
   ASSERT_EQ(bore.find_contacts(0.042 * direction, 0.01, contacts), 1);
   EXPECT_NEAR(contacts[0].normal.dot(direction), -1.0, 1e-9);

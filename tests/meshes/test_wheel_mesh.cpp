@@ -16,8 +16,6 @@ using wheelsim::geometry::TriangleMesh;
 
 namespace {
 
-const double kPi = std::acos(-1.0);
-
 WheelSpec lugged(double d0, double w, int nl, double lh, double delta, double h, LugType type) {
   WheelSpec s;
   s.diameter_m = d0;
@@ -75,7 +73,7 @@ TEST(WheelMesh, SmoothCylinderMatchesAnalytic) {
   s.smooth = true; // default resolution
   const auto w = generate_wheel(s, 7850.0);
   const double R = 0.617, L = 0.479;
-  const double V = kPi * R * R * L, m = 7850.0 * V;
+  const double V = M_PI * R * R * L, m = 7850.0 * V;
   const double I_axle = 0.5 * m * R * R;                      // about +y
   const double I_diameter = m * (3.0 * R * R + L * L) / 12.0; // about x or z through the centre
   const auto &I = w.props.inertia_about_centroid_kg_m2;
@@ -114,8 +112,8 @@ TEST(WheelMesh, LuggedWheelsAreValidSolidsWithMeasurableLugs) {
     EXPECT_TRUE(report.consistently_oriented());
     EXPECT_TRUE(report.degenerate_triangles.empty());
     const double R = c.spec.outer_radius_m(), Rr = c.spec.rim_radius_m(), L = c.spec.width_m;
-    EXPECT_GT(w.props.volume_m3, kPi * Rr * Rr * L);
-    EXPECT_LT(w.props.volume_m3, kPi * R * R * L);
+    EXPECT_GT(w.props.volume_m3, M_PI * Rr * Rr * L);
+    EXPECT_LT(w.props.volume_m3, M_PI * R * R * L);
     double r_max = 0.0, y_min = 0.0, y_max = 0.0;
     for (const auto &v : w.mesh.vertices_m) {
       r_max = std::max(r_max, radius_xz(v));
@@ -136,10 +134,10 @@ TEST(WheelMesh, LugVolumeMatchesFootprint) {
   const WheelSpec s = lugged(0.6, 0.2, 12, 0.03, 0, 0, LugType::straight);
   const auto w = generate_wheel(s, 1.0);
   const double R = 0.3, Rr = 0.27, t = 0.04, L = 0.2;
-  const double n = std::ceil(2 * kPi / std::min(s.resolution.max_arc_m / R, 3.0 * kPi / 180));
+  const double n = std::ceil(2 * M_PI / std::min(s.resolution.max_arc_m / R, 3.0 * M_PI / 180));
   // Polygonal rim: n' >= n segments, so compare within the polygon error of a few 1e-4.
-  const double expected = kPi * Rr * Rr * L + 12 * (t / R) * (R * R - Rr * Rr) / 2 * L;
-  EXPECT_NEAR(w.props.volume_m3 / expected, 1.0, 2.0 * std::pow(2 * kPi / n, 2) / 6.0);
+  const double expected = M_PI * Rr * Rr * L + 12 * (t / R) * (R * R - Rr * Rr) / 2 * L;
+  EXPECT_NEAR(w.props.volume_m3 / expected, 1.0, 2.0 * std::pow(2 * M_PI / n, 2) / 6.0);
 }
 
 TEST(WheelMesh, CombinedLugCentreLeadsInForwardRotation) {

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -14,8 +15,6 @@
 namespace {
 
 using namespace wheelsim::scm;
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Hand-copied from Project Chrono, data/vehicle/cosim/terrain/scm_hard.json (the co-simulation
 // SCM terrain node's sample spec; the leading comment is Chrono's, its reader accepts comments).
@@ -105,7 +104,7 @@ TEST(ChronoSoil, CosimSampleImportsToTheHandCheckedValues) {
   EXPECT_EQ(s.Bekker_Kc, 0.0);
   EXPECT_EQ(s.Bekker_n, 1.1);
   EXPECT_EQ(s.Mohr_cohesion, 0.0);
-  EXPECT_NEAR(s.Mohr_friction, 20.0 * kPi / 180.0, 1e-15); // Chrono: degrees; ours: radians
+  EXPECT_NEAR(s.Mohr_friction, 20.0 * M_PI / 180.0, 1e-15); // Chrono: degrees; ours: radians
   EXPECT_NEAR(s.Mohr_friction, 0.3490658503988659, 1e-15);
   EXPECT_EQ(s.Janosi_shear, 0.01);
   EXPECT_EQ(s.elastic_K, 2e8);
@@ -184,7 +183,7 @@ TEST(ChronoSoil, WriterKeepsNotesAndEscapesStrings) {
   SoilParameters s;
   s.name = "a \"quoted\" soil\\x";
   s.Bekker_Kphi = 1e6;
-  s.Mohr_friction = 30 * kPi / 180;
+  s.Mohr_friction = 30 * M_PI / 180;
   const std::string toml = write_soil_file(s, {"from a test", {{"bekker.kphi", "typed in"}}});
   const SoilParameters back = parse_soil_file(toml, "t.toml");
   expect_same(back, s);

@@ -19,8 +19,6 @@ using wheelsim::scm::parse_soil_file;
 using wheelsim::scm::SoilFileError;
 using wheelsim::scm::SoilParameters;
 
-constexpr double kPi = 3.14159265358979323846;
-
 std::string read(const std::string &path) {
   std::ifstream in(path);
   std::ostringstream os;
@@ -64,7 +62,7 @@ TEST(ScmSoilFiles, EveryShippedSoilLoadsAndMatchesTable1TimesThousand) {
     EXPECT_NEAR(s.Bekker_Kc, r.kc_kN * 1000, 1e-9 * r.kc_kN * 1000);
     EXPECT_NEAR(s.Bekker_Kphi, r.kphi_kN * 1000, 1e-9 * r.kphi_kN * 1000);
     EXPECT_NEAR(s.Mohr_cohesion, r.c_kPa * 1000, 1e-9 * r.c_kPa * 1000);
-    EXPECT_NEAR(s.Mohr_friction, r.phi_deg * kPi / 180, 1e-12);
+    EXPECT_NEAR(s.Mohr_friction, r.phi_deg * M_PI / 180, 1e-12);
     EXPECT_NEAR(s.Janosi_shear, r.K_m, 1e-12);
     // Chosen K values lie in the documented ranges (sands 0.01-0.025 m, loams/clays 0.006-0.01 m).
     if (!r.K_from_table) {
@@ -177,7 +175,7 @@ TEST(ScmSoilLoader, ReadsEveryKeyInSiAndDegrees) {
   EXPECT_EQ(s.Bekker_Kc, 1000.0);
   EXPECT_EQ(s.Bekker_Kphi, 2.0e6);
   EXPECT_EQ(s.Mohr_cohesion, 500.0);
-  EXPECT_NEAR(s.Mohr_friction, kPi / 6, 1e-15);
+  EXPECT_NEAR(s.Mohr_friction, M_PI / 6, 1e-15);
   EXPECT_EQ(s.Janosi_shear, 0.015);
   EXPECT_EQ(s.elastic_K, 5e7);
   EXPECT_EQ(s.damping_R, 0.0);
@@ -290,7 +288,7 @@ TEST(ScmSoilFiles, FittedFromDemFilesLoadAndSayWhereTheyCameFrom) {
     EXPECT_GT(s.Bekker_n, 0.0);
     EXPECT_GT(s.Bekker_Kphi, 0.0);
     EXPECT_GT(s.Mohr_friction, 0.0);
-    EXPECT_LT(s.Mohr_friction, kPi / 4);
+    EXPECT_LT(s.Mohr_friction, M_PI / 4);
     EXPECT_GT(s.Janosi_shear, 0.0);
     const toml::table doc = toml::parse_file(e.path().string());
     const auto src = doc["source"]["bekker"]["n"].value<std::string>();

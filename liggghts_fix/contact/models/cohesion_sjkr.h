@@ -35,7 +35,7 @@ constexpr ModelSpec spec{"sjkr",
 inline void apply(const ContactStep &c, double &Fn, ContactResult &out) {
   const double R = c.state.radius, delta = c.state.overlap;
   const double r = R - delta;
-  const double area = (R * R - r * r) * kPi;
+  const double area = (R * R - r * r) * M_PI;
   out.cohesionForce = -c.pc.pair.cohesionEnergyDensity * area;
   out.force += out.cohesionForce * c.state.normal;
   if (c.pc.settings.tangentialReduce)

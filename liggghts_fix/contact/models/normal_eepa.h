@@ -74,7 +74,7 @@ constexpr SwitchSpec kSwitches[] = {
 inline double damping(const PairConstants &pc, double R, double m) {
   const double dex = pc.pair.overlapExponent;
   const double kn = dex == 1.0 ? 2.0 * pc.Yeff * R : 4.0 / 3.0 * pc.Yeff * std::sqrt(R);
-  const double piOverLogE = pc.logE == 0.0 ? HUGE_VAL : kPi / pc.logE;
+  const double piOverLogE = pc.logE == 0.0 ? HUGE_VAL : M_PI / pc.logE;
   return std::sqrt(4.0 * m * kn / (1.0 + piOverLogE * piOverLogE));
 }
 
@@ -119,7 +119,7 @@ inline double adhesionStiffnessFromSurfaceEnergy(const PairConstants &pc, double
   const double dsq = d * d, risq = ri * ri, rjsq = rj * rj;
   const double chord = dsq - rjsq + risq;
   const double a = std::sqrt(std::fmax(4.0 * dsq * risq - chord * chord, 0.0)) / (2.0 * d);
-  double fMin = 1.5 * kPi * pc.pair.surfaceEnergy * a;
+  double fMin = 1.5 * M_PI * pc.pair.surfaceEnergy * a;
   double deltaMin;
   if (fMin > fMinLimit) {
     fMin = fMinLimit;

@@ -18,8 +18,6 @@
 namespace wheelsim::scm {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 bool positive(double v) { return v > 0; }
 bool non_negative(double v) { return v >= 0; }
 bool exponent(double v) { return v > 0 && v <= 2; }
@@ -339,7 +337,7 @@ SoilParameters to_soil_parameters(const ChronoSoil &c) {
   s.Bekker_Kc = c.Bekker_Kc;
   s.Bekker_Kphi = c.Bekker_Kphi;
   s.Mohr_cohesion = c.Mohr_cohesion;
-  s.Mohr_friction = c.Mohr_friction * kPi / 180.0;
+  s.Mohr_friction = c.Mohr_friction * M_PI / 180.0;
   s.Janosi_shear = c.Janosi_shear;
   s.elastic_K = c.elastic_K;
   s.damping_R = c.damping_R;
@@ -353,7 +351,7 @@ ChronoSoil to_chrono_soil(const SoilParameters &s) {
   c.Bekker_Kc = s.Bekker_Kc;
   c.Bekker_Kphi = s.Bekker_Kphi;
   c.Mohr_cohesion = s.Mohr_cohesion;
-  c.Mohr_friction = s.Mohr_friction * 180.0 / kPi;
+  c.Mohr_friction = s.Mohr_friction * 180.0 / M_PI;
   c.Janosi_shear = s.Janosi_shear;
   c.elastic_K = s.elastic_K;
   c.damping_R = s.damping_R;

@@ -24,8 +24,6 @@ using config::closest;
 using config::fmt;
 using config::type_name;
 
-constexpr double kPi = 3.14159265358979323846;
-
 /// One value key: its table, name, unit (as written in messages) and what it is.
 struct KeySpec {
   const char *table;
@@ -251,7 +249,7 @@ SoilParameters parse_soil_file(const std::string &text, const std::string &sourc
   s.Mohr_cohesion = *get("mohr_coulomb", "cohesion", true, ">= 0", [](double v) { return v >= 0; });
   s.Mohr_friction = *get("mohr_coulomb", "friction_angle", true, "in [0, 90)", [](double v) {
     return v >= 0 && v < 90;
-  }) * kPi / 180.0;
+  }) * M_PI / 180.0;
   s.Janosi_shear = *get("janosi", "shear_modulus", true, "> 0", [](double v) { return v > 0; });
   s.elastic_K = get("scm", "elastic_stiffness", false, "> 0", [](double v) {
                   return v > 0;
@@ -291,7 +289,7 @@ std::string write_soil_file(const SoilParameters &soil, const SoilFileNotes &not
       {"kc", soil.Bekker_Kc},
       {"kphi", soil.Bekker_Kphi},
       {"cohesion", soil.Mohr_cohesion},
-      {"friction_angle", soil.Mohr_friction * 180.0 / kPi},
+      {"friction_angle", soil.Mohr_friction * 180.0 / M_PI},
       {"shear_modulus", soil.Janosi_shear},
       {"elastic_stiffness", soil.elastic_K},
       {"damping", soil.damping_R},
