@@ -53,8 +53,8 @@ TEST(PairConstants, EffectiveModuliAndBetaFollowLiggghts) {
   EXPECT_NEAR(relErr(pc.Yeff, yeff), 0.0, 1e-14);
   EXPECT_NEAR(relErr(pc.Geff, geff), 0.0, 1e-14);
   EXPECT_NEAR(
-      relErr(pc.betaeff, std::log(0.5) / std::sqrt(std::log(0.5) * std::log(0.5) + M_PI * M_PI)), 0.0,
-      1e-14);
+      relErr(pc.betaeff, std::log(0.5) / std::sqrt(std::log(0.5) * std::log(0.5) + M_PI * M_PI)),
+      0.0, 1e-14);
   EXPECT_FALSE(pc.limitForce); // hertz default
   wc::ContactSettings eepa;
   eepa.normal = wc::NormalModel::Eepa;
