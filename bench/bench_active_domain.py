@@ -31,7 +31,7 @@ import time
 
 import numpy as np
 
-from liggghts_log_path import loops  # the shared parser of LIGGGHTS' "Loop time" lines
+from liggghts_log_path import liggghts_log, loops  # the shared parser of LIGGGHTS' output
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -76,18 +76,12 @@ def make_bed(a, length):
 
 
 def thermo(text):
-    rows, hdr = [], None
-    for line in text.split("\n"):
-        t = line.split()
-        if t and t[0] == "Step" and "fx" in t:
-            hdr = t
-            continue
-        if hdr and len(t) == len(hdr):
-            try:
-                rows.append([float(x) for x in t])
-            except ValueError:
-                hdr = None
-    return hdr, np.array(rows)
+    """The wheel runs' thermo rows (the tables with an fx column: in.active_domain's thermo_style)
+    as (column names, array)."""
+    tables = [t for t in liggghts_log.thermo(text) if "fx" in t.columns]
+    if not tables:
+        sys.exit("no thermo table with an fx column in the run's output")
+    return tables[0].columns, np.array([r for t in tables for r in t.rows])
 
 
 def run_wheel(a, restart, length, active):

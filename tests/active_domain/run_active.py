@@ -14,8 +14,12 @@ import argparse
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "postprocess"))
+from wheelsim_post import liggghts_log  # noqa: E402  (the shared thermo-table parser)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DECK = os.path.join(HERE, "in.active_domain")
@@ -57,19 +61,12 @@ def snapshots(path):
 
 
 def thermo(text):
-    """The wheel runs' thermo table (columns of in.active_domain's thermo_style)."""
-    rows, hdr = [], None
-    for line in text.split("\n"):
-        t = line.split()
-        if t and t[0] == "Step" and "fx" in t:
-            hdr = t
-            continue
-        if hdr and len(t) == len(hdr):
-            try:
-                rows.append([float(x) for x in t])
-            except ValueError:
-                hdr = None
-    return hdr, np.array(rows)
+    """The wheel runs' thermo rows (the tables with an fx column: in.active_domain's thermo_style)
+    as (column names, array)."""
+    tables = [t for t in liggghts_log.thermo(text) if "fx" in t.columns]
+    if not tables:
+        sys.exit("no thermo table with an fx column in the run's output")
+    return tables[0].columns, np.array([r for t in tables for r in t.rows])
 
 
 def col(hdr, rows, name):

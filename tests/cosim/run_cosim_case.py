@@ -31,6 +31,10 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "postprocess"))
+from wheelsim_post import liggghts_log  # noqa: E402  (the shared thermo-table parser)
 
 TIMEOUT_S = 3.0   # coupling timeout used by the fault tests [s]
 MARGIN_S = 10.0   # process start-up and MPI shutdown allowance on a loaded 2-core machine [s]
@@ -56,12 +60,9 @@ def mpirun(a):
 
 
 def thermo_rows(text):
-    rows = {}
-    for line in text.splitlines():
-        f = line.split()
-        if len(f) == 11 and f[0].isdigit() and f[1].isdigit():
-            rows[int(f[0])] = [float(x) for x in f[2:]]
-    return rows
+    """{step: [the fix's columns]} of in.motion_compare's thermo tables (step atoms f_wheel[...])."""
+    return {int(r[0]): r[2:] for t in liggghts_log.thermo(text)
+            if t.columns[2:3] == ["wheel[1]"] for r in t.rows}
 
 
 def compare(a):

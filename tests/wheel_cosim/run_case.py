@@ -17,8 +17,12 @@ import os
 import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "postprocess"))
+from wheelsim_post import liggghts_log  # noqa: E402  (the shared thermo-table parser)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DECK = os.path.join(HERE, "in.wheel_roll")
@@ -206,15 +210,9 @@ def check_candidates(a, launch, common):
 
 
 def thermo_column(text, name):
-    """{step: value} of one thermo column of a run's screen output."""
-    rows, header = {}, None
-    for line in text.splitlines():
-        tok = line.split()
-        if tok[:1] == ["Step"]:
-            header = tok if name in tok else None
-        elif header and len(tok) == len(header) and tok[0].isdigit():
-            rows[int(tok[0])] = float(tok[header.index(name)])
-    return rows
+    """{step: value} of one thermo column of a run's screen output (every table that has it)."""
+    return {k: v for t in liggghts_log.thermo(text) if name in t.columns
+            for k, v in t.column(name).items()}
 
 
 def check_ranks(a, launch, launch_ref, common):
