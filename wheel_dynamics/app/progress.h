@@ -25,8 +25,8 @@ private:
   using Clock = std::chrono::steady_clock;
   double interval_s_;
   std::FILE *out_;
-  Clock::time_point start_; // this process's first update
-  Clock::time_point last_;  // the previous line
+  Clock::time_point start_;   // this process's first update
+  Clock::time_point last_;    // the previous line
   long long first_step_ = -1; // the first step this process ran; -1: none yet (a resumed run's
                               // rates count only its own steps, not the checkpoint's step)
   long long last_step_ = -1;  // the step of the previous line
