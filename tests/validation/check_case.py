@@ -2,13 +2,15 @@
 """Runs a validation case's smoke version and checks its outputs.
 
     check_case.py RUN_SH OUT_DIR --slips S1[,S2...] [--slip-tolerance 0.005]
-                  [--outputs comparison.png,provenance.toml]
+                  [--outputs comparison.png,provenance.toml] [--tables-check]
 
 Runs `RUN_SH --smoke --out-dir OUT_DIR` from an empty OUT_DIR, then checks: results.csv has one
 row per expected slip with the issue-11 columns, finite drawbar pull, torque, sinkage and SEM,
 the measured slip equal to the imposed one within the tolerance (the rig holds it), a positive
 normal load, wall time and particle count; the --outputs files (default comparison.png and
-provenance.toml; a blind case has a prediction plot instead of a comparison) exist. The slips are
+provenance.toml; a blind case has a prediction plot instead of a comparison) exist. With
+--tables-check, `RUN_SH --smoke --tables` must then write the same results rows again from the
+finished points alone, without running any (every run.h5 untouched). The slips are
 in the signed convention of results.csv's `slip` column (driving for s >= 0, skid for s < 0), so a
 skid point is checked in the skid convention. Exit 0 when all hold, 1 otherwise (each failure
 printed).
@@ -33,6 +35,8 @@ def main():
     ap.add_argument("--slip-tolerance", type=float, default=0.005)
     ap.add_argument("--outputs", default="comparison.png,provenance.toml",
                     help="files OUT_DIR must hold afterwards (comma-separated)")
+    ap.add_argument("--tables-check", action="store_true",
+                    help="then check RUN_SH --tables (tables from the finished points only)")
     a = ap.parse_args()
     out = Path(a.out_dir)
     if out.exists():
@@ -80,9 +84,34 @@ def main():
     for name in a.outputs.split(","):
         if not (out / name).is_file():
             failures.append(f"{out / name} missing")
+    if a.tables_check and results.exists():
+        failures += tables_check(a.run_sh, out, results)
     for f in failures:
         print("FAIL:", f)
     return 1 if failures else 0
+
+
+def tables_check(run_sh, out, results):
+    """RUN_SH --smoke --tables rewrites results.csv with the same rows, running nothing."""
+    def rows(path):
+        return [l for l in path.read_text(encoding="utf-8").splitlines() if not l.startswith("#")]
+    before = rows(results)
+    runs = {p: p.stat().st_mtime_ns for p in out.rglob("run.h5")}
+    results.unlink()
+    proc = subprocess.run([run_sh, "--smoke", "--tables", "--out-dir", str(out)])
+    failures = []
+    if proc.returncode != 0:
+        failures.append(f"{run_sh} --smoke --tables exited {proc.returncode}")
+    if not results.exists():
+        return failures + [f"--tables: {results} not written"]
+    if rows(results) != before:
+        failures.append("--tables: results.csv rows differ from the run's")
+    after = {p: p.stat().st_mtime_ns for p in out.rglob("run.h5")}
+    if after != runs:
+        failures.append(f"--tables ran or changed points: run.h5 files {sorted(map(str, runs))} "
+                        f"became {sorted(map(str, after))}")
+    print(f"--tables: {len(before) - 1} row(s) written again from {len(runs)} finished run(s)")
+    return failures
 
 
 if __name__ == "__main__":

@@ -2,6 +2,7 @@
 # Validation case 3 — the reference study wheels at full size (README.md).
 #
 #   validation/study_wheels/run.sh [--smoke | --only PARTS] [--out-dir DIR] [--force] [--points GLOBS]
+#                                  [--tables]
 #
 # PARTS (comma-separated, default dem,scm): dem — study wheels 1 and 5 at six slips on the tiled
 # DEM dry-sand bin, 0.8 m deep (sweep.toml; prepares the bin once; ~1 h 5 min per point estimated
@@ -23,13 +24,16 @@
 # machine, wall time); finished points are kept in points/ (committed) and restored on the next
 # run. Run it in the background: nohup ... &
 # --points GLOBS: only these points of each sweep (wheel-sweep --points, e.g. 'wheel1/*/s0.200').
+# --tables: run nothing; write the results tables, comparison and provenance from the points
+#          finished so far (in runs/ or kept in points/), e.g. beside a sweep still running or after
+#          a session's stop killed one. A point still running (no run.h5 yet) is left out.
 # --smoke: the CI version (sweep_smoke.toml: a 1.6 m bin, one slip, 0.2 s of test phase; about a
 #          minute): same pipeline, outputs into --out-dir only (nothing in this folder changes).
 set -euo pipefail
 # The rest is one brace group, read whole before it runs (common/case.sh says why).
 {
 source "$(dirname "${BASH_SOURCE[0]}")/../common/case.sh"   # here, root, build_dir, python
-smoke=0 only="dem,scm" out="" sweep_args=() args=("$@")
+smoke=0 tables=0 only="dem,scm" out="" sweep_args=() args=("$@")
 while (($#)); do
   case "$1" in
     --smoke) smoke=1; shift ;;
@@ -37,6 +41,7 @@ while (($#)); do
     --out-dir) out=$2; shift 2 ;;
     --force) sweep_args+=(--force); shift ;;
     --points) sweep_args+=(--points "${2:-}"); shift 2 ;;
+    --tables) tables=1; shift ;;
     -h|--help) sed -n '2,/^set -euo pipefail/{/^set -euo/!p}' "$0"; exit 0 ;;
     *) echo "run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
@@ -64,15 +69,30 @@ part() {
   local archive=()
   t0=$(date +%s); t0_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
   ((smoke)) || archive=(--archive "$here/points/${dir##*/}")
-  "$root/scripts/wheel-sweep" "$here/$config" --out-dir "$dir" --build-dir "$build_dir" \
-    "${archive[@]}" "${sweep_args[@]}" || rc=$?
-  stop_if_signalled "$rc" "$config"
-  ((rc == 0)) || status=1
-  # every finished point (a failed point is reported by wheel-sweep and left out)
-  mapfile -t runs < <(find "$dir" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" | sort)
+  if ((!tables)); then
+    "$root/scripts/wheel-sweep" "$here/$config" --out-dir "$dir" --build-dir "$build_dir" \
+      "${archive[@]}" "${sweep_args[@]}" || rc=$?
+    stop_if_signalled "$rc" "$config"
+    ((rc == 0)) || status=1
+  fi
+  # every finished point (a failed point is reported by wheel-sweep and left out); with --tables
+  # also those kept in points/ only (wheel-sweep restores them into $dir when it next runs)
+  mapfile -t runs < <(find "$dir" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" \
+                       2>/dev/null | sort)
+  if ((tables)) && [[ -d $here/points/${dir##*/} ]]; then
+    local kept
+    while IFS= read -r kept; do
+      local rel=${kept#"$here/points/${dir##*/}/"}
+      [[ -f $dir/$rel ]] || runs+=("$kept")
+    done < <(find "$here/points/${dir##*/}" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
+  fi
   ((${#runs[@]})) || { echo "run.sh: no finished run under $dir" >&2; status=1; return 0; }
+  local rows_before=""
+  [[ -f $results ]] && rows_before=$(grep -v '^#' "$results" | sha256sum)
   if "$root/postprocess/wheelsim-post" curves "${runs[@]}" "${window[@]}" --results "$results.new" \
     --csv "$dir/curves.csv"; then keep_table "$results.new" "$results"; else status=1; fi
+  # --tables: the provenance of a table whose rows did not change stays that of the run that made it
+  if ((tables)) && [[ $(grep -v '^#' "$results" | sha256sum) == "$rows_before" ]]; then return 0; fi
   write_provenance "$provenance" validation/study_wheels \
     "validation/study_wheels/run.sh${args[*]:+ }${args[*]}" "$t0_utc" "$t0" "$dir"
 }
