@@ -6,7 +6,7 @@ ranks' grid), the grain-size sensitivity and issue 12's goal point (21-52 mm gra
 
     compare.py RESULTS.csv [--scm RESULTS_SCM.csv] [--full-domain RESULTS_FULL.csv]
                [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--goal RESULTS_GOAL.csv]
-               [--label CONFIG]
+               [--goal-wide RESULTS_GOAL_WIDE.csv] [--label CONFIG]
                [--md OUT.md] [--png OUT.png]
 
 Inputs are tables of `wheelsim-post curves --results` (docs/postprocess.md); the wheel and the soil
@@ -184,6 +184,8 @@ def main():
     ap.add_argument("--full-domain", help="the full-domain runs' results table")
     ap.add_argument("--grain", help="the grain-size sensitivity's results table")
     ap.add_argument("--goal", help="issue 12's goal point's results table (21-52 mm grains)")
+    ap.add_argument("--goal-wide", help="the goal point with sweep.toml's 0.3 m sinkage allowance "
+                    "(sweep_goal_wide.toml): the like-for-like coarser grain")
     ap.add_argument("--wide", help="the active domain's point with a larger distance (its sinkage "
                     "allowance raised), compared with --full-domain's")
     ap.add_argument("--repeat", help="the repeat of the active domain's point on another ranks' "
@@ -228,8 +230,12 @@ def main():
     for table, heading, name in (
             (a.grain, "Grain size: 16-40 mm ({}) against 12-30 mm (sweep_grain.toml)",
              "12-30 mm grains"),
+            (a.goal_wide, "Grain size, like for like: 16-40 mm ({}) against 21-52 mm "
+             "(sweep_goal_wide.toml: the same 0.3 m sinkage allowance, time step x 1.3)",
+             "21-52 mm grains"),
             (a.goal, "Issue 12's goal: 16-40 mm ({}) against 21-52 mm (sweep_goal.toml, time step "
-             "x 1.3)", "21-52 mm grains")):
+             "x 1.3, the active domain at its default distance: not like for like since "
+             "sweep.toml sets the 0.3 m allowance)", "21-52 mm grains")):
         if table:
             lines += ["## " + heading.format(a.label), ""]
             lines += point_table(dem, read(table), name, ref=a.label)[0] + [""]

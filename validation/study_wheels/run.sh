@@ -121,6 +121,7 @@ if [[ -f $here/results.csv ]]; then
   [[ -f $here/results_scm.csv ]] && extra+=(--scm "$here/results_scm.csv")
   [[ -f $here/results_grain.csv ]] && extra+=(--grain "$here/results_grain.csv")
   [[ -f $here/results_goal.csv ]] && extra+=(--goal "$here/results_goal.csv")
+  [[ -f $here/results_goal_wide.csv ]] && extra+=(--goal-wide "$here/results_goal_wide.csv")
   "$python" "$here/compare.py" "$here/results.csv" "${extra[@]}" \
     --md "$here/comparison.md" --png "$here/comparison.png" || status=1
 fi
