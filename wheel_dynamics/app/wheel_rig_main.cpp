@@ -189,7 +189,7 @@ private:
 struct CheckpointSettings {
   std::string dir;           ///< empty: no checkpoints
   long long every_steps = 0; ///< LIGGGHTS steps between checkpoints (0: by wall time only)
-  double every_s = 1800.0;   ///< wall time between checkpoints [s] (0: by steps only)
+  double every_s = 600.0;    ///< wall time between checkpoints [s] (0: by steps only)
   std::string inputs_hash = "none";
   /// The run's wall time before this session (a resumed run: the checkpoint's) [s], and this
   /// session's start: each checkpoint records their sum as the run's wall time so far.
@@ -481,7 +481,7 @@ int main(int argc, char **argv) {
                  "LIGGGHTS steps between checkpoints (default 0: by wall time only)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--checkpoint-every-seconds", checkpoints.every_s,
-                 "wall time between checkpoints [s] (default 1800; 0: by steps only)")
+                 "wall time between checkpoints [s] (default 600; 0: by steps only)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--inputs-hash", checkpoints.inputs_hash,
                  "a word identifying the run's inputs, stored in each checkpoint and compared on "
