@@ -87,6 +87,7 @@ part() {
     done < <(find "$here/points/${dir##*/}" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
   fi
   ((${#runs[@]})) || { echo "run.sh: no finished run under $dir" >&2; status=1; return 0; }
+  mkdir -p "$dir"   # --tables on a machine whose runs/ holds none of them: curves.csv goes there
   local rows_before=""
   [[ -f $results ]] && rows_before=$(grep -v '^#' "$results" | sha256sum)
   if "$root/postprocess/wheelsim-post" curves "${runs[@]}" "${window[@]}" --results "$results.new" \
