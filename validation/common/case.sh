@@ -22,10 +22,13 @@ stop_if_signalled() {
 # keep_table NEW DEST: DEST becomes NEW, unless DEST already holds the same rows (its lines other
 # than the # comments): a re-run that skipped every finished point computes the same numbers under
 # a new git and command line, and the committed table keeps the record of the run that made them.
+# Sets table_kept (1: DEST kept as it was, 0: replaced).
 keep_table() {
   if [[ -f $2 ]] && cmp -s <(grep -v '^#' "$1") <(grep -v '^#' "$2"); then
     rm -f "$1"
+    table_kept=1
   else
     mv -f "$1" "$2"
+    table_kept=0
   fi
 }
