@@ -66,9 +66,10 @@ status=0
 # README "Resuming across sessions").
 part() {
   local config=$1 dir=$2 results=$3 provenance=$4 t0 t0_utc runs rc=0
-  local archive=()
+  local archive=() kept_dir=""
   t0=$(date +%s); t0_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
-  ((smoke)) || archive=(--archive "$here/points/${dir##*/}")
+  # the smoke keeps nothing: its OUT may share a name with the full case's sweep
+  ((smoke)) || { kept_dir=$here/points/${dir##*/}; archive=(--archive "$kept_dir"); }
   if ((!tables)); then
     "$root/scripts/wheel-sweep" "$here/$config" --out-dir "$dir" --build-dir "$build_dir" \
       "${archive[@]}" "${sweep_args[@]}" || rc=$?
@@ -79,12 +80,11 @@ part() {
   # also those kept in points/ only (wheel-sweep restores them into $dir when it next runs)
   mapfile -t runs < <(find "$dir" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" \
                        2>/dev/null | sort)
-  if ((tables)) && [[ -d $here/points/${dir##*/} ]]; then
+  if ((tables)) && [[ -n $kept_dir && -d $kept_dir ]]; then
     local kept
     while IFS= read -r kept; do
-      local rel=${kept#"$here/points/${dir##*/}/"}
-      [[ -f $dir/$rel ]] || runs+=("$kept")
-    done < <(find "$here/points/${dir##*/}" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
+      [[ -f $dir/${kept#"$kept_dir/"} ]] || runs+=("$kept")
+    done < <(find "$kept_dir" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
   fi
   ((${#runs[@]})) || { echo "run.sh: no finished run under $dir" >&2; status=1; return 0; }
   mkdir -p "$dir"   # --tables on a machine whose runs/ holds none of them: curves.csv goes there
