@@ -75,15 +75,6 @@ def make_bed(a, length):
     return restart
 
 
-def thermo(text):
-    """The wheel runs' thermo rows (the tables with an fx column: in.active_domain's thermo_style)
-    as (column names, array)."""
-    tables = [t for t in liggghts_log.thermo(text) if "fx" in t.columns]
-    if not tables:
-        sys.exit("no thermo table with an fx column in the run's output")
-    return tables[0].columns, np.array([r for t in tables for r in t.rows])
-
-
 def run_wheel(a, restart, length, active):
     name = os.path.join(a.work, f"roll_L{length:g}_{'on' if active else 'off'}")
     os.makedirs(name, exist_ok=True)
@@ -103,10 +94,10 @@ def run_wheel(a, restart, length, active):
         sys.exit(f"bench: {name} failed (see its out.txt)")
     seconds, _procs, steps, atoms = [r for r in loops(text) if r.steps > 0][-1]
     share = re.findall(r"([0-9.]+) of ([0-9.]+) particles active on average", text)
-    h, rows = thermo(text)
-    start = rows[0, 0]
-    window = rows[:, 0] >= start + WINDOW_FROM
-    means = {k: rows[window, h.index(k)].mean() for k in ("fx", "fz", "ty")}
+    wheel = liggghts_log.merged(text, "fx")   # in.active_domain's thermo_style
+    step = np.array(wheel.values("Step"))
+    window = step >= step[0] + WINDOW_FROM
+    means = {k: np.array(wheel.values(k))[window].mean() for k in ("fx", "fz", "ty")}
     return {"ms_per_step": 1e3 * seconds / steps, "atoms": atoms,
             "active": float(share[-1][0]) if share else float(atoms), "means": means,
             "load": (l0, load())}

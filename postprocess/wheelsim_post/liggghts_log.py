@@ -35,6 +35,13 @@ class Thermo(NamedTuple):
         i = self.columns.index(name)
         return {int(r[0]): r[i] for r in self.rows}
 
+    def values(self, name):
+        """The column `name` in row order (KeyError naming the columns if there is none)."""
+        if name not in self.columns:
+            raise KeyError(f"thermo column '{name}' not in {self.columns}")
+        i = self.columns.index(name)
+        return [r[i] for r in self.rows]
+
 
 def thermo(text):
     """Every thermo table in `text`, in order. A table starts at a header line whose first word is
@@ -54,3 +61,17 @@ def thermo(text):
             except ValueError:
                 current = None
     return tables
+
+
+def merged(text, column):
+    """The rows of every thermo table in `text` that has `column`, in order, under the first such
+    table's columns (one Thermo for a run made of several `run` commands). ValueError if no table
+    has `column`, or if two of them differ in their columns."""
+    tables = [t for t in thermo(text) if column in t.columns]
+    if not tables:
+        raise ValueError(f"no thermo table with a '{column}' column")
+    for t in tables[1:]:
+        if t.columns != tables[0].columns:
+            raise ValueError(f"thermo tables with a '{column}' column differ: {tables[0].columns} "
+                             f"and {t.columns}")
+    return Thermo(tables[0].columns, [r for t in tables for r in t.rows])

@@ -60,17 +60,9 @@ def snapshots(path):
     return out
 
 
-def thermo(text):
-    """The wheel runs' thermo rows (the tables with an fx column: in.active_domain's thermo_style)
-    as (column names, array)."""
-    tables = [t for t in liggghts_log.thermo(text) if "fx" in t.columns]
-    if not tables:
-        sys.exit("no thermo table with an fx column in the run's output")
-    return tables[0].columns, np.array([r for t in tables for r in t.rows])
-
-
-def col(hdr, rows, name):
-    return rows[:, hdr.index(name)]
+def col(table, name):
+    """One column of a liggghts_log.Thermo as an array."""
+    return np.array(table.values(name))
 
 
 def verdict(ok, what):
@@ -146,21 +138,21 @@ def mode_roll(a):
     common = dict(vx=0.1125, vz=-0.2, wy=1.5, steps1=a.steps, thermo_every=1)
     _, t_off = run(a, "off", dict(common, active=0))
     _, t_on = run(a, "on", dict(common, active_args=f"distance {a.distance}"))
-    h, off = thermo(t_off)
-    h2, on = thermo(t_on)
-    contact = np.nonzero(col(h, off, "nc") > 0)[0]
+    off = liggghts_log.merged(t_off, "fx")
+    on = liggghts_log.merged(t_on, "fx")
+    contact = np.nonzero(col(off, "nc") > 0)[0]
     if len(contact) == 0:
         return verdict(False, "the wheel touched the bed")
     window = slice(contact[0] + a.window_from, None)
-    f_off = np.array([col(h, off, k)[window].mean() for k in ("fx", "fz")])
-    f_on = np.array([col(h2, on, k)[window].mean() for k in ("fx", "fz")])
-    t_off_m, t_on_m = col(h, off, "ty")[window].mean(), col(h2, on, "ty")[window].mean()
+    f_off = np.array([col(off, k)[window].mean() for k in ("fx", "fz")])
+    f_on = np.array([col(on, k)[window].mean() for k in ("fx", "fz")])
+    t_off_m, t_on_m = col(off, "ty")[window].mean(), col(on, "ty")[window].mean()
     load = np.linalg.norm(f_off)
     df = np.linalg.norm(f_on - f_off) / load
     dt = abs(t_on_m - t_off_m) / (load * a.radius)
-    frozen_mean = col(h2, on, "n_frozen")[window].mean()
-    total = col(h2, on, "n_active")[0] + col(h2, on, "n_frozen")[0]
-    print(f"roll: window of {len(col(h, off, 'fx')[window])} steps from {a.window_from} steps "
+    frozen_mean = col(on, "n_frozen")[window].mean()
+    total = col(on, "n_active")[0] + col(on, "n_frozen")[0]
+    print(f"roll: window of {len(col(off, 'fx')[window])} steps from {a.window_from} steps "
           f"after first contact; mean force (fx, fz) without {f_off} N, with {f_on} N: "
           f"|dF|/|F| = {df:.3e}; torque ty {t_off_m:.5g} vs {t_on_m:.5g} N m: "
           f"|dT|/(|F| R) = {dt:.3e}; {frozen_mean:.0f} of {total:.0f} particles frozen on "
@@ -186,29 +178,29 @@ def mode_restart(a):
     _, t_drop = run(a, "second_drop", dict(common, steps1=a.m, restart_in=1,
                                            active_args="distance 0.03 history drop",
                                            restart_file=os.path.join(w1, "restart.out")))
-    h, whole = thermo(t_whole)
-    h2, second = thermo(t_second)
-    steps = col(h2, second, "Step")
-    sel = np.isin(col(h, whole, "Step"), steps)
+    whole = liggghts_log.merged(t_whole, "fx")
+    second = liggghts_log.merged(t_second, "fx")
+    steps = col(second, "Step")
+    sel = np.isin(col(whole, "Step"), steps)
     ok = verdict(sel.sum() == len(steps) and len(steps) == a.m + 1, "same steps in both runs")
     if not ok:
         return ok
-    load = max(np.abs(col(h, whole, "fz")[sel]).max(), 1.0)
+    load = max(np.abs(col(whole, "fz")[sel]).max(), 1.0)
     worst = 0.0
     for k in ("fx", "fz", "ty", "n_active", "n_frozen"):
-        d = np.abs(col(h, whole, k)[sel] - col(h2, second, k)).max()
+        d = np.abs(col(whole, k)[sel] - col(second, k)).max()
         scale = load if k in ("fx", "fz") else (load * a.radius if k == "ty" else 1.0)
         worst = max(worst, d / scale)
         print(f"restart: {k}: largest difference {d:.3e} (relative to {scale:.3g}: {d / scale:.3e})")
-    h3, drop = thermo(t_drop)
-    d_drop = np.abs(col(h, whole, "fz")[sel] - col(h3, drop, "fz")).max() / load
+    drop = liggghts_log.merged(t_drop, "fx")
+    d_drop = np.abs(col(whole, "fz")[sel] - col(drop, "fz")).max() / load
     print(f"restart: continued with the kept histories dropped: fz differs by {d_drop:.3e}")
     ok &= verdict(d_drop > 100 * a.tol, "dropping the kept histories changes the continuation "
                   "(the check can fail)")
     updates = [l for l in t_second.split("\n") if "active-set updates" in l]
     print("  " + (updates[-1] if updates else "(no report)"))
-    frozen = col(h2, second, "n_frozen")[0]
-    kept = col(h2, second, "n_kept")[0]
+    frozen = col(second, "n_frozen")[0]
+    kept = col(second, "n_kept")[0]
     print(f"restart: at the restart {frozen:.0f} frozen particles, {kept:.0f} kept contacts")
     ok &= verdict(frozen > 0 and kept > 0, "frozen particles and kept contacts at the restart")
     ok &= verdict(worst <= a.tol, f"continued run equals the uninterrupted one ({a.tol:g})")

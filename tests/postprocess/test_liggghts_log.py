@@ -2,7 +2,7 @@
 as LIGGGHTS 3.8 prints them (a bed's settle runs then a wheel run), in order, with their numbers."""
 import unittest
 
-from wheelsim_post.liggghts_log import Loop, Thermo, loops, thermo
+from wheelsim_post.liggghts_log import Loop, Thermo, loops, merged, thermo
 
 SCREEN = """\
 Setting up run ...
@@ -72,6 +72,25 @@ class ThermoTables(unittest.TestCase):
 
     def test_no_table_gives_an_empty_list(self):
         self.assertEqual(thermo(SCREEN.replace("Step", "step")), [])
+
+
+class Merged(unittest.TestCase):
+    TWO_RUNS = TABLES + TABLES.split("WARNING: New thermo_style")[1].replace("6545", "6548") \
+        .replace("6546", "6549").replace("6547", "6550")
+
+    def test_the_rows_of_every_run_with_the_column_under_one_header(self):
+        t = merged(self.TWO_RUNS, "fx")
+        self.assertEqual(t.columns, ["Step", "Atoms", "fx", "fz", "wheel[10"])
+        self.assertEqual([r[0] for r in t.rows], [6545, 6546, 6547, 6548, 6549, 6550])
+        self.assertEqual(t.values("fz"), [0.0, 2.25, 4.0, 0.0, 2.25, 4.0])
+
+    def test_a_clear_error_for_a_column_no_table_has(self):
+        with self.assertRaisesRegex(ValueError, "no thermo table with a 'ty' column"):
+            merged(TABLES, "ty")
+
+    def test_tables_that_differ_in_their_columns_are_an_error(self):
+        with self.assertRaisesRegex(ValueError, "differ"):
+            merged("Step Atoms fx\n1 10 0.5\nLoop time of\nStep fx\n2 0.7\n", "fx")
 
 
 if __name__ == "__main__":
