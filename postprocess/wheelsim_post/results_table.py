@@ -119,8 +119,9 @@ def _blank(value):
     return "" if value is None else value
 
 
-def result_row(result, cost):
-    """One results.csv row (order of COLUMNS) of a RunResult and its run_cost()."""
+def result_row(result, cost, run_file):
+    """One results.csv row (order of COLUMNS) of a RunResult, its run_cost() and the name of its
+    run file in the table (table_name())."""
     s, span = result.stats, result.span
     wall, particles, ranks, revision = cost
     signed = s[of_means("slip_signed")]
@@ -131,8 +132,16 @@ def result_row(result, cost):
     row += [s["vertical_load"], _blank(wall), _blank(particles), _blank(ranks)]
     row += [result.metadata.target_slip, result.metadata.terrain, s["n_samples"]]
     row += [span.start, span.end, result.health.verdict, result.health.codes]
-    row += [revision or "unknown", result.path]
+    row += [revision or "unknown", run_file]
     return row
+
+
+def table_name(run_path, table_path):
+    """A run file's name in the results table at ``table_path``: its path relative to the table's
+    folder, so that a table names the same runs on every machine and in every clone (a committed
+    table and the run files committed beside it move together)."""
+    table_dir = os.path.dirname(os.path.abspath(table_path))
+    return os.path.relpath(os.path.abspath(run_path), table_dir)
 
 
 def tree_revision(root):
@@ -173,7 +182,8 @@ def sort_key(row):
 def write_results(path, results, window, args):
     """Writes the table of the RunResults ``results`` (window ``window``) to ``path``; the
     header records the checkout's git revision and the command line in ``args.argv``."""
-    rows = sorted((result_row(r, run_cost(r.path)) for r in results), key=sort_key)
+    rows = sorted((result_row(r, run_cost(r.path), table_name(r.path, path)) for r in results),
+                  key=sort_key)
     for row in rows:
         record = dict(zip(COLUMNS, row))
         print(

@@ -96,8 +96,9 @@ class ResultsTest(TempDirTestCase):
         for column in REQUIRED:
             self.assertIn(column, rows[0])
         self.assertEqual(list(rows[0]), list(COLUMNS))
-        self.assertEqual(
-            [r["run_file"] for r in rows], [self.locked, self.skid, self.dem, self.scm]
+        self.assertEqual(  # relative to the table's folder (here the runs' own)
+            [r["run_file"] for r in rows],
+            ["flat_locked.h5", "dem_skid.h5", "dem_drive.h5", "scm.h5"],
         )
         locked, skid, dem, scm = rows
         self.assertEqual(float(locked["slip"]), -1.0)
@@ -110,6 +111,14 @@ class ResultsTest(TempDirTestCase):
         self.assertAlmostEqual(float(dem["slip_driving"]), 0.2, places=9)
         self.assertAlmostEqual(float(dem["slip_skid"]), 0.25, places=9)
         self.assertAlmostEqual(float(scm["slip"]), 0.5, places=9)
+
+    def test_run_files_are_named_relative_to_the_table_folder(self):
+        table = self.path(os.path.join("tables", "results.csv"))
+        os.makedirs(os.path.dirname(table))
+        result = run_cli("curves", self.dem, "--results", table)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        _, rows = read(table)
+        self.assertEqual(rows[0]["run_file"], os.path.join("..", "dem_drive.h5"))
 
     def test_means_and_batch_means_sems(self):
         (_, rows), _ = self.results()

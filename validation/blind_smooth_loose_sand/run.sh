@@ -60,15 +60,16 @@ status=0
 # full case keeps its finished points in the committed points/NAME/ (wheel-sweep --archive;
 # README "Resuming across sessions").
 sweep() {
-  local name=$1 config=$2 w0=$3 w1=$4 results=$5 archive=()
-  ((smoke || scm)) || archive=(--archive "$here/points/$name")  # SCM points take a minute: not kept
+  local name=$1 config=$2 w0=$3 w1=$4 results=$5 archive=() kept=""
+  ((smoke || scm)) || kept=$here/points/$name   # SCM points take a minute: not kept
+  [[ -z $kept ]] || archive=(--archive "$kept")
   local rc=0
   "$root/scripts/wheel-sweep" "$config" --out-dir "$out/$name" --build-dir "$build_dir" \
     "${archive[@]}" "${sweep_args[@]}" || rc=$?
   stop_if_signalled "$rc" "$name"
   ((rc == 0)) || status=$rc
   local runs
-  mapfile -t runs < <(find "$out/$name" -mindepth 4 -name run.h5 -not -path "*/beds/*" | sort)
+  mapfile -t runs < <(finished_runs "$out/$name" "$kept")
   ((${#runs[@]})) || { echo "run.sh: no finished run under $out/$name" >&2; exit 1; }
   "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start "$w0" --window-end "$w1" \
     --results "$results.new" --csv "$out/$name/curves.csv"

@@ -19,6 +19,21 @@ stop_if_signalled() {
   fi
 }
 
+# finished_runs OUT [KEPT]: the run.h5 of every finished point under OUT (<wheel>/<soil>/<slip>/;
+# a failed point is reported by wheel-sweep and left out), each by its committed copy in KEPT (the
+# case's points/<sweep>/, wheel-sweep --archive) where it has one, and the points only KEPT holds
+# (a machine whose runs/ lost them): a results table then names run files every clone has.
+finished_runs() {
+  local out=$1 kept=${2:-} run rel
+  {
+    while IFS= read -r run; do
+      rel=${run#"$out/"}
+      if [[ -n $kept && -f $kept/$rel ]]; then echo "$kept/$rel"; else echo "$run"; fi
+    done < <(find "$out" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" 2>/dev/null)
+    if [[ -n $kept && -d $kept ]]; then find "$kept" -mindepth 4 -maxdepth 4 -name run.h5; fi
+  } | sort -u
+}
+
 # keep_table NEW DEST: DEST becomes NEW, unless DEST already holds the same rows (its lines other
 # than the # comments): a re-run that skipped every finished point computes the same numbers under
 # a new git and command line, and the committed table keeps the record of the run that made them.

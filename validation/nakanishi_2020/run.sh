@@ -95,7 +95,7 @@ if ((sensitivity)); then
     "$root/scripts/wheel-sweep" "$here/$config" --out-dir "$out/sensitivity/$name" \
       --build-dir "$build_dir" "${sweep_args[@]}" || rc=$?
     stop_if_signalled "$rc" "$config"
-    mapfile -t runs < <(find "$out/sensitivity/$name" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
+    mapfile -t runs < <(finished_runs "$out/sensitivity/$name")
     ((${#runs[@]})) || { echo "run.sh: no finished run under $out/sensitivity/$name" >&2; return 1; }
     "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start "$w0" --window-end "$w1" \
       --results "$here/results_$name.csv.new" --csv "$out/sensitivity/$name/curves.csv"
@@ -145,7 +145,7 @@ fi
 "$root/scripts/wheel-sweep" "$config" --out-dir "$out" --build-dir "$build_dir" "${sweep_args[@]}" || status=$?
 stop_if_signalled "$status" "$config"
 # results of every finished point (a failed point is reported by wheel-sweep and left out)
-mapfile -t runs < <(find "$out" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" | sort)
+mapfile -t runs < <(finished_runs "$out")
 ((${#runs[@]})) || { echo "run.sh: no finished run under $out" >&2; exit 1; }
 # Window: test-phase seconds 1.0 .. end (the first second is the approach to steady sinkage, as
 # the published runs average after 1 s of driving); smoke: the second half of its 0.3 s.

@@ -76,16 +76,7 @@ part() {
     stop_if_signalled "$rc" "$config"
     ((rc == 0)) || status=1
   fi
-  # every finished point (a failed point is reported by wheel-sweep and left out); with --tables
-  # also those kept in points/ only (wheel-sweep restores them into $dir when it next runs)
-  mapfile -t runs < <(find "$dir" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" \
-                       2>/dev/null | sort)
-  if ((tables)) && [[ -n $kept_dir && -d $kept_dir ]]; then
-    local kept
-    while IFS= read -r kept; do
-      [[ -f $dir/${kept#"$kept_dir/"} ]] || runs+=("$kept")
-    done < <(find "$kept_dir" -mindepth 4 -maxdepth 4 -name run.h5 | sort)
-  fi
+  mapfile -t runs < <(finished_runs "$dir" "$kept_dir")
   ((${#runs[@]})) || { echo "run.sh: no finished run under $dir" >&2; status=1; return 0; }
   mkdir -p "$dir"   # --tables on a machine whose runs/ holds none of them: curves.csv goes there
   table_kept=1   # stays 1 if no table is written
