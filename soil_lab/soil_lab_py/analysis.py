@@ -530,6 +530,8 @@ def write_scm(r: Results, path, name=None):
                              f"'shear' test first")
     dem = r.soil["name"]
     widths = ", ".join(f"{p['b_m']:.3g}" for p in r.plates)
+    # the deepest loading sample: SCM below it extrapolates the fit (docs/soil-lab.md)
+    z_fitted = max(float(np.max(p["z"][p["phase"] == 1])) for p in r.plates)
     if not r.unload:
         raise LabResultError(f"{r.directory}: no plate's unloading branch could be fitted for the "
                              "elastic stiffness: " + "; ".join(
@@ -544,7 +546,8 @@ def write_scm(r: Results, path, name=None):
     k_values = ", ".join(f"{s['janosi'].K_m:.3g}" for s in r.shears)
     sources = {
         "bekker": scm_file.dem_source(dem, "plate sinkage", r.bekker,
-                                      f"square plates b = {widths} m, loading branches"),
+                                      f"square plates b = {widths} m, loading branches to "
+                                      f"z = {z_fitted:.3g} m (deeper sinkage extrapolates)"),
         "mohr_coulomb": scm_file.dem_source(dem, "direct shear box, peak strength", r.mc_peak,
                                             f"normal stresses {sigmas} kPa"),
         "janosi.shear_modulus": scm_file.dem_source(

@@ -103,7 +103,8 @@ def _run(a):
                      checkpoints=a.checkpoints)
     soil = lab.soil_info(soil_file)
     p = plan.make_plan(soil, tests, a.preset, stresses, bed_vars, widths, a.plate_bin,
-                       a.speed_check, a.shear_travel, a.plate_speed, a.shear_speed)
+                       a.speed_check, a.shear_travel, a.plate_speed, a.shear_speed,
+                       a.plate_depth)
     # The soil file as the checkout names it (inputs/soils/x.in), so results do not carry the
     # path of the machine that ran them; a file outside the checkout keeps its absolute path.
     soil_path = Path(soil.file).resolve()
@@ -181,6 +182,10 @@ def main(argv=None):
                         "at most 0.5)")
     r.add_argument("--plate-speed", type=float, metavar="M_S",
                    help="the plates' speed [m/s] (default 0.02; quick 0.04)")
+    r.add_argument("--plate-depth", type=float, metavar="M",
+                   help="the plates' sinkage at the end of the reload [m] (default 3 d_max; quick "
+                        "1.5): loading to 2/3 of it, unloading by 1/6; a deeper plate gets a "
+                        "deeper bed. Press to the wheel's sinkage so SCM is not extrapolated")
     r.add_argument("--shear-speed", type=float, metavar="M_S",
                    help="the shear box's speed [m/s] (default 0.005; quick 0.02)")
     r.add_argument("--speed-check", action="store_true",

@@ -87,12 +87,15 @@ def _speed(value, default, option):
 
 def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None, bed_vars=None,
               plate_widths_m=None, plate_bin_m=None, speed_check=False, shear_travel=None,
-              plate_speed=None, shear_speed=None):
+              plate_speed=None, shear_speed=None, plate_depth=None):
     """The beds and runs for `tests` on `soil`. Raises LabInputError for an unknown test or preset,
     plates that are not two different widths or do not fit their bin with a plate width of soil
     on every side, a normal stress outside what the box can hold, a repose test on a multisphere
     soil, a shear travel (a fraction of the box side) outside (0, 0.5], or a plate or shear speed
-    [m/s] (default PLATE_SPEED, SHEAR_SPEED) outside (0, MAX_TOOL_SPEED]. speed_check: also the
+    [m/s] (default PLATE_SPEED, SHEAR_SPEED) outside (0, MAX_TOOL_SPEED], or a plate depth [m]
+    (the sinkage at the end of the reload; default 3 d_max, quick 1.5) under one grain (d_max):
+    a deeper one loads to 2/3 of it and unloads by 1/6, on a bed as much deeper, so that the soil
+    under the plate's deepest point is the default's. speed_check: also the
     larger plate, the middle normal stress and (standard preset) the repose test at half speed
     (runs named <run>_half), for the quasi-static check."""
     tests = tuple(tests)
@@ -134,10 +137,18 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
             raise LabInputError(f"plate {b2:g} m is too wide for the plate bin (side {side:g} m): "
                                 f"the bin needs at least {2.5 * b2:g} m (the plate and 3/4 of its "
                                 f"width of soil on each side), or use narrower plates")
-        depth = (1.25 if quick else 1.5) * b2
+        # The loading ends at 2/3 of the plate depth, the unloading rises by 1/6 of it, the
+        # reload ends at it (default 3 d_max, quick 1.5); a deeper plate gets a bed as much
+        # deeper (fill height), so the soil under its deepest point is the default's.
+        default_depth2 = (1.5 if quick else 3.0) * d
+        depth2 = default_depth2 if plate_depth is None else plate_depth
+        if not depth2 >= d:   # also NaN
+            raise LabInputError(f"--plate-depth {depth2:g} m is under one grain (d_max {d:g} m): "
+                                f"a plate must sink at least a grain (default {default_depth2:g})")
+        depth = (1.25 if quick else 1.5) * b2 + max(0.0, depth2 - default_depth2)
         beds["plate"] = Bed("plate", side, side, depth, bed_vars)
         if "plate" in tests:
-            depth1, unload, depth2 = (1.0 * d, 0.25 * d, 1.5 * d) if quick else (2.0 * d, 0.5 * d, 3.0 * d)
+            depth1, unload = depth2 * 2.0 / 3.0, depth2 / 6.0
             speed = plate_speed
             thickness = max(0.5 * d, 0.005)
             for b in (b1, b2):

@@ -46,6 +46,9 @@ class Plan(unittest.TestCase):
             "shear travel 0 is outside (0, 0.5]": dict(tests=("shear",), shear_travel=0.0),
             "--plate-speed 0 m/s is outside (0, 0.1] m/s": dict(tests=("plate",), plate_speed=0.0),
             "--shear-speed 5 m/s is outside (0, 0.1] m/s": dict(tests=("shear",), shear_speed=5.0),
+            "--plate-depth 0.004 m is under one grain": dict(tests=("plate",), plate_depth=0.004),
+            "--plate-depth nan m is under one grain": dict(tests=("plate",),
+                                                           plate_depth=float("nan")),
         }
         for message, kwargs in cases.items():
             with self.subTest(message):
@@ -69,6 +72,22 @@ class Plan(unittest.TestCase):
             p = make_plan(SAND, ("shear",), shear_travel=travel)
             for r in p.runs:
                 self.assertAlmostEqual(float(r.variables["shear_distance"]), expected)
+
+    def test_plate_depth_default_or_as_given_with_a_bed_as_much_deeper(self):
+        d = SAND.dmax_m
+        default = make_plan(SAND, ("bulk", "plate"))
+        deep = make_plan(SAND, ("bulk", "plate"), plate_depth=0.1)
+        for p, depth2 in ((default, 3 * d), (deep, 0.1)):
+            for r in (r for r in p.runs if r.test == "plate"):
+                self.assertAlmostEqual(float(r.variables["depth2"]), depth2)
+                self.assertAlmostEqual(float(r.variables["depth1"]), depth2 * 2 / 3, places=6)
+                self.assertAlmostEqual(float(r.variables["unload"]), depth2 / 6, places=6)
+        self.assertAlmostEqual(deep.beds["plate"].fill_height_m,
+                               default.beds["plate"].fill_height_m + 0.1 - 3 * d)
+        # a shallower plate keeps the default bed
+        shallow = make_plan(SAND, ("plate",), plate_depth=1.5 * d)
+        self.assertAlmostEqual(shallow.beds["plate"].fill_height_m,
+                               default.beds["plate"].fill_height_m)
 
     def test_tool_speeds_default_or_as_given(self):
         for kwargs, plate, shear in (({}, 0.02, 0.005), (dict(preset="quick"), 0.04, 0.02),
