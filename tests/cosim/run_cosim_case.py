@@ -10,7 +10,8 @@ MODE
   kill_rig       the rig is SIGKILLed mid-run: LIGGGHTS must stop with an error naming the rig
                  and the awaited Pose within its timeout (+ margin).
   kill_liggghts  LIGGGHTS is SIGKILLed mid-run: the rig must stop with an error naming LIGGGHTS
-                 and the awaited Wrench within its timeout (+ margin), and its run file must read
+                 and the awaited Wrench (or the Pose it could not send) within its timeout
+                 (+ margin), and its run file must read
                  back (h5py) with the rows of its last flush.
   launcher_fail  scripts/wheel-cosim with a rig config that the rig rejects exits non-zero and
                  shows the rig's message.
@@ -198,7 +199,12 @@ def kill_liggghts(a):
     elapsed = time.time() - t_kill
     log = open(os.path.join(a.work, "rig.log"), errors="replace").read()
     m = re.search(r"wheel-rig: error:[^\n]*", log)
-    ok = rc != 0 and m is not None and "LIGGGHTS" in m.group(0) and "Wrench" in m.group(0)
+    # Where the kill lands decides which of the rig's two waits notices it: the receive of the
+    # next Wrench ("no Wrench for step N from LIGGGHTS ... within T s") or, when the rig was
+    # between a Wrench and its Pose, the send of that Pose ("sending Pose for step N: could not
+    # hand a message to LIGGGHTS ... no peer connected"). Both are the right error.
+    ok = (rc != 0 and m is not None and "LIGGGHTS" in m.group(0)
+          and ("no Wrench" in m.group(0) or "sending Pose" in m.group(0)))
     import h5py
     with h5py.File(os.path.join(a.work, "run.h5"), "r") as f:
         steps = f["observables/slip/step"][:]
