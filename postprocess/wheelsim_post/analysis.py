@@ -4,8 +4,9 @@ import dataclasses
 import math
 
 from .health import (ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, BIN_LENGTH_PARAMETER,
-                     PARTICLES_END_PARAMETER, PARTICLES_START_PARAMETER, RIM_RADIUS_PARAMETER,
-                     WHEEL_WIDTH_PARAMETER, Health, postprocess_findings)
+                     EFFECTIVE_RADIUS_PARAMETER, LUG_HEIGHT_PARAMETER, PARTICLES_END_PARAMETER,
+                     PARTICLES_START_PARAMETER, RIM_RADIUS_PARAMETER, WHEEL_WIDTH_PARAMETER,
+                     Health, postprocess_findings)
 from .metadata import read_metadata
 from .runfile import RunFile
 from .steady import steady_state
@@ -51,9 +52,12 @@ def analyse_run(path, window, lugs=None):
         parameters = [run.parameter(name) for name in (
             ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, WHEEL_WIDTH_PARAMETER,
             BIN_LENGTH_PARAMETER, RIM_RADIUS_PARAMETER, PARTICLES_START_PARAMETER,
-            PARTICLES_END_PARAMETER)]
+            PARTICLES_END_PARAMETER, LUG_HEIGHT_PARAMETER, EFFECTIVE_RADIUS_PARAMETER)]
+    *parameters, lug_height, effective_radius = (None if v is None else float(v)
+                                                 for v in parameters)
     health.findings = health.findings + postprocess_findings(
-        stats, *(None if v is None else float(v) for v in parameters))
+        stats, *parameters, terrain=metadata.terrain, lug_height_m=lug_height,
+        effective_radius_m=effective_radius)
     return RunResult(path, metadata, stats, health)
 
 

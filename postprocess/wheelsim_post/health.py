@@ -114,6 +114,9 @@ RIM_RADIUS_PARAMETER = "wheel/rim_radius"
 #: many times the sinkage. The Rankine passive zone ahead of a blade pushed at depth z reaches
 #: z tan(45 deg + phi/2) = 1.6 - 2.0 z for phi 25 - 37 deg; the pile there must not meet the wall.
 END_WALL_CLEARANCE_SINKAGES = 2.0
+#: The wheel's lug height (0 or absent: smooth) and slip radius, recorded by wheel-rig [m].
+LUG_HEIGHT_PARAMETER = "wheel/lug_height"
+EFFECTIVE_RADIUS_PARAMETER = "wheel/effective_radius"
 #: floor_clearance: a warning when the wheel's bottom runs closer to the bin's rigid floor than
 #: this many wheel widths. Under a square contact of side b, about a third of the contact pressure
 #: still reaches one side b deeper (Boussinesq); a rigid floor there carries part of the load.
@@ -122,14 +125,36 @@ FLOOR_CLEARANCE_WIDTHS = 1.0
 
 def postprocess_findings(stats, active_allowance_m=None, bed_depth_m=None, wheel_width_m=None,
                          bin_length_m=None, rim_radius_m=None, particles_start=None,
-                         particles_end=None):
+                         particles_end=None, terrain=None, lug_height_m=None,
+                         effective_radius_m=None):
     """Findings of the window statistics (steady.steady_state's dict); ``active_allowance_m``:
     the active domain's sinkage allowance (ACTIVE_ALLOWANCE_PARAMETER; None: no active domain);
     ``bed_depth_m``, ``wheel_width_m``: a DEM bed's depth and the wheel's width (None: unknown,
     no floor check); ``bin_length_m``, ``rim_radius_m``: the bin's length and the wheel's outer
     radius (None: no end-wall check); ``particles_start``, ``particles_end``: LIGGGHTS' atom
-    counts at the run's start and end (None: not recorded, no check)."""
+    counts at the run's start and end (None: not recorded, no check); ``terrain``, ``lug_height_m``,
+    ``effective_radius_m``: the terrain type ("scm", "dem", ...) and the wheel's lug height and
+    slip radius (None: no SCM lug check)."""
     findings = []
+    slip = stats[SLIP_OF_MEANS]
+    if (terrain == "scm" and lug_height_m is not None and lug_height_m > 0.0
+            and effective_radius_m is not None and effective_radius_m > lug_height_m
+            and math.isfinite(slip.mean)):
+        onset = lug_height_m / effective_radius_m
+        if 0.0 <= slip.mean < onset:
+            findings.append(
+                Finding(
+                    "scm_rim_skid",
+                    "warning",
+                    f"SCM with a lugged wheel at slip {slip.mean:.4g}, below lug height / "
+                    f"effective radius = {lug_height_m:.4g} / {effective_radius_m:.4g} m = "
+                    f"{onset:.4g}: the rim between the lugs moves forward over the soil, so SCM's "
+                    "Janosi shear on it brakes the wheel (a height field carries no soil between "
+                    "the lugs); SCM's pull and torque jump where the rim's slip changes sign, at "
+                    "this slip: below it they are the model's artefact, not a prediction "
+                    "(docs/run-health.md)",
+                )
+            )
     if particles_start is not None and particles_end is not None and particles_start > 0:
         lost = particles_start - particles_end
         if lost > PARTICLES_LOST_FRACTION * particles_start:
@@ -188,7 +213,7 @@ def postprocess_findings(stats, active_allowance_m=None, bed_depth_m=None, wheel
                 "allowance\")",
             )
         )
-    slip, eta = stats[SLIP_OF_MEANS], stats[EFFICIENCY_OF_MEANS]
+    eta = stats[EFFICIENCY_OF_MEANS]
     if slip.mean >= 0.0 and math.isfinite(eta.mean):
         bound = 1.0 - slip.mean
         tolerance = EFFICIENCY_BOUND_SEM * math.hypot(

@@ -1,7 +1,7 @@
 """Run health in curves and study: the rig's /health group (status and entries), runs
 without it ("unchecked"), and post-processing's own findings over the window
 (efficiency_bound, steady_state_trend, active_domain_sinkage, floor_clearance,
-end_wall_clearance, particles_lost)."""
+end_wall_clearance, particles_lost, scm_rim_skid)."""
 
 import csv
 import os
@@ -60,6 +60,27 @@ class HealthTest(TempDirTestCase):
         self.assertEqual(self.verdict(within), ("ok", ""))
         # no active domain (no parameter): no finding
         self.assertEqual(self.verdict(self.write("full.h5", health=("healthy", []))), ("ok", ""))
+
+    def test_scm_rim_skid(self):
+        # a lugged wheel on SCM below s* = h/R_eff (0.1 here) warns; above, on DEM, or
+        # smooth, it does not
+        lugged = {"sweep/terrain": "scm", "wheel/lug_height": (syn.R_EFF / 10.0, "m")}
+        low = self.write("low.h5", slip=0.05, parameters=lugged, health=("healthy", []))
+        self.assertEqual(self.verdict(low), ("warning", "scm_rim_skid"))
+        message = analyse_run(low, HALF).health.findings[0].message
+        self.assertIn(f"SCM with a lugged wheel at slip 0.05, below lug height / effective "
+                      f"radius = {syn.R_EFF / 10:.4g} / {syn.R_EFF:.4g} m = 0.1:", message)
+        high = self.write("high.h5", slip=0.12, parameters=lugged, health=("healthy", []))
+        self.assertEqual(self.verdict(high), ("ok", ""))
+        dem = self.write("dem.h5", slip=0.05, parameters={**lugged, "sweep/terrain": "dem"},
+                         health=("healthy", []))
+        self.assertEqual(self.verdict(dem), ("ok", ""))
+        smooth = self.write("smooth.h5", slip=0.05,
+                            parameters={**lugged, "wheel/lug_height": (0.0, "m")},
+                            health=("healthy", []))
+        self.assertEqual(self.verdict(smooth), ("ok", ""))
+        skid = self.write("skid.h5", slip=-0.2, parameters=lugged, health=("healthy", []))
+        self.assertNotIn("scm_rim_skid", self.verdict(skid)[1])
 
     def test_floor_clearance(self):
         # sinkage 0.02 m: a 0.05 m bed leaves 0.03 m below the wheel, less than its 0.04 m width

@@ -70,9 +70,10 @@ def fmt(v, digits=3):
 
 
 def comparison_table(dem, scm):
-    """Markdown: per wheel and slip, DEM beside each SCM soil, SCM's difference in % of DEM."""
+    """Markdown: per wheel and slip, DEM beside each SCM soil, SCM's difference in % of DEM;
+    an SCM point whose health is not ok is marked † and its codes listed under the table."""
     scm_soils = sorted({r["soil"] for r in scm})
-    out = []
+    out, scm_codes = [], set()
     for wheel in sorted({r["wheel"] for r in dem}):
         out += [f"### {wheel}", ""]
         head = ["slip", "DEM F_T [kN]", "DEM DP [kN]", "DEM sinkage [mm]", "DEM TE"]
@@ -94,12 +95,20 @@ def comparison_table(dem, scm):
                     continue
                 mft, mdp, mz = (num(m["traction_force_N"]), num(m["drawbar_pull_N"]),
                                 num(m["sinkage_m"]))
-                cells += [f"{mft / 1e3:.2f} ({pct(mft, ft):+.0f})",
-                          f"{mdp / 1e3:.2f} ({pct(mdp, dp):+.0f})",
+                mark = ""
+                if m["health"] != "ok":
+                    mark = " †"
+                    scm_codes.update(c for c in m.get("health_codes", "").split(";") if c)
+                cells += [f"{mft / 1e3:.2f} ({pct(mft, ft):+.0f}){mark}",
+                          f"{mdp / 1e3:.2f} ({pct(mdp, dp):+.0f}){mark}",
                           f"{mz * 1e3:.1f} ({pct(mz, z):+.0f})", fmt(m["te"], 2)]
             flag = "" if r["health"] == "ok" else f" (health: {r['health']})"
             out.append("| " + " | ".join(cells) + " |" + flag)
         out.append("")
+    if scm_codes:
+        out += [f"† SCM point with health warnings: {', '.join(sorted(scm_codes))} "
+                "(docs/run-health.md; `scm_rim_skid`: a lugged wheel below s = lug height / "
+                "R_eff, where SCM's pull and torque are the model's artefact).", ""]
     return out
 
 

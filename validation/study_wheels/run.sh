@@ -7,7 +7,9 @@
 # PARTS (comma-separated, default dem,scm): dem — study wheels 1 and 5 at six slips on the tiled
 # DEM dry-sand bin, 0.8 m deep (sweep.toml; prepares the bin once; ~1 h 5 min per point estimated
 # on 2 idle cores with the active domain, README "Cost"); scm — the same wheels and slips on the
-# fitted SCM soil and on SCM dry sand of the tables (sweep_scm.toml; minutes); grain — wheel 1 at
+# fitted SCM soil and on SCM dry sand of the tables (sweep_scm.toml; minutes); scm_onset — SCM's
+# jump at slip = lug height / R_eff: wheel 1 and the smooth wheel at 6 slips around it
+# (sweep_scm_onset.toml; a minute); grain — wheel 1 at
 # 20 % slip on 12-30 mm grains (sweep_grain.toml, its own bin); goal — issue 12's goal point: wheel 1
 # at 20 % on 21-52 mm grains, time step scaled with the grain (sweep_goal.toml, its own bin;
 # measured 23 min + a 4 min bed); and issue 12's active-domain check,
@@ -21,8 +23,8 @@
 # comparison_goal_active_domain.md. Resumable: a re-run skips finished points. Writes here
 # results.csv (DEM), results_<part>.csv (the others), comparison.md and comparison.png (the case),
 # comparison_active_domain.md (the check) and provenance[_<part>].toml (git hash, command,
-# machine, wall time); finished points are kept in points/ (committed) and restored on the next
-# run. Run it in the background: nohup ... &
+# machine, wall time); finished DEM points are kept in points/ (committed) and restored on the
+# next run. Run it in the background: nohup ... &
 # --points GLOBS: only these points of each sweep (wheel-sweep --points, e.g. 'wheel1/*/s0.200').
 # --tables: run nothing; write the results tables, comparison and provenance from the points
 #          finished so far (in runs/ or kept in points/), e.g. beside a sweep still running or after
@@ -47,7 +49,7 @@ while (($#)); do
   esac
 done
 # the parts besides dem: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
-parts=(scm grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide)
+parts=(scm scm_onset grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide)
 for part in ${only//,/ }; do
   [[ " dem ${parts[*]} " == *" $part "* ]] || {
     echo "run.sh: --only: unknown part '$part' (expected dem ${parts[*]})" >&2; exit 2; }
@@ -62,14 +64,17 @@ window=(--window-start 2.0 --window-end 6.0)
 status=0
 
 # part CONFIG OUT RESULTS PROVENANCE: one sweep, its results table and provenance file. The full
-# case keeps its finished points in the committed points/<OUT's name>/ (wheel-sweep --archive;
+# case keeps its finished DEM points in the committed points/<OUT's name>/ (wheel-sweep --archive;
 # README "Resuming across sessions").
 part() {
   local config=$1 dir=$2 results=$3 provenance=$4 t0 t0_utc runs rc=0
   local archive=() kept_dir=""
   t0=$(date +%s); t0_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
-  # the smoke keeps nothing: its OUT may share a name with the full case's sweep
-  ((smoke)) || { kept_dir=$here/points/${dir##*/}; archive=(--archive "$kept_dir"); }
+  # the smoke keeps nothing: its OUT may share a name with the full case's sweep; nor do SCM
+  # sweeps (seconds per point, ~2 MB per run file: run them again)
+  if ((!smoke)) && ! grep -q '^terrain = "scm"' "$here/$config"; then
+    kept_dir=$here/points/${dir##*/}; archive=(--archive "$kept_dir")
+  fi
   if ((!tables)); then
     "$root/scripts/wheel-sweep" "$here/$config" --out-dir "$dir" --build-dir "$build_dir" \
       "${archive[@]}" "${sweep_args[@]}" || rc=$?
