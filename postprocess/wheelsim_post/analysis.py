@@ -5,8 +5,8 @@ import math
 
 from .health import (ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, BIN_LENGTH_PARAMETER,
                      EFFECTIVE_RADIUS_PARAMETER, LUG_HEIGHT_PARAMETER, PARTICLES_END_PARAMETER,
-                     PARTICLES_START_PARAMETER, RIM_RADIUS_PARAMETER, WHEEL_WIDTH_PARAMETER,
-                     Health, postprocess_findings)
+                     PARTICLES_START_PARAMETER, RIM_RADIUS_PARAMETER, SHEAR_SURFACE_PARAMETER,
+                     WHEEL_WIDTH_PARAMETER, Health, postprocess_findings)
 from .metadata import read_metadata
 from .runfile import RunFile
 from .steady import steady_state
@@ -53,11 +53,12 @@ def analyse_run(path, window, lugs=None):
             ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, WHEEL_WIDTH_PARAMETER,
             BIN_LENGTH_PARAMETER, RIM_RADIUS_PARAMETER, PARTICLES_START_PARAMETER,
             PARTICLES_END_PARAMETER, LUG_HEIGHT_PARAMETER, EFFECTIVE_RADIUS_PARAMETER)]
+        shear_surface = run.parameter_text(SHEAR_SURFACE_PARAMETER)
     *parameters, lug_height, effective_radius = (None if v is None else float(v)
                                                  for v in parameters)
     health.findings = health.findings + postprocess_findings(
         stats, *parameters, terrain=metadata.terrain, lug_height_m=lug_height,
-        effective_radius_m=effective_radius)
+        effective_radius_m=effective_radius, shear_surface=shear_surface)
     return RunResult(path, metadata, stats, health)
 
 

@@ -114,6 +114,8 @@ RIM_RADIUS_PARAMETER = "wheel/rim_radius"
 #: many times the sinkage. The Rankine passive zone ahead of a blade pushed at depth z reaches
 #: z tan(45 deg + phi/2) = 1.6 - 2.0 z for phi 25 - 37 deg; the pile there must not meet the wall.
 END_WALL_CLEARANCE_SINKAGES = 2.0
+#: SCM's shear surface, recorded by wheel-rig: "wheel" (default, as Chrono) or "lug_tips".
+SHEAR_SURFACE_PARAMETER = "terrain/shear_surface"
 #: The wheel's lug height (0 or absent: smooth) and slip radius, recorded by wheel-rig [m].
 LUG_HEIGHT_PARAMETER = "wheel/lug_height"
 EFFECTIVE_RADIUS_PARAMETER = "wheel/effective_radius"
@@ -126,7 +128,7 @@ FLOOR_CLEARANCE_WIDTHS = 1.0
 def postprocess_findings(stats, active_allowance_m=None, bed_depth_m=None, wheel_width_m=None,
                          bin_length_m=None, rim_radius_m=None, particles_start=None,
                          particles_end=None, terrain=None, lug_height_m=None,
-                         effective_radius_m=None):
+                         effective_radius_m=None, shear_surface=None):
     """Findings of the window statistics (steady.steady_state's dict); ``active_allowance_m``:
     the active domain's sinkage allowance (ACTIVE_ALLOWANCE_PARAMETER; None: no active domain);
     ``bed_depth_m``, ``wheel_width_m``: a DEM bed's depth and the wheel's width (None: unknown,
@@ -134,10 +136,12 @@ def postprocess_findings(stats, active_allowance_m=None, bed_depth_m=None, wheel
     radius (None: no end-wall check); ``particles_start``, ``particles_end``: LIGGGHTS' atom
     counts at the run's start and end (None: not recorded, no check); ``terrain``, ``lug_height_m``,
     ``effective_radius_m``: the terrain type ("scm", "dem", ...) and the wheel's lug height and
-    slip radius (None: no SCM lug check)."""
+    slip radius (None: no SCM lug check); ``shear_surface``: SCM's (SHEAR_SURFACE_PARAMETER;
+    "lug_tips" has no rim skid, None is read as the default "wheel")."""
     findings = []
     slip = stats[SLIP_OF_MEANS]
-    if (terrain == "scm" and lug_height_m is not None and lug_height_m > 0.0
+    if (terrain == "scm" and shear_surface != "lug_tips"
+            and lug_height_m is not None and lug_height_m > 0.0
             and effective_radius_m is not None and effective_radius_m > lug_height_m
             and math.isfinite(slip.mean)):
         onset = lug_height_m / effective_radius_m
@@ -151,8 +155,9 @@ def postprocess_findings(stats, active_allowance_m=None, bed_depth_m=None, wheel
                     f"{onset:.4g}: the rim between the lugs moves forward over the soil, so SCM's "
                     "Janosi shear on it brakes the wheel (a height field carries no soil between "
                     "the lugs); SCM's pull and torque jump where the rim's slip changes sign, at "
-                    "this slip: below it they are the model's artefact, not a prediction "
-                    "(docs/run-health.md)",
+                    "this slip: below it they are the model's artefact, not a prediction; "
+                    "terrain.shear_surface = \"lug_tips\" shears at the lug tips instead "
+                    "(docs/scm.md \"Shear surface\", docs/run-health.md)",
                 )
             )
     if particles_start is not None and particles_end is not None and particles_start > 0:

@@ -79,6 +79,10 @@ class HealthTest(TempDirTestCase):
                             parameters={**lugged, "wheel/lug_height": (0.0, "m")},
                             health=("healthy", []))
         self.assertEqual(self.verdict(smooth), ("ok", ""))
+        tips = self.write("tips.h5", slip=0.05,
+                          parameters={**lugged, "terrain/shear_surface": "lug_tips"},
+                          health=("healthy", []))
+        self.assertEqual(self.verdict(tips), ("ok", ""))
         skid = self.write("skid.h5", slip=-0.2, parameters=lugged, health=("healthy", []))
         self.assertNotIn("scm_rim_skid", self.verdict(skid)[1])
 

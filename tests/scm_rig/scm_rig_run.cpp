@@ -22,6 +22,7 @@ std::string scm_rig_config_text(const ScmRunSpec &s) {
     << "[terrain]\ntype = \"scm\"\nsoil = \"" << WHEELSIM_SOIL_DIR << "/" << s.soil << ".toml\"\n"
     << "grid_spacing = " << s.grid_spacing_m << "\n"
     << "normal_direction = \"" << (s.vertical_normal ? "vertical" : "surface") << "\"\n"
+    << "shear_surface = \"" << (s.shear_at_lug_tips ? "lug_tips" : "wheel") << "\"\n"
     << "bulldozing = " << (s.bulldozing ? "true" : "false") << "\n";
   if (s.bulldozing)
     t << "flow_factor = " << s.flow_factor << "\n";

@@ -19,6 +19,7 @@ struct ScmRunSpec {
   double test_duration_s = 2.0;
   double elastic_K_Pa_m = 0.0; ///< 0: the soil file's
   bool vertical_normal = false;
+  bool shear_at_lug_tips = false; ///< terrain.shear_surface = "lug_tips" (else "wheel")
   bool bulldozing = true;
   double flow_factor = 1.0;
 };

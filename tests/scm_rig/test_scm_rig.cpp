@@ -135,6 +135,49 @@ TEST(ScmRig, SlipTrendsAgainstWongReece) {
   }
 }
 
+// A lugged wheel's SCM curve jumps at s* = lug height / R_eff when the soil is sheared at the wheel's
+// surface (as Chrono): below s* the rim between the lugs slides forward over the soil and its shear
+// brakes the wheel (docs/scm.md "Shear surface"). Study wheel 1 (0.06 m lugs, R_eff 0.617 m:
+// s* = 0.097) on dry sand, measured with 6 s test phases: DP -0.36 -> +1.77 kN from 9 to 10 %; the
+// smooth wheel gains 0.14 kN over the same step. Sheared at the lug tips the step is 0.15 kN.
+// Bounds: the jump > 1.2 kN at the surface, < 0.4 kN at the lug tips.
+TEST(ScmRig, LugTipShearRemovesTheJumpAtLugHeightOverEffectiveRadius) {
+  double step_N[2] = {0, 0};
+  for (int tips = 0; tips < 2; ++tips) {
+    double dp[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+      ScmRunSpec spec;
+      spec.wheel = "wheel1";
+      spec.soil = "dry_sand";
+      spec.slip = k ? 0.10 : 0.09;
+      spec.shear_at_lug_tips = tips;
+      dp[k] = run_scm_rig(spec).drawbar_pull_N;
+    }
+    step_N[tips] = dp[1] - dp[0];
+    std::printf("wheel1, dry sand, shear at the %s: DP %.0f N at 9 %%, %.0f N at 10 %% (step %.0f N)\n",
+                tips ? "lug tips" : "wheel surface", dp[0], dp[1], step_N[tips]);
+  }
+  EXPECT_GT(step_N[0], 1200.0) << "the surface-shear jump at s* (a model property, docs/scm.md)";
+  EXPECT_LT(std::abs(step_N[1]), 400.0) << "sheared at the lug tips the curve must be continuous";
+}
+
+// On a smooth wheel the lug-tip circle is the wheel's surface: both shear surfaces agree (to the
+// mesh's facets: surface points on a flat facet lie up to R (1 - cos(1.5 deg)) = 0.2 mm inside).
+TEST(ScmRig, LugTipShearOnASmoothWheelIsItsSurface) {
+  double dp[2] = {0, 0}, torque[2] = {0, 0};
+  for (int tips = 0; tips < 2; ++tips) {
+    ScmRunSpec spec;
+    spec.soil = "dry_sand";
+    spec.test_duration_s = 1.0;
+    spec.shear_at_lug_tips = tips;
+    const ScmRunResult r = run_scm_rig(spec);
+    dp[tips] = r.drawbar_pull_N;
+    torque[tips] = r.driving_torque_Nm;
+  }
+  EXPECT_NEAR(dp[1], dp[0], 2e-3 * std::abs(dp[0]));
+  EXPECT_NEAR(torque[1], torque[0], 2e-3 * std::abs(torque[0]));
+}
+
 // The supported rig time step: 5e-4 s is stable for the study wheels on every shipped soil
 // (docs/scm.md "Time step"): study wheel 2 (15 combined lugs) at 20 % slip, 13.2 kN; the wheel
 // centre must not oscillate (vertical velocity small in the steady window) and nothing blows up.

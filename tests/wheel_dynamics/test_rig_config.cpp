@@ -190,6 +190,8 @@ TEST(RigConfig, EveryKeyRangeCheckNamesKeyRangeUnitAndValue) {
       {scm, "terrain.grid_width", "0", "terrain.grid_width must be > 0 m, got 0"},
       {scm, "terrain.normal_direction", "\"normal\"",
        "terrain.normal_direction must be one of \"surface\", \"vertical\", got \"normal\""},
+      {scm, "terrain.shear_surface", "\"tips\"",
+       "terrain.shear_surface must be one of \"wheel\", \"lug_tips\", got \"tips\""},
       {scm, "terrain.elastic_stiffness", "0", "terrain.elastic_stiffness must be > 0 Pa/m, got 0"},
       {scm, "terrain.bulldozing", "1", "terrain.bulldozing must be true or false, got an integer"},
       {scm, "terrain.erosion_angle", "90", "terrain.erosion_angle must be in (0, 90) deg, got 90"},

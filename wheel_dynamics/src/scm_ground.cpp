@@ -44,6 +44,8 @@ scm::ScmSettings scm_settings(const RigConfig &config, const WheelProperties &wh
   s.grid_spacing_m = c.grid_spacing_m;
   s.surface_height_m = config.terrain.surface_height_m;
   s.normal = c.vertical_normal ? scm::NormalDirection::vertical : scm::NormalDirection::surface;
+  if (c.shear_at_lug_tips)
+    s.shear_radius_m = wheel.effective_radius_m;
   s.bulldozing.enabled = c.bulldozing;
   s.bulldozing.erosion_angle_deg = c.erosion_angle_deg;
   s.bulldozing.flow_factor = c.flow_factor;

@@ -20,16 +20,17 @@ NodeLawConstants NodeLawConstants::from(const SoilParameters &soil) {
 }
 
 NodeLawResult apply_node_law(NodeState &node, const NodeLawConstants &c, double hit_z, double inv_b,
-                             const Eigen::Vector3d &normal, const Eigen::Vector3d &v, double dt) {
+                             const Eigen::Vector3d &normal, const Eigen::Vector3d &v,
+                             const Eigen::Vector3d &v_shear, double dt) {
   NodeLawResult r;
   const double z = node.level_initial - hit_z; // total sinkage
   double sigma = c.Ke * (z - node.sinkage_plastic);
   if (!(sigma > 0.0))
     return r; // unilateral: callers only pass nodes in contact
 
-  // Slip velocity split along the chosen normal.
+  // Normal velocity of the surface point (damping); slip velocity across the normal (shear).
   const double vn = v.dot(normal);
-  const Eigen::Vector3d vt = v - vn * normal;
+  const Eigen::Vector3d vt = v_shear - v_shear.dot(normal) * normal;
   const double vt_norm = vt.norm();
   if (vt_norm > 0.0)
     r.t_dir = -vt / vt_norm;

@@ -37,9 +37,12 @@ struct NodeLawResult {
 /// Applies the law to a node in contact (elastic_trial > 0). hit_z: wheel surface height [m];
 /// inv_b: 1/b of the node's patch [1/m] (0 for a patch without area, as Chrono); normal: unit
 /// direction of the normal pressure on the wheel; v: velocity of the wheel surface point relative
-/// to the (resting) soil [m/s]; dt [s]. Updates the node's level, plastic sinkage, yield, j, σ, τ.
+/// to the (resting) soil [m/s] (its normal part damps); v_shear: the slip velocity that shears the
+/// soil [m/s] (its part across the normal sets j and τ's direction; v itself unless the shear
+/// surface is set apart, ScmSettings::shear_radius_m); dt [s]. Updates the node's level, plastic
+/// sinkage, yield, j, σ, τ.
 NodeLawResult apply_node_law(NodeState &node, const NodeLawConstants &c, double hit_z_m,
                              double inv_b, const Eigen::Vector3d &normal, const Eigen::Vector3d &v,
-                             double dt_s);
+                             const Eigen::Vector3d &v_shear, double dt_s);
 
 } // namespace wheelsim::scm::detail

@@ -20,6 +20,8 @@
 //     along the chosen normal (vertical: +z as Chrono; surface: the wheel normal). Differs from
 //     Chrono in the point: Chrono takes the body velocity at (x, y, previous node level); we take
 //     it at the wheel surface point above the node (v + ω × r), the point that touches the soil.
+//     Option (ScmSettings::shear_radius_m, not in Chrono): v_t from the point at the same angle on
+//     a circle of that radius about the axle (a lugged wheel's lug-tip envelope), v_n as above.
 //  7. j += |v_t| dt while in contact; never reset (kept after contact is lost and over passes).
 //     As Chrono. τ opposes v_t; τ = 0 direction-less when v_t = 0.
 //  8. Patches: 4-connectivity flood fill (as Chrono) of the nodes in contact. Differs from Chrono:
@@ -118,6 +120,22 @@ struct ScmTerrain::Impl {
   ScmContact advance(const WheelPose &state, double dt);
   double value(const NodeState &n, Field f) const;
 
+  /// The slip velocity that shears the soil at a contact point r from Bo (world frame; v: the
+  /// surface point's velocity): v itself, or with settings.shear_radius_m that of the point at the
+  /// same angle on the circle of that radius about the body's y axis (the axle) through Bo.
+  Eigen::Vector3d shear_velocity(const WheelPose &state, const Eigen::Matrix3d &R_WB,
+                                 const Eigen::Vector3d &r, const Eigen::Vector3d &v) const {
+    if (!settings.shear_radius_m)
+      return v;
+    const Eigen::Vector3d axle = R_WB.col(1);
+    const Eigen::Vector3d radial = r - r.dot(axle) * axle;
+    const double rho = radial.norm();
+    if (!(rho > 0.0))
+      return v;
+    const Eigen::Vector3d r_shear = r + radial * (*settings.shear_radius_m / rho - 1.0);
+    return state.v_WB_W + state.w_WB_W.cross(r_shear);
+  }
+
   SoilParameters soil;
   ScmSettings settings;
   NodeLawConstants law;
@@ -188,10 +206,11 @@ ScmContact ScmTerrain::Impl::advance(const WheelPose &state, double dt) {
     const Eigen::Vector3d p(window.i_of(c) * delta, window.j_of(c) * delta, window.hit_z[c]);
     const Eigen::Vector3d r = p - p_Bo;
     const Eigen::Vector3d v = state.v_WB_W + state.w_WB_W.cross(r);
+    const Eigen::Vector3d v_shear = shear_velocity(state, R, r, v);
     const Eigen::Vector3d normal =
         vertical ? up : Eigen::Vector3d(-raster.normal_W(window.hit_tri[c]));
-    const NodeLawResult res =
-        apply_node_law(n, law, window.hit_z[c], patches[window.patch[c]].inv_b, normal, v, dt);
+    const NodeLawResult res = apply_node_law(n, law, window.hit_z[c],
+                                             patches[window.patch[c]].inv_b, normal, v, v_shear, dt);
     const Eigen::Vector3d F = area * (res.sigma * normal + res.tau * res.t_dir);
     out.wrench.f_B_W += F;
     out.wrench.t_B_W += r.cross(F);

@@ -53,6 +53,8 @@ void check_settings(const ScmSettings &s) {
     fail("bulldozing erosion_iterations", ">= 0", b.erosion_iterations);
   if (b.erosion_rings < 1)
     fail("bulldozing erosion_rings", ">= 1", b.erosion_rings);
+  if (s.shear_radius_m && !(*s.shear_radius_m > 0.0 && std::isfinite(*s.shear_radius_m)))
+    fail("shear_radius", "> 0 m (unset: the wheel surface)", *s.shear_radius_m);
   if (s.domain_m) {
     const Eigen::Vector4d &d = *s.domain_m;
     if (!d.allFinite())

@@ -38,6 +38,9 @@ std::vector<ConfigKey> keys() {
       scm({"", "grid_width", "number", "m", "unbounded", ">= grid_spacing"}),
       scm({"", "normal_direction", "string", "", "\"surface\"",
            "one of \"surface\", \"vertical\""}),
+      scm({"", "shear_surface", "string", "", "\"wheel\"",
+           "one of \"wheel\" (the surface point above each node, as Chrono), \"lug_tips\" (the "
+           "point at the same angle at R_eff: soil between the lugs turns with the wheel)"}),
       scm({"", "elastic_stiffness", "number", "Pa/m", "soil file", "> 0"}),
       scm({"", "damping", "number", "Pa s/m", "soil file", ">= 0"}),
       scm({"", "bulldozing", "boolean", "", d.bulldozing ? "true" : "false", ""}),
@@ -115,6 +118,8 @@ void parse(const Table &t, const std::string &base_dir, RigConfig &c) {
                          " m), got " + fmt(*v) + " m");
   m.vertical_normal =
       t.choice("normal_direction", {"surface", "vertical"}, std::string("surface")) == "vertical";
+  m.shear_at_lug_tips =
+      t.choice("shear_surface", {"wheel", "lug_tips"}, std::string("wheel")) == "lug_tips";
   m.elastic_stiffness_Pa_m = t.positive("elastic_stiffness", "Pa/m");
   m.damping_Pa_s_m = t.non_negative("damping", "Pa s/m"); // flat: N s/m
   parse_bulldozing(t, m);
@@ -148,6 +153,9 @@ void start(const RigConfig &c, const Terrain &terrain, ParameterSink &out, RunHe
   out.number("terrain/grid_spacing", settings.grid_spacing_m, "m");
   out.text("terrain/normal_direction",
            settings.normal == scm::NormalDirection::vertical ? "vertical" : "surface");
+  out.text("terrain/shear_surface", settings.shear_radius_m ? "lug_tips" : "wheel");
+  if (settings.shear_radius_m)
+    out.number("terrain/shear_radius", *settings.shear_radius_m, "m");
   health.set_grid(settings.grid_spacing_m, soil.elastic_K);
 }
 

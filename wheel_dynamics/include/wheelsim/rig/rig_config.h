@@ -82,6 +82,9 @@ struct ScmTerrainConfig {
   std::optional<double>
       grid_width_m;             ///< domain along y, centred on the wheel [m]; unset: unbounded
   bool vertical_normal = false; ///< normal_direction = "vertical" (Chrono) vs "surface"
+  /// shear_surface = "lug_tips": the soil is sheared at the circle of radius R_eff (the lug tips),
+  /// not at the wheel's surface ("wheel", the default, as Chrono); docs/scm.md "Shear surface".
+  bool shear_at_lug_tips = false;
   std::optional<double> elastic_stiffness_Pa_m; ///< overrides the soil file's Ke [Pa/m]
   std::optional<double> damping_Pa_s_m;         ///< overrides the soil file's damping R [Pa s/m]
   // The bulldozing defaults are the SCM module's (scm::BulldozingSettings, scm_terrain.h).

@@ -48,6 +48,13 @@ struct ScmSettings {
   double surface_height_m = 0.0; ///< undisturbed surface level [m]
   NormalDirection normal = NormalDirection::surface;
   BulldozingSettings bulldozing;
+  /// Where the soil is sheared [m]. Unset (default, as Chrono): each contact node's slip velocity
+  /// is that of the wheel surface point above it. Set: that of the point at the same angle on the
+  /// circle of this radius about the body's y axis through Bo (the wheel's axle), e.g. the lug
+  /// tips' radius, so that soil caught between a lugged wheel's lugs turns with the wheel and the
+  /// rim does not slide over it (docs/scm.md, "Shear surface"). Used for the shear only; the
+  /// normal damping keeps the surface point's velocity.
+  std::optional<double> shear_radius_m;
   /// Optional domain [m] (x_min, x_max, y_min, y_max); outside it the wheel meets no soil.
   /// Unset = unbounded: only touched tiles are stored, so track length costs nothing by itself.
   std::optional<Eigen::Vector4d> domain_m;
