@@ -4,7 +4,7 @@ traction force T/R_eff, drawbar pull, sinkage and tractive efficiency, and the a
 effect (the full-domain run of the same point), its run-to-run scatter (the same point on another
 ranks' grid), the grain-size sensitivity and issue 12's goal point (21-52 mm grains).
 
-    compare.py RESULTS.csv [--scm RESULTS_SCM.csv] [--full-domain RESULTS_FULL.csv]
+    compare.py RESULTS.csv [--scm RESULTS_SCM.csv ...] [--full-domain RESULTS_FULL.csv]
                [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--goal RESULTS_GOAL.csv]
                [--goal-wide RESULTS_GOAL_WIDE.csv] [--label CONFIG]
                [--md OUT.md] [--png OUT.png]
@@ -189,7 +189,8 @@ def plot(png, dem, scm):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("dem", help="the DEM half's results.csv")
-    ap.add_argument("--scm", help="the SCM half's results table")
+    ap.add_argument("--scm", action="append", default=[],
+                    help="an SCM results table (repeatable: e.g. the default and the lug-tip shear)")
     ap.add_argument("--full-domain", help="the full-domain runs' results table")
     ap.add_argument("--grain", help="the grain-size sensitivity's results table")
     ap.add_argument("--goal", help="issue 12's goal point's results table (21-52 mm grains)")
@@ -208,7 +209,7 @@ def main():
                     help="the tables' window in test-phase seconds, for the text (default 2-6)")
     a = ap.parse_args()
     dem = read(a.dem)
-    scm = read(a.scm) if a.scm else []
+    scm = [row for path in a.scm for row in read(path)]
     lines = ["# Validation case 3: comparison (written by compare.py)", "",
              f"DEM: mean ± standard error over test-phase seconds {a.window}; SCM: the same window; Δ: "
              "SCM against DEM in % of DEM. TE = (DP / F_T)(1 - s).", ""]
