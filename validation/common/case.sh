@@ -21,16 +21,29 @@ stop_if_signalled() {
 
 # finished_runs OUT [KEPT]: the run.h5 of every finished point under OUT (<wheel>/<soil>/<slip>/;
 # a failed point is reported by wheel-sweep and left out), each by its committed copy in KEPT (the
-# case's points/<sweep>/, wheel-sweep --archive) where it has one, and the points only KEPT holds
-# (a machine whose runs/ lost them): a results table then names run files every clone has.
+# case's points/<sweep>/, wheel-sweep --archive) where that copy is the same run (the same
+# done.json), and the points only KEPT holds, i.e. those OUT has no done.json for (a machine whose
+# runs/ lost them; a point OUT records as failed or re-ran is OUT's): a results table then names
+# run files every clone has.
 finished_runs() {
-  local out=$1 kept=${2:-} run rel
+  local out=${1%/} kept=${2:-} run rel
+  kept=${kept%/}
   {
     while IFS= read -r run; do
       rel=${run#"$out/"}
-      if [[ -n $kept && -f $kept/$rel ]]; then echo "$kept/$rel"; else echo "$run"; fi
+      if [[ -n $kept && -f $kept/$rel ]] \
+        && cmp -s "$kept/${rel%run.h5}done.json" "$out/${rel%run.h5}done.json"; then
+        echo "$kept/$rel"
+      else
+        echo "$run"
+      fi
     done < <(find "$out" -mindepth 4 -maxdepth 4 -name run.h5 -not -path "*/beds/*" 2>/dev/null)
-    if [[ -n $kept && -d $kept ]]; then find "$kept" -mindepth 4 -maxdepth 4 -name run.h5; fi
+    if [[ -n $kept && -d $kept ]]; then
+      while IFS= read -r run; do
+        rel=${run#"$kept/"}
+        [[ -f $out/${rel%run.h5}done.json ]] || echo "$run"
+      done < <(find "$kept" -mindepth 4 -maxdepth 4 -name run.h5)
+    fi
   } | sort -u
 }
 
