@@ -5,6 +5,7 @@ Sizes follow the standards' rules relative to the largest grain d = d_max (docs/
 meant to be representative). Every size is in metres, every stress in Pa, every speed in m/s.
 """
 
+import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Tuple
 
@@ -145,6 +146,9 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         if not depth2 >= d:   # also NaN
             raise LabInputError(f"--plate-depth {depth2:g} m is under one grain (d_max {d:g} m): "
                                 f"a plate must sink at least a grain (default {default_depth2:g})")
+        if not math.isfinite(depth2):
+            raise LabInputError(f"--plate-depth {depth2:g} m: expected a finite depth in m "
+                                f"(default {default_depth2:g})")
         depth = (1.25 if quick else 1.5) * b2 + max(0.0, depth2 - default_depth2)
         beds["plate"] = Bed("plate", side, side, depth, bed_vars)
         if "plate" in tests:

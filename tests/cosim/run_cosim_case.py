@@ -202,9 +202,10 @@ def kill_liggghts(a):
     # Where the kill lands decides which of the rig's two waits notices it: the receive of the
     # next Wrench ("no Wrench for step N from LIGGGHTS ... within T s") or, when the rig was
     # between a Wrench and its Pose, the send of that Pose ("sending Pose for step N: could not
-    # hand a message to LIGGGHTS ... no peer connected"). Both are the right error.
+    # hand a message to LIGGGHTS ... no peer connected"), or a receive that fails outright
+    # ("receiving Wrench for step N from LIGGGHTS ... failed"). Each is the right error.
     ok = (rc != 0 and m is not None and "LIGGGHTS" in m.group(0)
-          and ("no Wrench" in m.group(0) or "sending Pose" in m.group(0)))
+          and any(k in m.group(0) for k in ("no Wrench", "receiving Wrench", "sending Pose")))
     import h5py
     with h5py.File(os.path.join(a.work, "run.h5"), "r") as f:
         steps = f["observables/slip/step"][:]

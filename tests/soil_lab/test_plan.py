@@ -49,6 +49,8 @@ class Plan(unittest.TestCase):
             "--plate-depth 0.004 m is under one grain": dict(tests=("plate",), plate_depth=0.004),
             "--plate-depth nan m is under one grain": dict(tests=("plate",),
                                                            plate_depth=float("nan")),
+            "--plate-depth inf m: expected a finite depth": dict(tests=("plate",),
+                                                                 plate_depth=float("inf")),
         }
         for message, kwargs in cases.items():
             with self.subTest(message):

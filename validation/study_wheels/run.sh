@@ -73,7 +73,8 @@ part() {
   t0=$(date +%s); t0_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
   # the smoke keeps nothing: its OUT may share a name with the full case's sweep; nor do SCM
   # sweeps (seconds per point, ~2 MB per run file: run them again)
-  if ((!smoke)) && ! grep -q '^terrain = "scm"' "$here/$config"; then
+  if ((!smoke)) && ! "$python" -c 'import sys, tomllib
+sys.exit(tomllib.load(open(sys.argv[1], "rb")).get("terrain") != "scm")' "$here/$config"; then
     kept_dir=$here/points/${dir##*/}; archive=(--archive "$kept_dir")
   fi
   if ((!tables)); then
