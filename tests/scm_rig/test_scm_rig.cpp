@@ -135,11 +135,11 @@ TEST(ScmRig, SlipTrendsAgainstWongReece) {
   }
 }
 
-// A lugged wheel's SCM curve jumps at s* = lug height / R_eff when the soil is sheared at the wheel's
-// surface (as Chrono): below s* the rim between the lugs slides forward over the soil and its shear
-// brakes the wheel (docs/scm.md "Shear surface"). Study wheel 1 (0.06 m lugs, R_eff 0.617 m:
-// s* = 0.097) on dry sand, measured with 6 s test phases: DP -0.36 -> +1.77 kN from 9 to 10 %; the
-// smooth wheel gains 0.14 kN over the same step. Sheared at the lug tips the step is 0.15 kN.
+// A lugged wheel's SCM curve jumps at s* = lug height / R_eff when the soil is sheared at the
+// wheel's surface (as Chrono): below s* the rim between the lugs slides forward over the soil and
+// its shear brakes the wheel (docs/scm.md "Shear surface"). Study wheel 1 (0.06 m lugs, R_eff 0.617
+// m: s* = 0.097) on dry sand, measured with 6 s test phases: DP -0.36 -> +1.77 kN from 9 to 10 %;
+// the smooth wheel gains 0.14 kN over the same step. Sheared at the lug tips the step is 0.15 kN.
 // Bounds: the jump > 1.2 kN at the surface, < 0.4 kN at the lug tips.
 TEST(ScmRig, LugTipShearRemovesTheJumpAtLugHeightOverEffectiveRadius) {
   double step_N[2] = {0, 0};
@@ -154,8 +154,9 @@ TEST(ScmRig, LugTipShearRemovesTheJumpAtLugHeightOverEffectiveRadius) {
       dp[k] = run_scm_rig(spec).drawbar_pull_N;
     }
     step_N[tips] = dp[1] - dp[0];
-    std::printf("wheel1, dry sand, shear at the %s: DP %.0f N at 9 %%, %.0f N at 10 %% (step %.0f N)\n",
-                tips ? "lug tips" : "wheel surface", dp[0], dp[1], step_N[tips]);
+    std::printf(
+        "wheel1, dry sand, shear at the %s: DP %.0f N at 9 %%, %.0f N at 10 %% (step %.0f N)\n",
+        tips ? "lug tips" : "wheel surface", dp[0], dp[1], step_N[tips]);
   }
   EXPECT_GT(step_N[0], 1200.0) << "the surface-shear jump at s* (a model property, docs/scm.md)";
   EXPECT_LT(std::abs(step_N[1]), 400.0) << "sheared at the lug tips the curve must be continuous";

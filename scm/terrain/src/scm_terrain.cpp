@@ -209,8 +209,8 @@ ScmContact ScmTerrain::Impl::advance(const WheelPose &state, double dt) {
     const Eigen::Vector3d v_shear = shear_velocity(state, R, r, v);
     const Eigen::Vector3d normal =
         vertical ? up : Eigen::Vector3d(-raster.normal_W(window.hit_tri[c]));
-    const NodeLawResult res = apply_node_law(n, law, window.hit_z[c],
-                                             patches[window.patch[c]].inv_b, normal, v, v_shear, dt);
+    const NodeLawResult res = apply_node_law(
+        n, law, window.hit_z[c], patches[window.patch[c]].inv_b, normal, v, v_shear, dt);
     const Eigen::Vector3d F = area * (res.sigma * normal + res.tau * res.t_dir);
     out.wrench.f_B_W += F;
     out.wrench.t_B_W += r.cross(F);
