@@ -154,8 +154,6 @@ void start(const RigConfig &c, const Terrain &terrain, ParameterSink &out, RunHe
   out.text("terrain/normal_direction",
            settings.normal == scm::NormalDirection::vertical ? "vertical" : "surface");
   out.text("terrain/shear_surface", settings.shear_radius_m ? "lug_tips" : "wheel");
-  if (settings.shear_radius_m)
-    out.number("terrain/shear_radius", *settings.shear_radius_m, "m");
   health.set_grid(settings.grid_spacing_m, soil.elastic_K);
 }
 
