@@ -520,14 +520,79 @@ def write_report(r: Results, quiet=False):
     return written
 
 
-def write_scm(r: Results, path, name=None):
-    """An SCM soil file fitted to the DEM soil (needs the plate and shear tests)."""
+@dataclass(frozen=True)
+class ShearStrength:
+    """What an SCM file takes from the shear boxes: each box's normal stress, peak shear stress and
+    Janosi K, and where they were measured (for the file's [source] strings)."""
+
+    sigmas_Pa: tuple
+    tau_peaks_Pa: tuple
+    K_m: tuple
+    where: str = ""  #: "" for the lab directory itself, else the other lab it was taken from
+
+
+def shear_strength(r: Results):
+    """The shear boxes of the lab `r` as a ShearStrength (None without 3 boxes); unstable boxes
+    are an error."""
+    if r.mc_peak is None:
+        return None
+    unstable = shear_stability_errors(r.shears)
+    if unstable:
+        raise LabResultError(f"{r.directory}: no SCM file from unstable shear boxes: "
+                             + "; ".join(unstable))
+    return ShearStrength(tuple(s["sigma_Pa"] for s in r.shears),
+                         tuple(s["peak"].tau_peak_Pa for s in r.shears),
+                         tuple(s["janosi"].K_m for s in r.shears if s["janosi"] is not None))
+
+
+def shear_strength_from(path, soil_name):
+    """The shear boxes of another lab of the soil `soil_name`: a lab directory (its shear runs, or
+    the results.toml `soil-lab report` wrote in it, e.g. a committed soil_lab/results/<soil>/) or
+    a results.toml file. For plates pressed in a lab of their own (`--plate-depth`) whose shear
+    boxes were measured in the standard lab (docs/soil-lab.md, "SCM soil file from DEM")."""
+    p = Path(path)
+    if p.is_dir() and any(_runs(p, "shear_s*")):
+        other = analyse(p)
+        shear, name = shear_strength(other), other.soil.get("name")
+        if shear is None:
+            raise LabResultError(f"--shear-from {p}: fewer than 3 finished shear boxes")
+    else:
+        f = p / "results.toml" if p.is_dir() else p
+        if not f.is_file():
+            raise LabResultError(f"--shear-from {p}: neither shear box runs nor a results.toml "
+                                 "(written by `soil-lab report`)")
+        data = tomllib.loads(f.read_text())
+        boxes = data.get("shear", {}).get("stresses", [])
+        if len(boxes) < 3:
+            raise LabResultError(f"--shear-from {f}: {len(boxes)} shear box(es) in [shear], "
+                                 "need 3 normal stresses")
+        name = data.get("soil", {}).get("name")
+        try:
+            shear = ShearStrength(tuple(float(b["sigma_n_Pa"]) for b in boxes),
+                                  tuple(float(b["tau_peak_Pa"]) for b in boxes),
+                                  tuple(float(b["janosi_K_m"]) for b in boxes))
+        except KeyError as e:
+            raise LabResultError(f"--shear-from {f}: a [[shear.stresses]] entry lacks {e}") from None
+    if name != soil_name:
+        raise LabResultError(f"--shear-from {p}: its soil is {name!r}, this lab's is "
+                             f"{soil_name!r}: both must be the same DEM soil")
+    return replace(shear, where=str(p))
+
+
+def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None):
+    """An SCM soil file fitted to the DEM soil: its plates, and its shear boxes or `shear`
+    (shear_strength_from another lab of the same soil)."""
     if r.bekker is None:
         raise LabResultError(f"{r.directory}: no plate sinkage results (2 plates): run the "
                              f"'plate' test first")
-    if r.mc_peak is None:
+    if shear is not None and r.mc_peak is not None:
+        raise LabResultError(f"{r.directory} has shear boxes of its own; leave out --shear-from "
+                             f"{shear.where} (or use a lab directory without them)")
+    shear = shear or shear_strength(r)
+    if shear is None:
         raise LabResultError(f"{r.directory}: no shear box results (3 normal stresses): run the "
-                             f"'shear' test first")
+                             f"'shear' test first, or take them from another lab of the same "
+                             f"soil (--shear-from)")
     dem = r.soil["name"]
     widths = ", ".join(f"{p['b_m']:.3g}" for p in r.plates)
     # the deepest loading sample: SCM below it extrapolates the fit (docs/soil-lab.md)
@@ -536,41 +601,38 @@ def write_scm(r: Results, path, name=None):
         raise LabResultError(f"{r.directory}: no plate's unloading branch could be fitted for the "
                              "elastic stiffness: " + "; ".join(
                                  f"b = {w:.3g} m: {e}" for w, e in sorted(r.unload_errors.items())))
-    unstable = shear_stability_errors(r.shears)
-    if unstable:
-        raise LabResultError(f"{r.directory}: no SCM file from unstable shear boxes: "
-                             + "; ".join(unstable))
     b_large = max(r.unload)  # the largest plate whose unloading branch was fitted
     ke = r.unload[b_large]
-    sigmas = ", ".join(f"{s['sigma_Pa'] / 1e3:.3g}" for s in r.shears)
-    k_values = ", ".join(f"{s['janosi'].K_m:.3g}" for s in r.shears)
+    sigmas = ", ".join(f"{s / 1e3:.3g}" for s in shear.sigmas_Pa)
+    k_values = ", ".join(f"{k:.3g}" for k in shear.K_m)
+    lab = f" (the lab {shear.where})" if shear.where else ""
+    mc = fits.fit_mohr_coulomb(shear.sigmas_Pa, shear.tau_peaks_Pa)
     sources = {
         "bekker": scm_file.dem_source(dem, "plate sinkage", r.bekker,
                                       f"square plates b = {widths} m, loading branches to "
                                       f"z = {z_fitted:.3g} m (deeper sinkage extrapolates)"),
-        "mohr_coulomb": scm_file.dem_source(dem, "direct shear box, peak strength", r.mc_peak,
-                                            f"normal stresses {sigmas} kPa"),
+        "mohr_coulomb": scm_file.dem_source(dem, "direct shear box, peak strength", mc,
+                                            f"normal stresses {sigmas} kPa{lab}"),
         "janosi.shear_modulus": scm_file.dem_source(
             dem, "direct shear box", None, f"mean of the Janosi fits at {sigmas} kPa "
-            f"(K = {k_values} m)"),
+            f"(K = {k_values} m){lab}"),
         "scm.elastic_stiffness": scm_file.dem_source(
             dem, "plate sinkage, unloading slope", ke, f"plate b = {b_large:.3g} m"),
     }
-    mc = r.mc_peak
     if mc.cohesion_Pa < 0.0:
         # An intercept below zero is no cohesion: c = 0 and phi of the least-squares line through
         # the origin (not the free fit's phi, which the negative intercept steepened).
-        mc = fits.fit_mohr_coulomb([s["sigma_Pa"] for s in r.shears],
-                                   [s["peak"].tau_peak_Pa for s in r.shears],
+        free = mc
+        mc = fits.fit_mohr_coulomb(shear.sigmas_Pa, shear.tau_peaks_Pa,
                                    clip_negative_cohesion=True)
         sources["mohr_coulomb"] = scm_file.dem_source(
             dem, "direct shear box, peak strength", mc,
-            f"normal stresses {sigmas} kPa; the free fit's intercept was "
-            f"{r.mc_peak.cohesion_Pa:.4g} Pa (< 0: no cohesion), so c = 0 and phi from the line "
-            f"through the origin (free fit: phi {r.mc_peak.friction_deg:.4g} deg)")
+            f"normal stresses {sigmas} kPa{lab}; the free fit's intercept was "
+            f"{free.cohesion_Pa:.4g} Pa (< 0: no cohesion), so c = 0 and phi from the line "
+            f"through the origin (free fit: phi {free.friction_deg:.4g} deg)")
     return scm_file.write_scm_soil(
         path, name or f"{dem} (fitted from DEM)",
         f"SCM parameters fitted to the DEM soil '{dem}' ({r.soil.get('file', '?')}) by the "
         f"virtual soil lab ({r.soil.get('preset', '?')} preset)",
-        r.bekker.n, r.bekker.kc, r.bekker.kphi, mc.cohesion_Pa, mc.friction_deg, r.janosi_K_m,
-        ke.Ke_Pa_m, sources)
+        r.bekker.n, r.bekker.kc, r.bekker.kphi, mc.cohesion_Pa, mc.friction_deg,
+        float(np.mean(shear.K_m)), ke.Ke_Pa_m, sources)

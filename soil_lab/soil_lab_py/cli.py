@@ -4,7 +4,7 @@
                     [--normal-stresses S1,S2,S3] [--bed-var NAME=VALUE ...] [--archive DIR]
                     [--build-dir D]
   soil-lab report DIR
-  soil-lab scm DIR --out FILE.toml [--name NAME]
+  soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB]
 
 Exit status: 0 done; 1 a LIGGGHTS or wheel-mesh run failed, or a fit failed; 2 bad command
 line, unknown soil or test, or a test size the lab rejects.
@@ -210,6 +210,9 @@ def main(argv=None):
     s.add_argument("dir")
     s.add_argument("--out", required=True, metavar="FILE.toml")
     s.add_argument("--name", help="the SCM soil's name (default: '<DEM soil> (fitted from DEM)')")
+    s.add_argument("--shear-from", metavar="LAB",
+                   help="take the shear boxes (c, phi, K) from another lab of the same soil: its "
+                        "directory or results.toml (for a lab that pressed plates only)")
     a = ap.parse_args(argv)
     if getattr(a, "np", 1) < 1:
         ap.error(f"--np must be >= 1, got {a.np}")
@@ -218,7 +221,10 @@ def main(argv=None):
             return _run(a)
         if a.command == "report":
             return _report(a.dir, a.quiet)
-        path = analysis.write_scm(analysis.analyse(a.dir), a.out, a.name)
+        r = analysis.analyse(a.dir)
+        shear = (analysis.shear_strength_from(a.shear_from, r.soil.get("name"))
+                 if a.shear_from else None)
+        path = analysis.write_scm(r, a.out, a.name, shear)
         print(f"soil-lab: wrote {path}")
         return 0
     except (plan.LabInputError, analysis.LabResultError) as e:

@@ -86,6 +86,52 @@ class Analysis(unittest.TestCase):
         src = data["source"]["mohr_coulomb"]["cohesion"]
         self.assertIn("intercept was -300 Pa (< 0: no cohesion), so c = 0", src)
 
+    def shear_summary(self, soil="synthetic", boxes=3):
+        """A results.toml as `soil-lab report` writes it: c 1 kPa, phi 30 deg, K 10/20/30 mm."""
+        d = Path(tempfile.mkdtemp())
+        lines = [f'[soil]\nname = "{soil}"\n']
+        for sigma, K in list(zip((5e3, 1e4, 2e4), (0.01, 0.02, 0.03)))[:boxes]:
+            tau = 1e3 + sigma * np.tan(np.radians(30.0))
+            lines.append(f"[[shear.stresses]]\nsigma_n_Pa = {sigma!r}\ntau_peak_Pa = {tau!r}\n"
+                         f"janosi_K_m = {K!r}\n")
+        (d / "results.toml").write_text("\n".join(lines))
+        return d
+
+    def test_shear_boxes_from_another_lab_of_the_same_soil(self):
+        # Plates pressed in a lab of their own (--plate-depth), shear boxes from the standard lab.
+        r = self.lab(False)
+        other = self.shear_summary()
+        for where in (other, other / "results.toml"):
+            shear = analysis.shear_strength_from(where, "synthetic")
+            out = Path(tempfile.mkdtemp()) / "scm.toml"
+            analysis.write_scm(r, out, shear=shear)
+            data = tomllib.loads(out.read_text())
+            self.assertAlmostEqual(data["mohr_coulomb"]["cohesion"], 1000.0, places=2)
+            self.assertAlmostEqual(data["mohr_coulomb"]["friction_angle"], 30.0, places=4)
+            self.assertAlmostEqual(data["janosi"]["shear_modulus"], 0.02, places=9)
+            self.assertAlmostEqual(data["bekker"]["n"], r.bekker.n, places=5)
+            for key in ("cohesion", "friction_angle"):
+                self.assertIn(f"(the lab {where})", data["source"]["mohr_coulomb"][key])
+            self.assertIn(f"(the lab {where})", data["source"]["janosi"]["shear_modulus"])
+
+    def test_shear_from_is_refused_when_it_cannot_be_the_soils(self):
+        r = self.lab(False)
+        with self.assertRaisesRegex(analysis.LabResultError,
+                                    "its soil is 'other', this lab's is 'synthetic'"):
+            analysis.shear_strength_from(self.shear_summary("other"), "synthetic")
+        with self.assertRaisesRegex(analysis.LabResultError, r"2 shear box\(es\).*need 3"):
+            analysis.shear_strength_from(self.shear_summary(boxes=2), "synthetic")
+        with self.assertRaisesRegex(analysis.LabResultError, "neither shear box runs nor"):
+            analysis.shear_strength_from(Path(tempfile.mkdtemp()), "synthetic")
+        # Without shear boxes of its own or from another lab: named, with the way out.
+        with self.assertRaisesRegex(analysis.LabResultError, "no shear box results.*--shear-from"):
+            analysis.write_scm(r, Path(tempfile.mkdtemp()) / "scm.toml")
+        # A lab with shear boxes of its own: the other lab's would silently replace them.
+        r.mc_peak = fits.fit_mohr_coulomb([5e3, 1e4, 2e4], [4e3, 7e3, 12e3])
+        shear = analysis.shear_strength_from(self.shear_summary(), "synthetic")
+        with self.assertRaisesRegex(analysis.LabResultError, "has shear boxes of its own"):
+            analysis.write_scm(r, Path(tempfile.mkdtemp()) / "scm.toml", shear=shear)
+
     def test_particles_lost_from_the_shear_box_are_counted_and_reported(self):
         # A log as in.lab_shear writes it: an earlier thermo block (the consolidation's settle),
         # then the shear's, then LIGGGHTS' loop summary.
