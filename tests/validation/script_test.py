@@ -1,6 +1,7 @@
 """Shared by the tests of the validation cases' scripts (test_dem_vs_scm.py,
-test_nakanishi_compare.py): the work directory from --work, a script run on this interpreter
-with its call and output echoed to the test log, and the verdict."""
+test_nakanishi_compare.py, test_study_wheels_compare.py): the work directory from --work, a
+script run on this interpreter with its call and output echoed to the test log, and the
+verdict."""
 import argparse
 import subprocess
 import sys

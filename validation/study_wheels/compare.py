@@ -2,7 +2,8 @@
 """Validation case 3 (README.md): the study wheels on DEM dry sand beside SCM, per wheel and slip:
 traction force T/R_eff, drawbar pull, sinkage and tractive efficiency, and the active domain's
 effect (the full-domain run of the same point), its run-to-run scatter (the same point on another
-ranks' grid), the grain-size sensitivity and issue 12's goal point (21-52 mm grains).
+ranks' grid), the grain-size sensitivity and issue 12's goal point (21-52 mm grains); and where
+SCM and DEM part, split into traction force and motion resistance.
 
     compare.py RESULTS.csv [--scm RESULTS_SCM.csv ...] [--full-domain RESULTS_FULL.csv]
                [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--goal RESULTS_GOAL.csv]
@@ -112,6 +113,32 @@ def comparison_table(dem, scm):
     return out
 
 
+def gap_table(dem, scm):
+    """Markdown: SCM − DEM per wheel, slip and SCM soil, split into its two parts: drawbar pull
+    DP = F_T − R, with F_T = T/R_eff the traction force and R = F_T − DP the motion resistance,
+    so ΔDP = ΔF_T − ΔR. SCM points whose health is not ok are marked †."""
+    scm_at = by_point(scm)
+    out = ["## Where SCM and DEM part: traction and motion resistance", "",
+           "SCM − DEM in kN. DP = F_T − R with F_T = T/R_eff the traction force and R = F_T − DP "
+           "the motion resistance, so ΔDP = ΔF_T − ΔR: a gap that is mostly ΔF_T is the soil's "
+           "shear (traction), one that is mostly −ΔR its bearing and bulldozing (resistance).", "",
+           "| wheel | slip | SCM soil | ΔDP | ΔF_T (traction) | ΔR (resistance) | DEM R | SCM R |",
+           "|---|---|---|---|---|---|---|---|"]
+    for r in sorted(dem, key=lambda r: (r["wheel"], num(r["slip"]))):
+        ft, dp = num(r["traction_force_N"]), num(r["drawbar_pull_N"])
+        for soil in sorted({m["soil"] for m in scm}):
+            m = scm_at.get((r["wheel"], soil, round(num(r["target_slip"]), 4)))
+            if m is None:
+                continue
+            mft, mdp = num(m["traction_force_N"]), num(m["drawbar_pull_N"])
+            mark = "" if m["health"] == "ok" else " †"
+            out.append(f"| {r['wheel']} | {num(r['slip']):.3f} | {soil}{mark} | "
+                       f"{(mdp - dp) / 1e3:+.2f} | {(mft - ft) / 1e3:+.2f} | "
+                       f"{((mft - mdp) - (ft - dp)) / 1e3:+.2f} | {(ft - dp) / 1e3:.2f} | "
+                       f"{(mft - mdp) / 1e3:.2f} |")
+    return out + [""]
+
+
 def sweep_name(results):
     """The sweep config a run.sh results table comes from: results_<part>.csv -> sweep_<part>.toml."""
     return Path(results).name.replace("results_", "sweep_").replace(".csv", ".toml")
@@ -214,6 +241,8 @@ def main():
              f"DEM: mean ± standard error over test-phase seconds {a.window}; SCM: the same window; Δ: "
              "SCM against DEM in % of DEM. TE = (DP / F_T)(1 - s).", ""]
     lines += comparison_table(dem, scm)
+    if scm:
+        lines += gap_table(dem, scm)
     verdicts = []
     if a.full_domain:
         lines += ["## The active domain against the full domain", "",

@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+"""validation/study_wheels/compare.py (case 3's comparison) on synthetic results tables with known
+values: the DEM-beside-SCM row (SCM's difference in % of DEM, an unhealthy SCM point marked † and
+its code named under the table), the split of SCM − DEM into traction force and motion resistance
+(ΔDP = ΔF_T − ΔR), and a missing column (exit 2, one line naming the file).
+
+    test_study_wheels_compare.py --work DIR
+"""
+import sys
+from pathlib import Path
+
+from script_test import report, run_script, work_dir
+
+SCRIPT = Path(__file__).resolve().parents[2] / "validation" / "study_wheels" / "compare.py"
+COLUMNS = ("slip,target_slip,drawbar_pull_N,drawbar_pull_sem_N,driving_torque_Nm,"
+           "driving_torque_sem_Nm,traction_force_N,traction_force_sem_N,sinkage_m,sinkage_sem_m,"
+           "wall_s,particles,np,health,health_codes,run_file")
+
+
+def table(path, terrain, rows):
+    """rows: (soil, slip, DP [N], F_T [N], sinkage [m], health, codes); R_eff 0.5 m."""
+    lines = ["# wheelsim-post curves --results (synthetic)", COLUMNS]
+    for soil, s, dp, ft, z, health, codes in rows:
+        lines.append(f"{s},{s},{dp},50,{ft * 0.5},20,{ft},40,{z},0.001,60,1000,2,{health},{codes},"
+                     f"{terrain}/wheel1/{soil}/s{s:.3f}/run.h5")
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def main():
+    work = work_dir()
+    fails = []
+
+    def check(cond, msg):
+        if not cond:
+            fails.append(msg)
+
+    dem = table(work / "dem.csv", "dem", [("sand", 0.1, -2000.0, 4000.0, 0.25, "ok", ""),
+                                          ("sand", 0.2, -1000.0, 5000.0, 0.3, "warning",
+                                           "floor_clearance")])
+    scm = table(work / "scm.csv", "scm", [("fit", 0.1, 2000.0, 7000.0, 0.4, "warning",
+                                           "scm_rim_skid"),
+                                          ("fit", 0.2, 2500.0, 7200.0, 0.42, "ok", "")])
+    md = work / "out.md"
+    r = run_script(SCRIPT, dem, "--scm", scm, "--md", md)
+    check(r.returncode == 0, f"exit {r.returncode}, expected 0")
+    text = md.read_text() if md.is_file() else ""
+    rows = [l for l in text.splitlines() if l.startswith("| 0.")]
+    # TE = DP/F_T (1 - s): DEM -2/4 x 0.9 = -0.45, SCM 2/7 x 0.9 = 0.257
+    want = ["| 0.100 | 4.00 ± 0.04 | -2.00 ± 0.05 | 250.0 ± 1.0 | -0.45 | 7.00 (+75) † | "
+            "2.00 (+200) † | 400.0 (+60) | 0.26 |",
+            "| 0.200 | 5.00 ± 0.04 | -1.00 ± 0.05 | 300.0 ± 1.0 | -0.16 | 7.20 (+44) | "
+            "2.50 (+350) | 420.0 (+40) | 0.28 | (health: warning)"]
+    check(rows == want, f"comparison rows\n{rows}\nexpected\n{want}")
+    check("† SCM point with health warnings: scm_rim_skid" in text, "the † footnote names the code")
+    gap = [l for l in text.splitlines() if l.startswith("| wheel1 |")]
+    # 0.1: dDP = 4.0, dF_T = 3.0, R DEM 6.0, SCM 5.0 -> dR = -1.0; 0.2: dDP 3.5, dF_T 2.2, R 6.0/4.7
+    want = ["| wheel1 | 0.100 | fit † | +4.00 | +3.00 | -1.00 | 6.00 | 5.00 |",
+            "| wheel1 | 0.200 | fit | +3.50 | +2.20 | -1.30 | 6.00 | 4.70 |"]
+    check(gap == want, f"gap rows\n{gap}\nexpected\n{want}")
+    bad = work / "bad.csv"
+    bad.write_text("slip,target_slip,drawbar_pull_N\n0.1,0.1,1.0\n")
+    r = run_script(SCRIPT, dem, "--scm", bad, "--md", work / "x.md")
+    check(r.returncode == 2 and str(bad) in r.stderr
+          and len(r.stderr.strip().splitlines()) == 1, "a missing column: one line naming the file")
+    return report(fails)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
