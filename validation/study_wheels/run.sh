@@ -10,7 +10,8 @@
 # fitted SCM soil and on SCM dry sand of the tables (sweep_scm.toml; minutes); scm_onset — SCM's
 # jump at slip = lug height / R_eff: wheel 1 and the smooth wheel at 6 slips around it
 # (sweep_scm_onset.toml; a minute), scm_onset_tips the same sheared at the lug tips; scm_tips — the SCM half sheared at the lug tips
-# (sweep_scm_tips.toml, terrain.shear_surface = "lug_tips"; minutes); grain — wheel 1 at
+# (sweep_scm_tips.toml, terrain.shear_surface = "lug_tips"; minutes); scm_deep — the same on the
+# sand refitted with plates to 0.3 m and with shear boxes to 0.5 L (sweep_scm_deep.toml); grain — wheel 1 at
 # 20 % slip on 12-30 mm grains (sweep_grain.toml, its own bin); goal — issue 12's goal point: wheel 1
 # at 20 % on 21-52 mm grains, time step scaled with the grain (sweep_goal.toml, its own bin;
 # measured 23 min + a 4 min bed); and issue 12's active-domain check,
@@ -50,7 +51,7 @@ while (($#)); do
   esac
 done
 # the parts besides dem: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
-parts=(scm scm_tips scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide)
+parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide)
 for part in ${only//,/ }; do
   [[ " dem ${parts[*]} " == *" $part "* ]] || {
     echo "run.sh: --only: unknown part '$part' (expected dem ${parts[*]})" >&2; exit 2; }
@@ -118,6 +119,7 @@ if [[ -f $here/results.csv ]]; then
   extra=()
   [[ -f $here/results_scm.csv ]] && extra+=(--scm "$here/results_scm.csv")
   [[ -f $here/results_scm_tips.csv ]] && extra+=(--scm "$here/results_scm_tips.csv")
+  [[ -f $here/results_scm_deep.csv ]] && extra+=(--scm "$here/results_scm_deep.csv")
   [[ -f $here/results_grain.csv ]] && extra+=(--grain "$here/results_grain.csv")
   [[ -f $here/results_goal.csv ]] && extra+=(--goal "$here/results_goal.csv")
   [[ -f $here/results_goal_wide.csv ]] && extra+=(--goal-wide "$here/results_goal_wide.csv")
