@@ -26,6 +26,17 @@ def run_script(script, *args, timeout=60):
     return r
 
 
+def checker():
+    """(failures, check): check(cond, msg) records msg in failures when cond is false."""
+    failures = []
+
+    def check(cond, msg):
+        if not cond:
+            failures.append(msg)
+
+    return failures, check
+
+
 def report(failures):
     """Prints each failure and the verdict; returns the exit status (0 pass, 1 fail)."""
     for f in failures:

@@ -9,7 +9,7 @@ one line naming the file).
 import sys
 from pathlib import Path
 
-from script_test import report, run_script, work_dir
+from script_test import checker, report, run_script, work_dir
 
 SCRIPT = Path(__file__).resolve().parents[2] / "validation" / "common" / "dem_vs_scm.py"
 HEAD = ("# wheelsim-post curves --results (synthetic)\n"
@@ -27,11 +27,7 @@ def run(*args):
 
 def main():
     work = work_dir()
-    fails = []
-
-    def check(cond, msg):
-        if not cond:
-            fails.append(msg)
+    fails, check = checker()
 
     dem = table(work / "dem.csv", [(0.5, -7.5, 0.2, 0.4, 0.047), (-1.0, -20.0, 0.3, -0.2, 0.056),
                                    (0.9, -5.5, 0.2, 0.55, 0.062)])

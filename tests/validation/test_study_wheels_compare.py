@@ -9,7 +9,7 @@ its code named under the table), the split of SCM − DEM into traction force an
 import sys
 from pathlib import Path
 
-from script_test import report, run_script, work_dir
+from script_test import checker, report, run_script, work_dir
 
 SCRIPT = Path(__file__).resolve().parents[2] / "validation" / "study_wheels" / "compare.py"
 COLUMNS = ("slip,target_slip,drawbar_pull_N,drawbar_pull_sem_N,driving_torque_Nm,"
@@ -29,11 +29,7 @@ def table(path, terrain, rows):
 
 def main():
     work = work_dir()
-    fails = []
-
-    def check(cond, msg):
-        if not cond:
-            fails.append(msg)
+    fails, check = checker()
 
     dem = table(work / "dem.csv", "dem", [("sand", 0.1, -2000.0, 4000.0, 0.25, "ok", ""),
                                           ("sand", 0.2, -1000.0, 5000.0, 0.3, "warning",
