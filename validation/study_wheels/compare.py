@@ -124,9 +124,10 @@ def gap_table(dem, scm):
            "shear (traction), one that is mostly −ΔR its bearing and bulldozing (resistance).", "",
            "| wheel | slip | SCM soil | ΔDP | ΔF_T (traction) | ΔR (resistance) | DEM R | SCM R |",
            "|---|---|---|---|---|---|---|---|"]
+    scm_soils = sorted({m["soil"] for m in scm})
     for r in sorted(dem, key=lambda r: (r["wheel"], num(r["slip"]))):
         ft, dp = num(r["traction_force_N"]), num(r["drawbar_pull_N"])
-        for soil in sorted({m["soil"] for m in scm}):
+        for soil in scm_soils:
             m = scm_at.get((r["wheel"], soil, round(num(r["target_slip"]), 4)))
             if m is None:
                 continue
