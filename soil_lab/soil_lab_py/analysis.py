@@ -432,6 +432,7 @@ def summary(r: Results):
              "janosi_K_m": s["janosi"].K_m, "janosi_tau_max_Pa": s["janosi"].tau_max_Pa,
              "janosi_rms_Pa": s["janosi"].rms_Pa,
              "rise_at_end": shear_rise_at_end(s["j"], s["tau"]),
+             "stable": not shear_stability_errors([s]),
              **({} if s.get("consolidation") is None else {
                  "consolidation_s": s["consolidation"]["consolidation_s"],
                  "sigma_start_ratio": s["consolidation"]["sigma_start_ratio"],
@@ -573,6 +574,14 @@ def shear_strength_from(path, soil_name):
                                   tuple(float(b["janosi_K_m"]) for b in boxes))
         except KeyError as e:
             raise LabResultError(f"--shear-from {f}: a [[shear.stresses]] entry lacks {e}") from None
+        # The curves are not in the summary: its per-box verdict ("stable", written since
+        # 2026-11-29), else the one check a summary allows (Janosi tau_max > 0).
+        unstable = [f"{float(b['sigma_n_Pa']) / 1e3:.3g} kPa" for b in boxes
+                    if b.get("stable") is False or float(b.get("janosi_tau_max_Pa", 1.0)) <= 0]
+        if unstable:
+            raise LabResultError(f"--shear-from {f}: unstable shear box(es) at "
+                                 f"{', '.join(unstable)} (see its [shear] warnings): no SCM file "
+                                 "from them")
     if name != soil_name:
         raise LabResultError(f"--shear-from {p}: its soil is {name!r}, this lab's is "
                              f"{soil_name!r}: both must be the same DEM soil")

@@ -86,14 +86,15 @@ class Analysis(unittest.TestCase):
         src = data["source"]["mohr_coulomb"]["cohesion"]
         self.assertIn("intercept was -300 Pa (< 0: no cohesion), so c = 0", src)
 
-    def shear_summary(self, soil="synthetic", boxes=3):
-        """A results.toml as `soil-lab report` writes it: c 1 kPa, phi 30 deg, K 10/20/30 mm."""
+    def shear_summary(self, soil="synthetic", boxes=3, extra=("", "", "")):
+        """A results.toml as `soil-lab report` writes it: c 1 kPa, phi 30 deg, K 10/20/30 mm;
+        `extra`: more lines for each box."""
         d = Path(tempfile.mkdtemp())
         lines = [f'[soil]\nname = "{soil}"\n']
-        for sigma, K in list(zip((5e3, 1e4, 2e4), (0.01, 0.02, 0.03)))[:boxes]:
+        for sigma, K, more in list(zip((5e3, 1e4, 2e4), (0.01, 0.02, 0.03), extra))[:boxes]:
             tau = 1e3 + sigma * np.tan(np.radians(30.0))
             lines.append(f"[[shear.stresses]]\nsigma_n_Pa = {sigma!r}\ntau_peak_Pa = {tau!r}\n"
-                         f"janosi_K_m = {K!r}\n")
+                         f"janosi_K_m = {K!r}\n{more}")
         (d / "results.toml").write_text("\n".join(lines))
         return d
 
@@ -121,6 +122,12 @@ class Analysis(unittest.TestCase):
             analysis.shear_strength_from(self.shear_summary("other"), "synthetic")
         with self.assertRaisesRegex(analysis.LabResultError, r"2 shear box\(es\).*need 3"):
             analysis.shear_strength_from(self.shear_summary(boxes=2), "synthetic")
+        # Unstable boxes: the summary's verdict, or (older summaries) a Janosi tau_max <= 0.
+        for extra in (("stable = true\n", "stable = false\n", "stable = true\n"),
+                      ("", "janosi_tau_max_Pa = -50.0\n", "")):
+            with self.assertRaisesRegex(analysis.LabResultError,
+                                        r"unstable shear box\(es\) at 10 kPa"):
+                analysis.shear_strength_from(self.shear_summary(extra=extra), "synthetic")
         with self.assertRaisesRegex(analysis.LabResultError, "neither shear box runs nor"):
             analysis.shear_strength_from(Path(tempfile.mkdtemp()), "synthetic")
         # Without shear boxes of its own or from another lab: named, with the way out.
