@@ -2,7 +2,8 @@
 """validation/study_wheels/compare.py (case 3's comparison) on synthetic results tables with known
 values: the DEM-beside-SCM row (SCM's difference in % of DEM, an unhealthy SCM point marked † and
 its code named under the table), the split of SCM − DEM into traction force and motion resistance
-(ΔDP = ΔF_T − ΔR), and a missing column (exit 2, one line naming the file).
+(ΔDP = ΔF_T − ΔR), a point under another setting (the
+sinkage allowance's section), and a missing column (exit 2, one line naming the file).
 
     test_study_wheels_compare.py --work DIR
 """
@@ -54,6 +55,16 @@ def main():
     want = ["| wheel1 | 0.100 | fit † | +4.00 | +3.00 | -1.00 | 6.00 | 5.00 |",
             "| wheel1 | 0.200 | fit | +3.50 | +2.20 | -1.30 | 6.00 | 4.70 |"]
     check(gap == want, f"gap rows\n{gap}\nexpected\n{want}")
+    # a point under another setting (here the sinkage allowance): its own section, row by row
+    allowance = table(work / "results_allowance.csv", "dem",
+                      [("sand", 0.2, -900.0, 5000.0, 0.33, "ok", "")])
+    r = run_script(SCRIPT, dem, "--allowance", allowance, "--md", md)
+    text = md.read_text() if r.returncode == 0 and md.is_file() else ""
+    check("## The active domain's sinkage allowance: 0.3 m (sweep.toml) against 0.45 m" in text,
+          f"the allowance section (exit {r.returncode})")
+    # the difference is in % of the other setting's value: (-1.0 - -0.9) / 0.9
+    check("| wheel1 s 0.2 | drawbar pull [kN] | -1 ± 0.05 | -0.9 ± 0.05 | -11.11 % |" in text,
+          "the allowance row: DP -1.0 against -0.9 kN")
     bad = work / "bad.csv"
     bad.write_text("slip,target_slip,drawbar_pull_N\n0.1,0.1,1.0\n")
     r = run_script(SCRIPT, dem, "--scm", bad, "--md", work / "x.md")

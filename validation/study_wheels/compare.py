@@ -2,12 +2,14 @@
 """Validation case 3 (README.md): the study wheels on DEM dry sand beside SCM, per wheel and slip:
 traction force T/R_eff, drawbar pull, sinkage and tractive efficiency, and the active domain's
 effect (the full-domain run of the same point), its run-to-run scatter (the same point on another
-ranks' grid), the grain-size sensitivity and issue 12's goal point (21-52 mm grains); and where
+ranks' grid), the grain-size sensitivity, issue 12's goal point (21-52 mm grains) and the active
+domain's sinkage allowance (the same point with it raised); and where
 SCM and DEM part, split into traction force and motion resistance.
 
     compare.py RESULTS.csv [--scm RESULTS_SCM.csv ...] [--full-domain RESULTS_FULL.csv]
                [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--goal RESULTS_GOAL.csv]
-               [--goal-wide RESULTS_GOAL_WIDE.csv] [--label CONFIG]
+               [--goal-wide RESULTS_GOAL_WIDE.csv] [--allowance RESULTS_ALLOWANCE.csv]
+               [--label CONFIG]
                [--md OUT.md] [--png OUT.png]
 
 Inputs are tables of `wheelsim-post curves --results` (docs/postprocess.md); the wheel and the soil
@@ -224,6 +226,8 @@ def main():
     ap.add_argument("--goal", help="issue 12's goal point's results table (21-52 mm grains)")
     ap.add_argument("--goal-wide", help="the goal point with sweep.toml's 0.3 m sinkage allowance "
                     "(sweep_goal_wide.toml): the like-for-like coarser grain")
+    ap.add_argument("--allowance", help="a point with the active domain's sinkage allowance "
+                    "raised from sweep.toml's 0.3 m (sweep_allowance.toml)")
     ap.add_argument("--wide", help="the active domain's point with a larger distance (its sinkage "
                     "allowance raised), compared with --full-domain's")
     ap.add_argument("--repeat", help="the repeat of the active domain's point on another ranks' "
@@ -266,7 +270,7 @@ def main():
                   f"{sweep_name(a.repeat)}'s "
                   "(the same inputs, procs_x 2): another trajectory of the same experiment.", ""]
         lines += point_table(dem, read(a.repeat), "repeat (procs_x 2)", ref=a.label)[0] + [""]
-    # the same point on other grains: (table, heading after the case's own grain, column name)
+    # the same point under another setting: (table, heading after the case's label, column name)
     for table, heading, name in (
             (a.grain, "Grain size: 16-40 mm ({}) against 12-30 mm (sweep_grain.toml)",
              "12-30 mm grains"),
@@ -275,7 +279,9 @@ def main():
              "21-52 mm grains"),
             (a.goal, "Issue 12's goal: 16-40 mm ({}) against 21-52 mm (sweep_goal.toml, time step "
              "x 1.3, the active domain at its default distance: not like for like since "
-             "sweep.toml sets the 0.3 m allowance)", "21-52 mm grains")):
+             "sweep.toml sets the 0.3 m allowance)", "21-52 mm grains"),
+            (a.allowance, "The active domain's sinkage allowance: 0.3 m ({}) against 0.45 m "
+             "(sweep_allowance.toml: same bed, grains and ranks)", "0.45 m allowance")):
         if table:
             lines += ["## " + heading.format(a.label), ""]
             lines += point_table(dem, read(table), name, ref=a.label)[0] + [""]

@@ -22,7 +22,10 @@
 # the full_domain comparison reads against; and the same check on the goal's 0.76 m bed: goal_full
 # — the goal point without the active domain (sweep_goal_full.toml; ~45 min), goal_repeat — the
 # goal point on another ranks' grid (sweep_goal_repeat.toml; ~25 min), compared in
-# comparison_goal_active_domain.md. Resumable: a re-run skips finished points. Writes here
+# comparison_goal_active_domain.md; allowance — wheel 1 at 50 % with the active domain's sinkage
+# allowance at 0.45 m instead of 0.3 (sweep_allowance.toml, the same bed; ~1.5 h): what the
+# deepest points' active_domain_sinkage warning costs. Resumable: a re-run skips finished
+# points. Writes here
 # results.csv (DEM), results_<part>.csv (the others), comparison.md and comparison.png (the case),
 # comparison_active_domain.md (the check) and provenance[_<part>].toml (git hash, command,
 # machine, wall time); finished DEM points are kept in points/ (committed) and restored on the
@@ -51,7 +54,7 @@ while (($#)); do
   esac
 done
 # the parts besides dem: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
-parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide)
+parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide allowance)
 for part in ${only//,/ }; do
   [[ " dem ${parts[*]} " == *" $part "* ]] || {
     echo "run.sh: --only: unknown part '$part' (expected dem ${parts[*]})" >&2; exit 2; }
@@ -123,6 +126,7 @@ if [[ -f $here/results.csv ]]; then
   [[ -f $here/results_grain.csv ]] && extra+=(--grain "$here/results_grain.csv")
   [[ -f $here/results_goal.csv ]] && extra+=(--goal "$here/results_goal.csv")
   [[ -f $here/results_goal_wide.csv ]] && extra+=(--goal-wide "$here/results_goal_wide.csv")
+  [[ -f $here/results_allowance.csv ]] && extra+=(--allowance "$here/results_allowance.csv")
   "$python" "$here/compare.py" "$here/results.csv" "${extra[@]}" \
     --md "$here/comparison.md" --png "$here/comparison.png" || status=1
 fi
