@@ -65,6 +65,10 @@ def main():
     # the difference is in % of the other setting's value: (-1.0 - -0.9) / 0.9
     check("| wheel1 s 0.2 | drawbar pull [kN] | -1 ± 0.05 | -0.9 ± 0.05 | -11.11 % |" in text,
           "the allowance row: DP -1.0 against -0.9 kN")
+    r = run_script(SCRIPT, dem, "--wheel-mu", allowance, "--md", md)
+    text = md.read_text() if r.returncode == 0 and md.is_file() else ""
+    check("## The wheel-sand friction: 0.5 (sweep.toml) against the grains' 0.7869" in text,
+          f"the wheel_mu section (exit {r.returncode})")
     bad = work / "bad.csv"
     bad.write_text("slip,target_slip,drawbar_pull_N\n0.1,0.1,1.0\n")
     r = run_script(SCRIPT, dem, "--scm", bad, "--md", work / "x.md")

@@ -3,12 +3,13 @@
 traction force T/R_eff, drawbar pull, sinkage and tractive efficiency, and the active domain's
 effect (the full-domain run of the same point), its run-to-run scatter (the same point on another
 ranks' grid), the grain-size sensitivity, issue 12's goal point (21-52 mm grains) and the active
-domain's sinkage allowance (the same point with it raised); and where
+domain's sinkage allowance and the wheel-sand friction (the same point with each raised); and where
 SCM and DEM part, split into traction force and motion resistance.
 
     compare.py RESULTS.csv [--scm RESULTS_SCM.csv ...] [--full-domain RESULTS_FULL.csv]
                [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--goal RESULTS_GOAL.csv]
                [--goal-wide RESULTS_GOAL_WIDE.csv] [--allowance RESULTS_ALLOWANCE.csv]
+               [--wheel-mu RESULTS_WHEEL_MU.csv]
                [--label CONFIG]
                [--md OUT.md] [--png OUT.png]
 
@@ -228,6 +229,8 @@ def main():
                     "(sweep_goal_wide.toml): the like-for-like coarser grain")
     ap.add_argument("--allowance", help="a point with the active domain's sinkage allowance "
                     "raised from sweep.toml's 0.3 m (sweep_allowance.toml)")
+    ap.add_argument("--wheel-mu", help="a point with the wheel-sand friction raised from 0.5 to "
+                    "the grains' (sweep_wheel_mu.toml)")
     ap.add_argument("--wide", help="the active domain's point with a larger distance (its sinkage "
                     "allowance raised), compared with --full-domain's")
     ap.add_argument("--repeat", help="the repeat of the active domain's point on another ranks' "
@@ -281,7 +284,9 @@ def main():
              "x 1.3, the active domain at its default distance: not like for like since "
              "sweep.toml sets the 0.3 m allowance)", "21-52 mm grains"),
             (a.allowance, "The active domain's sinkage allowance: 0.3 m ({}) against 0.45 m "
-             "(sweep_allowance.toml: same bed, grains and ranks)", "0.45 m allowance")):
+             "(sweep_allowance.toml: same bed, grains and ranks)", "0.45 m allowance"),
+            (a.wheel_mu, "The wheel-sand friction: 0.5 ({}) against the grains' 0.7869 "
+             "(sweep_wheel_mu.toml: same bed, grains and ranks)", "wheel_mu 0.7869")):
         if table:
             lines += ["## " + heading.format(a.label), ""]
             lines += point_table(dem, read(table), name, ref=a.label)[0] + [""]

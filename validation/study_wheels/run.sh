@@ -24,7 +24,9 @@
 # goal point on another ranks' grid (sweep_goal_repeat.toml; ~25 min), compared in
 # comparison_goal_active_domain.md; allowance — wheel 1 at 50 % with the active domain's sinkage
 # allowance at 0.45 m instead of 0.3 (sweep_allowance.toml, the same bed; ~1.5 h): what the
-# deepest points' active_domain_sinkage warning costs. Resumable: a re-run skips finished
+# deepest points' active_domain_sinkage warning costs; wheel_mu — wheel 1 at 20 % with the
+# wheel-sand friction at the grains' 0.7869 instead of 0.5 (sweep_wheel_mu.toml, the same bed;
+# ~1.2 h): how much of the DEM-SCM traction gap is the interface. Resumable: a re-run skips finished
 # points. Writes here
 # results.csv (DEM), results_<part>.csv (the others), comparison.md and comparison.png (the case),
 # comparison_active_domain.md (the check) and provenance[_<part>].toml (git hash, command,
@@ -54,7 +56,7 @@ while (($#)); do
   esac
 done
 # the parts besides dem: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
-parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide allowance)
+parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide allowance wheel_mu)
 for part in ${only//,/ }; do
   [[ " dem ${parts[*]} " == *" $part "* ]] || {
     echo "run.sh: --only: unknown part '$part' (expected dem ${parts[*]})" >&2; exit 2; }
@@ -127,6 +129,7 @@ if [[ -f $here/results.csv ]]; then
   [[ -f $here/results_goal.csv ]] && extra+=(--goal "$here/results_goal.csv")
   [[ -f $here/results_goal_wide.csv ]] && extra+=(--goal-wide "$here/results_goal_wide.csv")
   [[ -f $here/results_allowance.csv ]] && extra+=(--allowance "$here/results_allowance.csv")
+  [[ -f $here/results_wheel_mu.csv ]] && extra+=(--wheel-mu "$here/results_wheel_mu.csv")
   "$python" "$here/compare.py" "$here/results.csv" "${extra[@]}" \
     --md "$here/comparison.md" --png "$here/comparison.png" || status=1
 fi
