@@ -83,10 +83,25 @@ def read_plate(run, done):
             "phase": t["phase"], "done": done}
 
 
+#: The plate speed check compares the two runs' loading branches in this many equal bands of
+#: sinkage, not only at the end: a rate effect shows at every depth, a chance force chain in one.
+PLATE_PROFILE_BANDS = 5
+
+
+def plate_pressure_profile(plate, bands=PLATE_PROFILE_BANDS):
+    """(band centres [m], mean pressure [Pa] in each band) of the loading branch, its sinkage range
+    [0, z_max] cut into `bands` equal bands (the last one ends at z_max, included)."""
+    z, p = plate["z"][plate["phase"] == 1], plate["p"][plate["phase"] == 1]
+    edges = np.linspace(0.0, z.max(), bands + 1)
+    band = np.minimum(np.searchsorted(edges, z, side="right") - 1, bands - 1)
+    means = [float(np.mean(p[band == k])) if np.any(band == k) else float("nan")
+             for k in range(bands)]
+    return 0.5 * (edges[:-1] + edges[1:]), np.array(means)
+
+
 def plate_end_pressure(plate):
     """Mean pressure over the last 20 % of the loading branch's sinkage range [Pa]."""
-    z, p = plate["z"][plate["phase"] == 1], plate["p"][plate["phase"] == 1]
-    return float(np.mean(p[z >= 0.8 * z.max()]))
+    return float(plate_pressure_profile(plate, 5)[1][-1])
 
 
 #: A shear box that has lost more than this share of its particles by the peak, or by the end, is
@@ -374,10 +389,16 @@ def analyse(directory):
             continue
         test = run.name.split("_")[0]
         full_dir = d / run.name[: -len("_half")]
+        extra = {}
         if test == "plate":
-            a, b = plate_end_pressure(read_plate(full_dir, full)), plate_end_pressure(
-                read_plate(run, half))
+            pa, pb = read_plate(full_dir, full), read_plate(run, half)
+            a, b = plate_end_pressure(pa), plate_end_pressure(pb)
             what, unit, diff = "pressure at the end of loading", "Pa", (b - a) / a
+            za, ma = plate_pressure_profile(pa)
+            zb, mb = plate_pressure_profile(pb)
+            # by depth: the half-speed band mean at the full-speed run's band depths
+            extra = {"profile_depth_m": [float(x) for x in za],
+                     "profile_difference": [float(x) for x in np.interp(za, zb, mb) / ma - 1.0]}
         elif test == "shear":
             a = read_shear(full_dir, full)["peak"].tau_peak_Pa
             b = read_shear(run, half)["peak"].tau_peak_Pa
@@ -393,7 +414,8 @@ def analyse(directory):
         r.quasi_static.append({"run": full_dir.name, "quantity": what, "unit": unit,
                                "full_speed": float(a), "half_speed": float(b),
                                "difference": float(diff), "tolerance": tol,
-                               "relative": test != "repose", "passed": bool(abs(diff) <= tol)})
+                               "relative": test != "repose", "passed": bool(abs(diff) <= tol),
+                               **extra})
 
     for run, done in [(q, _done(q)) for q in sorted(d.iterdir()) if q.is_dir()]:
         if done is not None and "steps" in done:
@@ -466,7 +488,9 @@ def summary(r: Results):
     if r.quasi_static:
         out["quasi_static"] = {q["run"]: {k: q[k] for k in ("quantity", "unit", "full_speed",
                                                               "half_speed", "difference",
-                                                              "tolerance", "relative", "passed")}
+                                                              "tolerance", "relative", "passed",
+                                                              "profile_depth_m",
+                                                              "profile_difference") if k in q}
                                for q in r.quasi_static}
     if r.costs:
         out["cost"] = {c["run"]: {k: c[k] for k in COST_KEYS} for c in r.costs}

@@ -152,6 +152,10 @@ def _report(directory, quiet=False):
             tol = f"{100 * q['tolerance']:g} %" if q["relative"] else f"{q['tolerance']:g} {q['unit']}"
             print(f"soil-lab: quasi-static: {q['run']}: {q['quantity']} at half speed {diff} "
                   f"(tolerance {tol}): {'ok' if q['passed'] else 'NOT quasi-static'}")
+            if "profile_difference" in q:
+                bands = ", ".join(f"{1e3 * z:.3g} mm {100 * d:+.1f} %" for z, d in
+                                  zip(q["profile_depth_m"], q["profile_difference"]))
+                print(f"soil-lab: quasi-static: {q['run']}: pressure at half speed by depth: {bands}")
     return 0
 
 

@@ -67,6 +67,32 @@ class Analysis(unittest.TestCase):
         self.assertIn(0.02, r.unload_errors)
         self.assertIn(0.032, r.unload)
 
+    def test_plate_speed_check_compares_the_whole_loading_by_depth(self):
+        # The half-speed twin of the larger plate carries 20 % less pressure at every depth: the
+        # check reads -20 % at the end of loading and in each of the depth bands.
+        r = self.lab(False)
+        full = r.directory / "plate_b0.032"
+        half = r.directory / "plate_b0.032_half"
+        half.mkdir()
+        t = np.loadtxt(full / "plate.csv", ndmin=2)
+        t[:, 2:4] *= 0.8
+        np.savetxt(half / "plate.csv", t, header="time_s sinkage_m force_N pressure_Pa contacts "
+                   "phase")
+        (half / "done.json").write_text(json.dumps({"meta": {"b_m": 0.032, "half_of":
+                                                              "plate_b0.032"}, "wall_s": 2.0}))
+        q, = analysis.analyse(r.directory).quasi_static
+        self.assertAlmostEqual(q["difference"], -0.2, places=9)
+        self.assertFalse(q["passed"])
+        self.assertEqual(len(q["profile_depth_m"]), analysis.PLATE_PROFILE_BANDS)
+        np.testing.assert_allclose(q["profile_depth_m"], [0.002, 0.006, 0.01, 0.014, 0.018])
+        np.testing.assert_allclose(q["profile_difference"], -0.2, atol=1e-9)
+        # the last band is the end-of-loading pressure: the mean over the last 20 % of the depth
+        plate = analysis.read_plate(full, {"meta": {"b_m": 0.032}})
+        z1 = np.linspace(0.0, 0.02, 200)
+        p1 = (1e4 / 0.032 + 5e5) * z1 ** 1.1
+        self.assertAlmostEqual(analysis.plate_end_pressure(plate) / p1[z1 >= 0.016].mean(), 1.0,
+                               places=9)
+
     def test_negative_cohesion_gives_c0_and_phi_through_the_origin(self):
         r = self.lab(False)
         sigma = np.array([5e3, 1e4, 2e4])
