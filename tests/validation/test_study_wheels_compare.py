@@ -2,8 +2,8 @@
 """validation/study_wheels/compare.py (case 3's comparison) on synthetic results tables with known
 values: the DEM-beside-SCM row (SCM's difference in % of DEM, an unhealthy SCM point marked † and
 its code named under the table), the split of SCM − DEM into traction force and motion resistance
-(ΔDP = ΔF_T − ΔR), a point under another setting (the
-sinkage allowance's section), and a missing column (exit 2, one line naming the file).
+(ΔDP = ΔF_T − ΔR), a point under another setting (the sinkage allowance's and the wheel
+friction's sections), and a missing column (exit 2, one line naming the file).
 
     test_study_wheels_compare.py --work DIR
 """
