@@ -85,23 +85,24 @@ def read_plate(run, done):
 
 #: The plate speed check compares the two runs' loading branches in this many equal bands of
 #: sinkage, not only at the end: a rate effect shows at every depth, a chance force chain in one.
+#: The last band (the last 20 % of the range) is the check's "pressure at the end of loading".
 PLATE_PROFILE_BANDS = 5
 
 
-def plate_pressure_profile(plate, bands=PLATE_PROFILE_BANDS):
+def plate_pressure_profile(plate):
     """(band centres [m], mean pressure [Pa] in each band) of the loading branch, its sinkage range
-    [0, z_max] cut into `bands` equal bands (the last one ends at z_max, included)."""
+    [0, z_max] cut into PLATE_PROFILE_BANDS equal bands (the last one ends at z_max, included)."""
     z, p = plate["z"][plate["phase"] == 1], plate["p"][plate["phase"] == 1]
-    edges = np.linspace(0.0, z.max(), bands + 1)
-    band = np.minimum(np.searchsorted(edges, z, side="right") - 1, bands - 1)
+    edges = np.linspace(0.0, z.max(), PLATE_PROFILE_BANDS + 1)
+    band = np.minimum(np.searchsorted(edges, z, side="right") - 1, PLATE_PROFILE_BANDS - 1)
     means = [float(np.mean(p[band == k])) if np.any(band == k) else float("nan")
-             for k in range(bands)]
+             for k in range(PLATE_PROFILE_BANDS)]
     return 0.5 * (edges[:-1] + edges[1:]), np.array(means)
 
 
 def plate_end_pressure(plate):
-    """Mean pressure over the last 20 % of the loading branch's sinkage range [Pa]."""
-    return float(plate_pressure_profile(plate, 5)[1][-1])
+    """Mean pressure over the last band (20 %) of the loading branch's sinkage range [Pa]."""
+    return float(plate_pressure_profile(plate)[1][-1])
 
 
 #: A shear box that has lost more than this share of its particles by the peak, or by the end, is
@@ -391,11 +392,10 @@ def analyse(directory):
         full_dir = d / run.name[: -len("_half")]
         extra = {}
         if test == "plate":
-            pa, pb = read_plate(full_dir, full), read_plate(run, half)
-            a, b = plate_end_pressure(pa), plate_end_pressure(pb)
+            za, ma = plate_pressure_profile(read_plate(full_dir, full))
+            zb, mb = plate_pressure_profile(read_plate(run, half))
+            a, b = ma[-1], mb[-1]  # plate_end_pressure of each
             what, unit, diff = "pressure at the end of loading", "Pa", (b - a) / a
-            za, ma = plate_pressure_profile(pa)
-            zb, mb = plate_pressure_profile(pb)
             # by depth: the half-speed band mean at the full-speed run's band depths
             extra = {"profile_depth_m": [float(x) for x in za],
                      "profile_difference": [float(x) for x in np.interp(za, zb, mb) / ma - 1.0]}
