@@ -28,8 +28,8 @@
 # wheel-sand friction at the grains' 0.7869 instead of 0.5 (sweep_wheel_mu.toml, the same bed;
 # ~1.2 h): how much of the DEM-SCM traction gap is the interface. Resumable: a re-run skips
 # finished points. Writes here results.csv (DEM), results_<part>.csv (the others), comparison.md
-# and comparison.png (the case), comparison_active_domain.md (the check) and provenance[_<part>].toml (git hash, command,
-# machine, wall time); finished DEM points are kept in points/ (committed) and restored on the
+# and comparison.png (the case), comparison_active_domain.md (the check) and
+# provenance[_<part>].toml (git hash, command, machine, wall time); finished DEM points are kept in points/ (committed) and restored on the
 # next run. Run it in the background: nohup ... &
 # --points GLOBS: only these points of each sweep (wheel-sweep --points, e.g. 'wheel1/*/s0.200').
 # --tables: run nothing; write the results tables, comparison and provenance from the points
