@@ -29,8 +29,10 @@ class Results:
     soil: dict
     directory: Path
     bulk: Optional[dict] = None
-    plates: List[dict] = field(default_factory=list)  # b_m, z, p, phase, done
+    plates: List[dict] = field(default_factory=list)  # b_m, t, z, p, phase, done
     bekker: Optional[fits.BekkerFit] = None
+    holds: Dict[float, List[dict]] = field(default_factory=dict)  # by b_m: plate_holds
+    bekker_relaxed: Optional[fits.BekkerFit] = None  # on the pressures at the ends of the holds
     unload: Dict[float, fits.UnloadFit] = field(default_factory=dict)  # by b_m
     unload_errors: Dict[float, str] = field(default_factory=dict)  # by b_m: why no Ke was fitted
     shears: List[dict] = field(default_factory=list)  # sigma_Pa, j, tau, peak, janosi, done
@@ -79,8 +81,50 @@ def _runs(d, pattern):
 def read_plate(run, done):
     t = _table(run / "plate.csv", ("time_s", "sinkage_m", "force_N", "pressure_Pa", "contacts",
                                    "phase"))
-    return {"b_m": done["meta"]["b_m"], "z": t["sinkage_m"], "p": t["pressure_Pa"],
-            "phase": t["phase"], "done": done}
+    return {"b_m": done["meta"]["b_m"], "t": t["time_s"], "z": t["sinkage_m"],
+            "p": t["pressure_Pa"], "phase": t["phase"], "done": done}
+
+
+#: in.lab_plate's phase codes
+PLATE_LOAD, PLATE_UNLOAD, PLATE_RELOAD, PLATE_HOLD = 1, 2, 3, 4
+#: A hold's pressure at speed is the straight line through the last HOLD_APPROACH_S of the motion
+#: into it, taken at the stop; its pressure at the end the mean over the hold's last
+#: HOLD_END_FRACTION.
+HOLD_APPROACH_S = 0.02
+HOLD_END_FRACTION = 0.1
+
+
+def plate_holds(plate):
+    """The hold stages of a plate run (in.lab_plate, hold > 0; [] without), in time order: per
+    stage its sinkage z_m [m], hold_s [s], the pressure at speed at the stop p_moving_Pa and at
+    the hold's end p_end_Pa [Pa], relaxation = 1 - p_end / p_moving, and the exponential fit (fits.fit_relaxation
+    of the pressure against the time since the stop)."""
+    t, z, p, phase = plate["t"], plate["z"], plate["p"], plate["phase"]
+    held = np.flatnonzero(phase == PLATE_HOLD)
+    if held.size == 0:
+        return []
+    stages = np.split(held, np.flatnonzero(np.diff(held) > 1) + 1)
+    out = []
+    for idx in stages:
+        t_stop = t[idx[0]]
+        moving = (phase == PLATE_LOAD) & (t < t_stop) & (t >= t_stop - HOLD_APPROACH_S)
+        th, ph = t[idx] - t_stop, p[idx]
+        end = th >= (1.0 - HOLD_END_FRACTION) * th[-1]
+        if np.count_nonzero(moving) >= 2:
+            slope, at_stop = np.polyfit(t[moving] - t_stop, p[moving], 1)
+            p_moving = float(at_stop)
+        else:
+            p_moving = float(ph[0])
+        p_end = float(np.mean(ph[end]))
+        try:
+            fit = fits.fit_relaxation(th, ph)
+        except FitInputError:
+            fit = None
+        out.append({"z_m": float(np.mean(z[idx])), "hold_s": float(th[-1]),
+                    "p_moving_Pa": p_moving, "p_end_Pa": p_end,
+                    "relaxation": 1.0 - p_end / p_moving if p_moving > 0 else float("nan"),
+                    "fit": fit, "t_s": th, "p_Pa": ph})
+    return out
 
 
 #: The plate speed check compares the two runs' loading branches in this many equal bands of
@@ -92,7 +136,7 @@ PLATE_PROFILE_BANDS = 5
 def plate_pressure_profile(plate):
     """(band centres [m], mean pressure [Pa] in each band) of the loading branch, its sinkage range
     [0, z_max] cut into PLATE_PROFILE_BANDS equal bands (the last one ends at z_max, included)."""
-    z, p = plate["z"][plate["phase"] == 1], plate["p"][plate["phase"] == 1]
+    z, p = plate["z"][plate["phase"] == PLATE_LOAD], plate["p"][plate["phase"] == PLATE_LOAD]
     edges = np.linspace(0.0, z.max(), PLATE_PROFILE_BANDS + 1)
     band = np.minimum(np.searchsorted(edges, z, side="right") - 1, PLATE_PROFILE_BANDS - 1)
     means = [float(np.mean(p[band == k])) if np.any(band == k) else float("nan")
@@ -358,19 +402,32 @@ def analyse(directory):
     for run, done in _runs(d, "plate_b*"):
         r.plates.append(read_plate(run, done))
     if len(r.plates) >= 2:
-        loading = [(p["b_m"], p["z"][p["phase"] == 1], p["p"][p["phase"] == 1]) for p in r.plates]
+        loading = [(p["b_m"], p["z"][p["phase"] == PLATE_LOAD], p["p"][p["phase"] == PLATE_LOAD])
+                   for p in r.plates]
         r.bekker = fits.fit_bekker(loading)
         for p in r.plates:
-            # The unloading branch starts at the turning point (the last loading sample): a noisy
-            # pressure maximum earlier in the loading must not be taken for the start of unloading.
-            i_turn = np.flatnonzero(p["phase"] == 1)[-1]
+            # The unloading branch starts at the turning point (the last sample before the unload:
+            # of the loading, or of the hold at its end): a noisy pressure maximum earlier in the
+            # loading must not be taken for the start of unloading.
+            i_unload = np.flatnonzero(p["phase"] == PLATE_UNLOAD)
+            i_turn = (i_unload[0] - 1 if i_unload.size
+                      else np.flatnonzero(p["phase"] == PLATE_LOAD)[-1])
             branch = slice(i_turn, None)
-            cycle = p["phase"][branch] <= 2
+            cycle = (p["phase"][branch] <= PLATE_UNLOAD) | (p["phase"][branch] == PLATE_HOLD)
             try:
                 r.unload[p["b_m"]] = fits.fit_unload_stiffness(p["z"][branch][cycle],
                                                                p["p"][branch][cycle])
             except FitInputError as e:
                 r.unload_errors[p["b_m"]] = str(e)
+            holds = plate_holds(p)
+            if holds:
+                r.holds[p["b_m"]] = holds
+        # The relaxed curve: the pressures at the ends of the holds, when each plate held at 2
+        # depths or more (docs/soil-lab.md, "Held plates").
+        if len(r.holds) == len(r.plates) and all(len(h) >= 2 for h in r.holds.values()):
+            r.bekker_relaxed = fits.fit_bekker(
+                [(b, [h["z_m"] for h in hs], [h["p_end_Pa"] for h in hs])
+                 for b, hs in r.holds.items()])
 
     for run, done in _runs(d, "shear_s*"):
         r.shears.append(read_shear(run, done))
@@ -427,6 +484,15 @@ def analyse(directory):
     return r
 
 
+def hold_summary(h):
+    """A hold stage (plate_holds) as results.toml writes it."""
+    f = h["fit"]
+    return {"z_m": h["z_m"], "hold_s": h["hold_s"], "p_moving_Pa": h["p_moving_Pa"],
+            "p_end_Pa": h["p_end_Pa"], "relaxation": h["relaxation"],
+            **({} if f is None else {"tau_s": f.tau_s, "p_inf_Pa": f.p_inf_Pa, "fit_r2": f.r2,
+                                     "converged": f.converged})}
+
+
 def summary(r: Results):
     """results.toml's content: every measured value with its unit in the key."""
     out = {"soil": {k: r.soil[k] for k in ("name", "file", "preset", "invocations")
@@ -446,6 +512,17 @@ def summary(r: Results):
                         "elastic_K_Pa_m": {f"b{w:.4g}": u.Ke_Pa_m for w, u in r.unload.items()}}
         if r.unload_errors:
             out["plate"]["elastic_K_errors"] = {f"b{w:.4g}": e for w, e in r.unload_errors.items()}
+        if r.holds:
+            out["plate"]["holds"] = {f"b{w:.4g}": [hold_summary(h) for h in hs]
+                                     for w, hs in r.holds.items()}
+        if r.bekker_relaxed:
+            b = r.bekker_relaxed
+            out["plate"]["relaxed"] = {
+                "n": b.n, "kc_N_m_n1": b.kc, "kphi_N_m_n2": b.kphi, "rms_Pa": b.rms_Pa, "r2": b.r2,
+                "points": b.n_points, "at_bound": list(b.at_bound),
+                "converged": all(h["fit"] is not None and h["fit"].converged
+                                 for hs in r.holds.values() for h in hs),
+                "source": "the pressures at the ends of the holds"}
     if r.shears:
         out["shear"] = {"stresses": [
             {"sigma_n_Pa": s["sigma_Pa"], "sigma_target_Pa": s["sigma_target_Pa"],
@@ -526,6 +603,9 @@ def write_report(r: Results, quiet=False):
         report.plot_pressure_sinkage(d / "plate.png", name,
                                      [(p["b_m"], p["z"], p["p"]) for p in r.plates], r.bekker)
         written.append(d / "plate.png")
+    if r.holds:
+        report.plot_holds(d / "plate_holds.png", name, r.holds)
+        written.append(d / "plate_holds.png")
     if r.shears:
         report.plot_shear_curves(d / "shear_curves.png", name,
                                  [(s["sigma_Pa"], s["j"], s["tau"]) for s in r.shears],
@@ -612,12 +692,38 @@ def shear_strength_from(path, soil_name):
     return replace(shear, where=str(p))
 
 
-def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None):
-    """An SCM soil file fitted to the DEM soil: its plates, and its shear boxes or `shear`
+def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None,
+              relaxed=False):
+    """An SCM soil file fitted to the DEM soil: its plates (their loading branches, or with
+    `relaxed` the pressures at the ends of their holds), and its shear boxes or `shear`
     (shear_strength_from another lab of the same soil)."""
     if r.bekker is None:
         raise LabResultError(f"{r.directory}: no plate sinkage results (2 plates): run the "
                              f"'plate' test first")
+    widths = ", ".join(f"{p['b_m']:.3g}" for p in r.plates)
+    if relaxed:
+        bekker = r.bekker_relaxed
+        if bekker is None:
+            raise LabResultError(f"{r.directory}: no relaxed pressure-sinkage curve: its plates "
+                                 f"need holds at 2 depths or more (soil-lab run --plate-hold S "
+                                 f"--plate-hold-stages N)")
+        stages = [h for hs in r.holds.values() for h in hs]
+        open_ = [f"b = {b:.3g} m at z = {1e3 * h['z_m']:.3g} mm" for b, hs in r.holds.items()
+                 for h in hs if h["fit"] is None or not h["fit"].converged]
+        if open_:
+            raise LabResultError(f"{r.directory}: the plates were still relaxing at the end of "
+                                 f"their holds ({'; '.join(open_)}): their end pressures are not "
+                                 f"the relaxed ones; hold longer (--plate-hold)")
+        z_fitted = max(h["z_m"] for h in stages)
+        how = (f"square plates b = {widths} m, the pressures at the ends of holds of "
+               f"{min(h['hold_s'] for h in stages):.3g} s at {len(stages)} depths to "
+               f"z = {z_fitted:.3g} m (stress relaxation; deeper sinkage extrapolates)")
+    else:
+        bekker = r.bekker
+        # the deepest loading sample: SCM below it extrapolates the fit (docs/soil-lab.md)
+        z_fitted = max(float(np.max(p["z"][p["phase"] == PLATE_LOAD])) for p in r.plates)
+        how = (f"square plates b = {widths} m, loading branches to z = {z_fitted:.3g} m (deeper "
+               f"sinkage extrapolates)")
     if shear is not None and r.mc_peak is not None:
         raise LabResultError(f"{r.directory} has shear boxes of its own; leave out --shear-from "
                              f"{shear.where} (or use a lab directory without them)")
@@ -627,9 +733,6 @@ def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None
                              f"'shear' test first, or take them from another lab of the same "
                              f"soil (--shear-from)")
     dem = r.soil["name"]
-    widths = ", ".join(f"{p['b_m']:.3g}" for p in r.plates)
-    # the deepest loading sample: SCM below it extrapolates the fit (docs/soil-lab.md)
-    z_fitted = max(float(np.max(p["z"][p["phase"] == 1])) for p in r.plates)
     if not r.unload:
         raise LabResultError(f"{r.directory}: no plate's unloading branch could be fitted for the "
                              "elastic stiffness: " + "; ".join(
@@ -641,9 +744,7 @@ def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None
     lab = f" (the lab {shear.where})" if shear.where else ""
     mc = fits.fit_mohr_coulomb(shear.sigmas_Pa, shear.tau_peaks_Pa)
     sources = {
-        "bekker": scm_file.dem_source(dem, "plate sinkage", r.bekker,
-                                      f"square plates b = {widths} m, loading branches to "
-                                      f"z = {z_fitted:.3g} m (deeper sinkage extrapolates)"),
+        "bekker": scm_file.dem_source(dem, "plate sinkage", bekker, how),
         "mohr_coulomb": scm_file.dem_source(dem, "direct shear box, peak strength", mc,
                                             f"normal stresses {sigmas} kPa{lab}"),
         "janosi.shear_modulus": scm_file.dem_source(
@@ -667,5 +768,5 @@ def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None
         path, name or f"{dem} (fitted from DEM)",
         f"SCM parameters fitted to the DEM soil '{dem}' ({r.soil.get('file', '?')}) by the "
         f"virtual soil lab ({r.soil.get('preset', '?')} preset)",
-        r.bekker.n, r.bekker.kc, r.bekker.kphi, mc.cohesion_Pa, mc.friction_deg,
+        bekker.n, bekker.kc, bekker.kphi, mc.cohesion_Pa, mc.friction_deg,
         float(np.mean(shear.K_m)), ke.Ke_Pa_m, sources)

@@ -4,7 +4,7 @@
                     [--normal-stresses S1,S2,S3] [--bed-var NAME=VALUE ...] [--archive DIR]
                     [--build-dir D]
   soil-lab report DIR
-  soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB]
+  soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB] [--relaxed]
 
 Exit status: 0 done; 1 a LIGGGHTS or wheel-mesh run failed, or a fit failed; 2 bad command
 line, unknown soil or test, or a test size the lab rejects.
@@ -104,7 +104,7 @@ def _run(a):
     soil = lab.soil_info(soil_file)
     p = plan.make_plan(soil, tests, a.preset, stresses, bed_vars, widths, a.plate_bin,
                        a.speed_check, a.shear_travel, a.plate_speed, a.shear_speed,
-                       a.plate_depth)
+                       a.plate_depth, a.plate_hold, a.plate_hold_stages)
     # The soil file as the checkout names it (inputs/soils/x.in), so results do not carry the
     # path of the machine that ran them; a file outside the checkout keeps its absolute path.
     soil_path = Path(soil.file).resolve()
@@ -144,6 +144,19 @@ def _report(directory, quiet=False):
             c = s["cost_total"]
             print(f"soil-lab: cost: beds {c['beds_wall_s']:.0f} s + runs {c['runs_wall_s']:.0f} s "
                   f"= {c['lab_wall_s'] / 60:.1f} min of wall time")
+        for w, hs in sorted(r.holds.items()):
+            for h in hs:
+                f = h["fit"]
+                print(f"soil-lab: plate b = {w:.4g} m held {h['hold_s']:.3g} s at z "
+                      f"{1e3 * h['z_m']:.3g} mm: p {h['p_moving_Pa'] / 1e3:.4g} -> "
+                      f"{h['p_end_Pa'] / 1e3:.4g} kPa ({-100 * h['relaxation']:+.1f} %)"
+                      + ("" if f is None else f", tau {f.tau_s:.3g} s, p_inf "
+                         f"{f.p_inf_Pa / 1e3:.4g} kPa" + ("" if f.converged else
+                                                         " (still relaxing)")))
+        if r.bekker_relaxed:
+            b = r.bekker_relaxed
+            print(f"soil-lab: plate, relaxed (hold ends): n {b.n:.4g}, kc {b.kc:.4g}, kphi "
+                  f"{b.kphi:.4g}, R2 {b.r2:.4g}")
         for w, e in sorted(r.unload_errors.items()):
             print(f"soil-lab: warning: plate b = {w:.4g} m: no elastic stiffness: {e}")
         for q in r.quasi_static:
@@ -190,6 +203,12 @@ def main(argv=None):
                    help="the plates' sinkage at the end of the reload [m] (default 3 d_max; quick "
                         "1.5): loading to 2/3 of it, unloading by 1/6; a deeper plate gets a "
                         "deeper bed. Press to the wheel's sinkage so SCM is not extrapolated")
+    r.add_argument("--plate-hold", type=float, metavar="S",
+                   help="stress relaxation: the plates stand still S seconds at the end of the "
+                        "loading (and at each --plate-hold-stages stop) before going on")
+    r.add_argument("--plate-hold-stages", type=int, metavar="N",
+                   help="hold N times, at N equally spaced depths of the loading, the last at its "
+                        "end (default 1; 2 or more give a relaxed Bekker fit)")
     r.add_argument("--shear-speed", type=float, metavar="M_S",
                    help="the shear box's speed [m/s] (default 0.005; quick 0.02)")
     r.add_argument("--speed-check", action="store_true",
@@ -217,6 +236,9 @@ def main(argv=None):
     s.add_argument("--shear-from", metavar="LAB",
                    help="take the shear boxes (c, phi, K) from another lab of the same soil: its "
                         "directory or results.toml (for a lab that pressed plates only)")
+    s.add_argument("--relaxed", action="store_true",
+                   help="fit Bekker to the pressures at the ends of the plates' holds (a lab run "
+                        "with --plate-hold and --plate-hold-stages >= 2) instead of the loading")
     a = ap.parse_args(argv)
     if getattr(a, "np", 1) < 1:
         ap.error(f"--np must be >= 1, got {a.np}")
@@ -228,7 +250,7 @@ def main(argv=None):
         r = analysis.analyse(a.dir)
         shear = (analysis.shear_strength_from(a.shear_from, r.soil.get("name"))
                  if a.shear_from else None)
-        path = analysis.write_scm(r, a.out, a.name, shear)
+        path = analysis.write_scm(r, a.out, a.name, shear, a.relaxed)
         print(f"soil-lab: wrote {path}")
         return 0
     except (plan.LabInputError, analysis.LabResultError) as e:

@@ -24,11 +24,13 @@ __all__ = [
     "MohrCoulombFit",
     "JanosiFit",
     "PeakResidual",
+    "RelaxationFit",
     "fit_bekker",
     "fit_unload_stiffness",
     "fit_mohr_coulomb",
     "fit_janosi",
     "peak_and_residual",
+    "fit_relaxation",
 ]
 
 # Bekker n is searched on (0, 2] (the SCM loader's range, docs/scm-soils.md).
@@ -37,6 +39,9 @@ BEKKER_N_MAX = 2.0
 # Janosi K is searched on [JANOSI_K_LO, JANOSI_K_HI] x (largest displacement), log-spaced.
 JANOSI_K_LO = 1e-3
 JANOSI_K_HI = 1e2
+# A relaxation time is searched on [RELAX_TAU_LO, RELAX_TAU_HI] x (the hold's duration), log-spaced.
+RELAX_TAU_LO = 1e-3
+RELAX_TAU_HI = 1e1
 _SCAN_POINTS = 200
 _GOLDEN = (np.sqrt(5.0) - 1.0) / 2.0
 
@@ -111,6 +116,26 @@ class PeakResidual:
     residual_fraction: float  #: the window is this last fraction of the displacement range [-]
     n_points: int  #: points in the curve
     n_residual_points: int  #: points in the residual window
+
+
+@dataclass(frozen=True)
+class RelaxationFit:
+    """p = p_inf + (p_0 − p_inf) exp(−t/tau) fitted to the pressure on a plate held still."""
+
+    p0_Pa: float  #: fitted pressure at the start of the hold [Pa]
+    p_inf_Pa: float  #: fitted relaxed pressure (t → ∞) [Pa]
+    tau_s: float  #: relaxation time [s]
+    rms_Pa: float  #: RMS of p_fit − p [Pa]
+    r2: float  #: coefficient of determination [-]
+    n_points: int  #: points used
+    duration_s: float  #: the hold's duration, the last time given [s]
+    at_bound: bool  #: tau ended at a bound of its search range (poorly determined)
+
+    @property
+    def converged(self):
+        """The fitted relaxation is 95 % done within the hold (tau <= duration / 3) and tau is
+        determined; otherwise p_inf is an extrapolation beyond the hold."""
+        return not self.at_bound and self.tau_s <= self.duration_s / 3.0
 
 
 # ---- helpers ----
@@ -474,4 +499,55 @@ def peak_and_residual(j_m, tau_Pa, residual_fraction=0.2):
         residual_fraction=f,
         n_points=int(j.size),
         n_residual_points=int(window.size),
+    )
+
+
+def fit_relaxation(t_s, p_Pa):
+    """Stress relaxation of a plate held still: p = p_inf + (p_0 − p_inf) exp(−t/tau).
+
+    t_s [s]: time from the start of the hold (>= 0, increasing); p_Pa [Pa]: the plate pressure.
+    Method: nonlinear least squares in p (unweighted). For a fixed tau the model is linear in
+    (p_inf, p_0 − p_inf), solved in closed form; the residual sum of squares is then minimised
+    over log tau in [1e-3, 1e1] x the hold's duration (scan of 200 values, golden-section
+    refinement). A tau at an end of that range (at_bound) is not determined: at the lower end the
+    pressure dropped within the first samples (a step), at the upper end it still falls at a steady
+    rate at the end of the hold (p_inf is then far outside the data). One exponential is a summary,
+    not a law: a creeping packing relaxes over many time scales; `converged` says whether the
+    fitted relaxation is over within the hold.
+
+    Returns RelaxationFit (p0_Pa, p_inf_Pa, tau_s, rms_Pa, r2, n_points, duration_s, at_bound).
+    """
+    t = finite_array("t_s", t_s, "s")
+    p = finite_array("p_Pa", p_Pa, "Pa")
+    same_length(("t_s", "p_Pa"), (t, p))
+    if t.size < 4:
+        raise FitInputError(f"fit_relaxation needs at least 4 points, got {t.size}")
+    if t[0] < 0 or np.any(np.diff(t) <= 0):
+        raise FitInputError("t_s must start at >= 0 s and increase (time from the start of the "
+                            "hold)")
+    duration = float(t[-1])
+    if duration <= 0:
+        raise FitInputError("t_s spans no time")
+
+    def solve(log_tau):
+        A = np.column_stack([np.ones_like(t), np.exp(-t / np.exp(log_tau))])
+        coef, *_ = np.linalg.lstsq(A, p, rcond=None)
+        r = A @ coef - p
+        return coef, float(r @ r)
+
+    grid = np.linspace(np.log(RELAX_TAU_LO * duration), np.log(RELAX_TAU_HI * duration),
+                       _SCAN_POINTS)
+    log_tau, _, at_bound = _minimise_1d(lambda x: solve(x)[1], grid)
+    (p_inf, delta), _ = solve(log_tau)
+    tau = float(np.exp(log_tau))
+    residual = p_inf + delta * np.exp(-t / tau) - p
+    return RelaxationFit(
+        p0_Pa=float(p_inf + delta),
+        p_inf_Pa=float(p_inf),
+        tau_s=tau,
+        rms_Pa=_rms(residual),
+        r2=_r2(residual, p),
+        n_points=int(t.size),
+        duration_s=duration,
+        at_bound=at_bound,
     )

@@ -75,6 +75,10 @@ def _f(x):
 PLATE_SPEED = {"standard": 0.02, "quick": 0.04}
 SHEAR_SPEED = {"standard": 0.005, "quick": 0.02}  # quick: CI smoke, I ~ 4e-3 on ci at 3 kPa
 MAX_TOOL_SPEED = 0.1
+# --plate-hold [s]: a standstill longer than this is most likely a unit slip (ms); the relaxation
+# of the DEM soils measured so far is a matter of seconds (docs/soil-lab.md, "Held plates").
+MAX_PLATE_HOLD = 60.0
+MAX_HOLD_STAGES = 20
 
 
 def _speed(value, default, option):
@@ -88,7 +92,8 @@ def _speed(value, default, option):
 
 def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None, bed_vars=None,
               plate_widths_m=None, plate_bin_m=None, speed_check=False, shear_travel=None,
-              plate_speed=None, shear_speed=None, plate_depth=None):
+              plate_speed=None, shear_speed=None, plate_depth=None, plate_hold=None,
+              plate_hold_stages=None):
     """The beds and runs for `tests` on `soil`. Raises LabInputError for an unknown test or preset,
     plates that are not two different widths or do not fit their bin with a plate width of soil
     on every side, a normal stress outside what the box can hold, a repose test on a multisphere
@@ -96,7 +101,10 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
     [m/s] (default PLATE_SPEED, SHEAR_SPEED) outside (0, MAX_TOOL_SPEED], or a plate depth [m]
     (the sinkage at the end of the reload; default 3 d_max, quick 1.5) under one grain (d_max):
     a deeper one loads to 2/3 of it and unloads by 1/6, on a bed as much deeper, so that the soil
-    under the plate's deepest point is the default's. speed_check: also the
+    under the plate's deepest point is the default's. plate_hold [s] in (0, MAX_PLATE_HOLD]: the
+    plates stand still that long at plate_hold_stages (1 .. MAX_HOLD_STAGES, default 1) equally
+    spaced depths of the loading, the last at its end (stress relaxation; stages without a hold
+    are an error). speed_check: also the
     larger plate, the middle normal stress and (standard preset) the repose test at half speed
     (runs named <run>_half), for the quasi-static check."""
     tests = tuple(tests)
@@ -149,6 +157,7 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         if not math.isfinite(depth2):
             raise LabInputError(f"--plate-depth {depth2:g} m: expected a finite depth in m "
                                 f"(default {default_depth2:g})")
+        hold_vars = _plate_hold(plate_hold, plate_hold_stages)
         depth = (1.25 if quick else 1.5) * b2 + max(0.0, depth2 - default_depth2)
         beds["plate"] = Bed("plate", side, side, depth, bed_vars)
         if "plate" in tests:
@@ -161,7 +170,8 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
                     meshes={"plate_mesh": ["plate-rect", _f(b), _f(b), _f(thickness)]},
                     variables={"plate_area": _f(b * b), "plate_thickness": _f(thickness),
                                "plate_speed": _f(speed), "gap": _f(0.25 * d),
-                               "depth1": _f(depth1), "unload": _f(unload), "depth2": _f(depth2)},
+                               "depth1": _f(depth1), "unload": _f(unload), "depth2": _f(depth2),
+                               **hold_vars},
                     meta={"b_m": b, "area_m2": b * b, "speed_m_s": speed}))
 
     if "shear" in tests:
@@ -246,6 +256,24 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         # longest run (47 s of 177), would compare noise: quick checks the plate and the box only.
         runs += _half_speed_runs(runs, repose=not quick)
     return Plan(soil=soil, preset=preset, tests=tests, beds=beds, runs=runs)
+
+
+def _plate_hold(hold, stages):
+    """in.lab_plate's hold variables ({} without a hold, so the runs of labs without one keep
+    their inputs), or a LabInputError."""
+    if hold is None:
+        if stages is not None:
+            raise LabInputError(f"--plate-hold-stages {stages} without --plate-hold: give the "
+                                f"standstill of each stage in seconds")
+        return {}
+    if not 0 < hold <= MAX_PLATE_HOLD:   # also NaN
+        raise LabInputError(f"--plate-hold {hold:g} s is outside (0, {MAX_PLATE_HOLD:g}] s (the "
+                            f"standstill of each hold stage, in seconds)")
+    stages = 1 if stages is None else stages
+    if not 1 <= stages <= MAX_HOLD_STAGES:
+        raise LabInputError(f"--plate-hold-stages {stages} is outside 1..{MAX_HOLD_STAGES} (the "
+                            f"number of stops over the loading, the last at its end)")
+    return {"hold": _f(hold), "hold_stages": str(int(stages))}
 
 
 SPEED_VARIABLES = {"plate": "plate_speed", "shear": "shear_speed", "repose": "lift_speed"}

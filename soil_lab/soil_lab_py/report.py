@@ -9,7 +9,8 @@ made without pyplot, so no display or backend setting is needed.
 import numpy as np
 from matplotlib.figure import Figure
 
-__all__ = ["plot_pressure_sinkage", "plot_shear_curves", "plot_mohr_coulomb", "plot_repose"]
+__all__ = ["plot_pressure_sinkage", "plot_holds", "plot_shear_curves", "plot_mohr_coulomb",
+           "plot_repose"]
 
 _DPI = 120
 
@@ -48,6 +49,36 @@ def plot_pressure_sinkage(path, soil_name, plates, fit=None):
     ax.set_title(f"{soil_name}: plate sinkage, p [kPa] vs z [mm]", fontsize=11)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def plot_holds(path, soil_name, holds):
+    """Stress relaxation of held plates: pressure [kPa] against the time since the stop [s], one
+    panel per plate, one colour per hold stage (its sinkage in the legend), the pressure moving
+    into the stop as a marker at t = 0 and the exponential fit as a dashed line.
+
+    holds: {b_m: [stage, ...]}, each stage a dict with t_s, p_Pa, z_m, p_moving_Pa and fit (a
+    fits.RelaxationFit or None), as analysis.plate_holds returns them."""
+    fig = Figure(figsize=(5.5 * len(holds), 4.5))
+    for i, (b, stages) in enumerate(sorted(holds.items())):
+        ax = fig.add_subplot(1, len(holds), i + 1)
+        for k, h in enumerate(stages):
+            color = f"C{k}"
+            ax.plot(h["t_s"], np.asarray(h["p_Pa"]) / 1e3, ".", ms=2, color=color,
+                    label=f"z = {h['z_m'] * 1e3:.3g} mm")
+            ax.plot([0.0], [h["p_moving_Pa"] / 1e3], "o", mfc="none", color=color)
+            f = h["fit"]
+            if f is not None:
+                tt = np.linspace(0.0, f.duration_s, 200)
+                ax.plot(tt, (f.p_inf_Pa + (f.p0_Pa - f.p_inf_Pa) * np.exp(-tt / f.tau_s)) / 1e3,
+                        "--", color=color, lw=1,
+                        label=f"fit: tau {f.tau_s:.3g} s, p_inf {f.p_inf_Pa / 1e3:.3g} kPa"
+                              + ("" if f.converged else " (not converged)"))
+        ax.set_xlabel("time since the stop [s]")
+        ax.set_ylabel("pressure p [kPa]")
+        ax.set_title(f"{soil_name}: plate b = {b * 1e3:g} mm held, p [kPa] vs t [s]", fontsize=10)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
     return _save(fig, path)
 
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The whole soil lab on the ci soil with the quick preset (CI smoke; docs/soil-lab.md):
 
-  soil-lab run ci --preset quick --speed-check
+  soil-lab run ci --preset quick --speed-check --plate-hold 0.05 --plate-hold-stages 2
                                   -> SIGKILLed in its first shear box once it has consolidated
                                      and has two checkpoints; the same command resumes that box
                                      from its newest complete checkpoint (done.json:
@@ -11,7 +11,9 @@
                                      left)
                                   -> every test's output, results.toml/csv and the PNGs; the
                                      fitted values finite and in physically plausible ranges; the
-                                     half-speed comparisons (quasi-static check) reported
+                                     half-speed comparisons (quasi-static check) reported; the
+                                     plates stood still at two depths (stress relaxation), each
+                                     hold measured and the relaxed Bekker fit written
   soil-lab run ... again          -> every bed and run skipped (resume), in seconds
   soil-lab scm DIR --out F.toml   -> an SCM soil file that wheel-rig --check loads unchanged
   bad input                       -> exit 2 naming the unknown soil / test / option
@@ -59,7 +61,9 @@ def main():
     shutil.rmtree(out, ignore_errors=True)  # a fresh lab: the first run must do everything
     env = {**os.environ, "WHEELSIM_BUILD_DIR": str(build)}
     t0 = time.monotonic()
-    command = ["run", "ci", "--preset", "quick", "--speed-check", "--out", str(out), "--np", a.np]
+    hold = ["--plate-hold", "0.05", "--plate-hold-stages", "2"]
+    command = ["run", "ci", "--preset", "quick", "--speed-check", *hold, "--out", str(out),
+               "--np", a.np]
     box = out / "shear_s3000"
     Path(a.work).mkdir(parents=True, exist_ok=True)
     with open(Path(a.work) / "killed_lab.log", "w") as log:
@@ -85,7 +89,8 @@ def main():
     r = lab(*command, env=env)
     print(r.stdout[-4000:], r.stderr[-2000:])
     check(r.returncode == 0, f"soil-lab run exit 0 (got {r.returncode}, {time.monotonic() - t0:.0f} s)")
-    for f in ("soil.toml", "results.toml", "results.csv", "plate.png", "shear_curves.png",
+    for f in ("soil.toml", "results.toml", "results.csv", "plate.png", "plate_holds.png",
+              "shear_curves.png",
               "mohr_coulomb.png", "beds/plate/done.json", "plate_b0.02/plate.csv",
               "plate_b0.032/plate.csv", "shear_s3000/shear.csv", "shear_s6000/shear.csv",
               "shear_s9000/shear.csv", "repose/repose.dump"):
@@ -122,6 +127,25 @@ def main():
           f"bulk density {bulk.get('bulk_density_kg_m3')} kg/m^3, porosity {bulk.get('porosity')}")
     check(0 < plate.get("n", 0) <= 2 and plate.get("kphi_N_m_n2", 0) > 0,
           f"Bekker n {plate.get('n')}, kphi {plate.get('kphi_N_m_n2')}")
+    # The holds: in.lab_plate stood the plate still (phase 4, one sinkage per hold) at 1/2 and
+    # all of the loading depth, for 0.05 s each, on both plates.
+    holds = plate.get("holds", {})
+    check(sorted(holds) == ["b0.02", "b0.032"] and all(
+        len(hs) == 2 and all(abs(h["hold_s"] - 0.05) < 0.002 and h["p_end_Pa"] > 0 for h in hs)
+        and abs(hs[1]["z_m"] - 2 * hs[0]["z_m"]) < 1e-3 * hs[1]["z_m"] for hs in holds.values()),
+        f"two 0.05 s holds per plate at half and all of the loading depth ({holds})")
+    csv = out / "plate_b0.032" / "plate.csv"
+    plate_rows = [[float(x) for x in line.split()] for line in csv.read_text().splitlines()
+                  if line and not line.startswith("#")] if csv.is_file() else []
+    held = [r_[1] for r_ in plate_rows if int(r_[5]) == 4]
+    plate_phases = [int(r_[5]) for r_ in plate_rows]
+    order = [ph for k, ph in enumerate(plate_phases) if k == 0 or ph != plate_phases[k - 1]]
+    check(order == [1, 4, 1, 4, 2, 3] and len({round(z, 12) for z in held}) == 2,
+          f"plate_b0.032's phases load, hold, load, hold, unload, reload ({order}); the plate "
+          f"still while held ({len({round(z, 12) for z in held})} sinkage values in the holds)")
+    relaxed = plate.get("relaxed", {})
+    check(0 < relaxed.get("n", 0) <= 2 and relaxed.get("points") == 4,
+          f"the relaxed Bekker fit on the 4 hold ends ({relaxed})")
     # ci: sliding friction 0.5 and rolling friction 0.1 between glass-like spheres: a loose
     # granular packing's internal friction angle lies well inside 15..45 deg.
     check(15 < shear.get("friction_deg", 0) < 45, f"friction angle {shear.get('friction_deg')} deg")
@@ -143,8 +167,7 @@ def main():
           f"quasi-static comparisons of the plate and the shear box ({sorted(qs)})")
 
     t0 = time.monotonic()
-    r = lab("run", "ci", "--preset", "quick", "--speed-check", "--out", str(out), "--np", a.np,
-            env=env)
+    r = lab(*command, env=env)
     skipped = len(re.findall(r"done before, skipped", r.stdout))
     check(r.returncode == 0 and skipped == 11,
           f"re-run skips 3 beds and 8 runs ({skipped} skipped, {time.monotonic() - t0:.1f} s)")
@@ -167,6 +190,7 @@ def main():
                           (("run", "ci", "--tests", "plate,sheer"), "did you mean 'shear'?"),
                           (("run", "ci", "--tets", "plate"), "did you mean '--tests'?"),
                           (("run", "ci", "--checkpoints", "-1"), "--checkpoints: expected a number >= 0"),
+                          (("run", "ci", "--plate-hold", "-1"), "--plate-hold -1 s is outside (0, 60]"),
                           (("scm", str(out / "nothing"), "--out", "x.toml"), "not a soil-lab directory")):
         r = lab(*args, env=env)
         check(r.returncode == 2 and message in r.stderr,

@@ -38,6 +38,39 @@ def plate_run(directory, b_m, noisy_peak):
     (run / "done.json").write_text(json.dumps({"meta": {"b_m": b_m}, "wall_s": 1.0}))
 
 
+RELAXED = 0.8  # the held synthetic soil relaxes to this fraction of its pressure at speed
+
+
+def held_plate_run(directory, b_m, tau_s, stages=3, hold_s=0.5, speed=0.02, depth1=0.02):
+    """in.lab_plate with `stages` holds: the loading at `speed` (Bekker, n 1.1) stops at
+    k depth1 / stages for hold_s, where the pressure relaxes exponentially (tau_s) towards RELAXED
+    of its value at speed, then goes on from there; after the last hold an unload by 2 mm with
+    slope KE_Pa_m. Samples every 1 ms."""
+    dt = 1e-3
+    t, z, p, phase = [], [], [], []
+    time, p_now = 0.0, 0.0
+    for k in range(stages):
+        z_a, z_b = k * depth1 / stages, (k + 1) * depth1 / stages
+        for zz in np.arange(z_a, z_b, speed * dt):
+            p_now = (1e4 / b_m + 5e5) * zz ** 1.1
+            t.append(time); z.append(zz); p.append(p_now); phase.append(1)
+            time += dt
+        p_speed = (1e4 / b_m + 5e5) * z_b ** 1.1
+        for th in np.arange(0.0, hold_s, dt):
+            p_now = p_speed * (RELAXED + (1 - RELAXED) * np.exp(-th / tau_s))
+            t.append(time); z.append(z_b); p.append(p_now); phase.append(4)
+            time += dt
+    for zz in np.linspace(depth1, depth1 - 0.002, 40):
+        t.append(time); z.append(zz); p.append(p_now - KE_Pa_m * (depth1 - zz)); phase.append(2)
+        time += dt
+    run = Path(directory) / f"plate_b{b_m:g}"
+    run.mkdir(parents=True)
+    t, z, p = np.array(t), np.array(z), np.array(p)
+    np.savetxt(run / "plate.csv", np.column_stack([t, z, p * b_m * b_m, p, 10 + 0 * z, phase]),
+               header="time_s sinkage_m force_N pressure_Pa contacts phase")
+    (run / "done.json").write_text(json.dumps({"meta": {"b_m": b_m}, "wall_s": 1.0}))
+
+
 class Analysis(unittest.TestCase):
     def lab(self, noisy):
         d = Path(tempfile.mkdtemp())
@@ -92,6 +125,73 @@ class Analysis(unittest.TestCase):
         p1 = (1e4 / 0.032 + 5e5) * z1 ** 1.1
         self.assertAlmostEqual(analysis.plate_end_pressure(plate) / p1[z1 >= 0.016].mean(), 1.0,
                                places=9)
+
+    def held_lab(self, tau_s):
+        d = Path(tempfile.mkdtemp())
+        (d / "soil.toml").write_text('name = "synthetic"\npreset = "standard"\ndmax_m = 0.004\n')
+        for b in (0.02, 0.032):
+            held_plate_run(d, b, tau_s)
+        return analysis.analyse(d)
+
+    @staticmethod
+    def with_shear_boxes(r):
+        """`r` with three shear boxes (c 500 Pa, tan phi 0.6), enough for write_scm."""
+        sigma = np.array([5e3, 1e4, 2e4])
+        r.shears = [{"sigma_Pa": s, "peak": SimpleNamespace(tau_peak_Pa=500 + 0.6 * s),
+                     "janosi": SimpleNamespace(K_m=1e-3)} for s in sigma]
+        r.mc_peak = fits.fit_mohr_coulomb(sigma, [500 + 0.6 * s for s in sigma])
+        return r
+
+    def test_held_plates_relaxation_and_the_relaxed_bekker_fit(self):
+        # Three holds per plate, relaxing to 80 % with tau 0.05 s in 0.5 s: each hold's stop depth,
+        # relaxation and tau; the relaxed fit on the hold ends is the loading's Bekker curve x 0.8
+        # (same n, kc and kphi x 0.8); the loading fit itself ignores the holds; the unloading
+        # stiffness is taken from the end of the last hold.
+        r = self.held_lab(0.05)
+        self.assertEqual(sorted(r.holds), [0.02, 0.032])
+        for b, hs in r.holds.items():
+            self.assertEqual(len(hs), 3)
+            np.testing.assert_allclose([h["z_m"] for h in hs], [0.02 / 3, 0.04 / 3, 0.02],
+                                       rtol=1e-9)
+            for h in hs:
+                self.assertAlmostEqual(h["relaxation"], 1 - RELAXED, delta=0.01)
+                self.assertAlmostEqual(h["fit"].tau_s, 0.05, delta=0.0025)
+                self.assertTrue(h["fit"].converged)
+                self.assertAlmostEqual(h["hold_s"], 0.499, places=9)
+        self.assertAlmostEqual(r.bekker.n, 1.1, places=3)
+        rb = r.bekker_relaxed
+        self.assertAlmostEqual(rb.n, 1.1, places=3)
+        self.assertAlmostEqual(rb.kc / (RELAXED * 1e4), 1.0, delta=0.01)
+        self.assertAlmostEqual(rb.kphi / (RELAXED * 5e5), 1.0, delta=0.01)
+        for b, fit in r.unload.items():
+            self.assertAlmostEqual(fit.Ke_Pa_m / KE_Pa_m, 1.0, delta=0.02, msg=f"b {b}")
+        s = analysis.summary(r)["plate"]
+        self.assertEqual(len(s["holds"]["b0.032"]), 3)
+        self.assertTrue(s["relaxed"]["converged"])
+        self.assertAlmostEqual(s["relaxed"]["n"], 1.1, places=3)
+        self.assertIn(Path(r.directory) / "plate_holds.png", analysis.write_report(r))
+        out = Path(tempfile.mkdtemp()) / "scm.toml"
+        analysis.write_scm(self.with_shear_boxes(r), out, relaxed=True)
+        data = tomllib.loads(out.read_text())
+        self.assertAlmostEqual(data["bekker"]["kphi"] / (RELAXED * 5e5), 1.0, delta=0.01)
+        self.assertIn("ends of holds of 0.499 s at 6 depths", data["source"]["bekker"]["n"])
+        analysis.write_scm(r, out)   # the loading fit, as without holds
+        self.assertAlmostEqual(tomllib.loads(out.read_text())["bekker"]["kphi"] / 5e5, 1.0,
+                               delta=0.01)
+
+    def test_relaxed_scm_file_refused_while_still_relaxing_or_without_holds(self):
+        r = self.held_lab(2.0)   # tau 2 s in 0.5 s holds
+        self.assertFalse(analysis.summary(r)["plate"]["relaxed"]["converged"])
+        self.with_shear_boxes(r)
+        out = Path(tempfile.mkdtemp()) / "scm.toml"
+        with self.assertRaisesRegex(analysis.LabResultError, r"still relaxing at the end of their "
+                                    r"holds \(b = 0.02 m at z = 6.67 mm;.*hold longer"):
+            analysis.write_scm(r, out, relaxed=True)
+        r = self.lab(False)
+        r.mc_peak = True
+        with self.assertRaisesRegex(analysis.LabResultError, r"no relaxed pressure-sinkage curve"):
+            analysis.write_scm(r, out, relaxed=True)
+        self.assertFalse(out.exists())
 
     def test_negative_cohesion_gives_c0_and_phi_through_the_origin(self):
         r = self.lab(False)

@@ -203,6 +203,43 @@ class JanosiTest(unittest.TestCase):
             fits.fit_janosi([0.0, 0.01, 0.02, 0.03], [0.0, 1.0, 2.0, 3.0], tau_max_Pa=np.nan)
 
 
+class RelaxationTest(unittest.TestCase):
+    P_INF, DROP, TAU = 8e3, 3e3, 0.1  # Pa, Pa, s
+
+    def hold(self, tau, seed=21, noise=150.0, duration=1.0):
+        rng = np.random.default_rng(seed)
+        t = np.linspace(0.0, duration, 500)
+        return t, self.P_INF + self.DROP * np.exp(-t / tau) + rng.normal(0.0, noise, t.size)
+
+    def test_recovers_tau_and_the_relaxed_pressure(self):
+        t, p = self.hold(self.TAU)
+        f = fits.fit_relaxation(t, p)
+        report("relaxation", tau_err=f"{rel(f.tau_s, self.TAU):.2%}",
+               p_inf_err=f"{rel(f.p_inf_Pa, self.P_INF):.2%}")
+        self.assertLess(rel(f.tau_s, self.TAU), 0.05)
+        self.assertLess(rel(f.p_inf_Pa, self.P_INF), 0.01)
+        self.assertLess(rel(f.p0_Pa, self.P_INF + self.DROP), 0.02)
+        self.assertAlmostEqual(f.duration_s, 1.0)
+        self.assertTrue(f.converged)
+        self.assertFalse(f.at_bound)
+
+    def test_a_hold_too_short_for_its_relaxation_is_not_converged(self):
+        # tau 3 s in a 1 s hold: the pressure still falls at the end; p_inf is an extrapolation
+        t, p = self.hold(3.0, seed=22)
+        self.assertFalse(fits.fit_relaxation(t, p).converged)
+        # a straight decline has no time scale within the hold at all
+        f = fits.fit_relaxation(t, 1e4 - 2e3 * t)
+        self.assertFalse(f.converged)
+
+    def test_bad_input(self):
+        with self.assertRaisesRegex(FitInputError, r"at least 4 points, got 3"):
+            fits.fit_relaxation([0.0, 0.1, 0.2], [3.0, 2.0, 1.0])
+        with self.assertRaisesRegex(FitInputError, r"t_s must start at >= 0 s and increase"):
+            fits.fit_relaxation([0.0, 0.2, 0.1, 0.3], [4.0, 3.0, 2.0, 1.0])
+        with self.assertRaisesRegex(FitInputError, r"p_Pa\[2\] is nan"):
+            fits.fit_relaxation([0.0, 0.1, 0.2, 0.3], [4.0, 3.0, np.nan, 1.0])
+
+
 class PeakResidualTest(unittest.TestCase):
     def test_peak_and_residual(self):
         # Rises to 12 kPa at j = 10 mm, softens to 9 kPa from 20 mm on, ends at 50 mm.

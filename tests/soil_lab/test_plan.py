@@ -51,6 +51,13 @@ class Plan(unittest.TestCase):
                                                            plate_depth=float("nan")),
             "--plate-depth inf m: expected a finite depth": dict(tests=("plate",),
                                                                  plate_depth=float("inf")),
+            "--plate-hold 0 s is outside (0, 60] s": dict(tests=("plate",), plate_hold=0.0),
+            "--plate-hold 500 s is outside": dict(tests=("plate",), plate_hold=500.0),
+            "--plate-hold nan s is outside": dict(tests=("plate",), plate_hold=float("nan")),
+            "--plate-hold-stages 3 without --plate-hold": dict(tests=("plate",),
+                                                               plate_hold_stages=3),
+            "--plate-hold-stages 0 is outside 1..20": dict(tests=("plate",), plate_hold=1.0,
+                                                           plate_hold_stages=0),
         }
         for message, kwargs in cases.items():
             with self.subTest(message):
@@ -104,6 +111,19 @@ class Plan(unittest.TestCase):
         p = make_plan(SAND, ("shear",), shear_speed=0.01, speed_check=True)
         half = [r for r in p.runs if r.name.endswith("_half")]
         self.assertAlmostEqual(float(half[0].variables["shear_speed"]), 0.005)
+
+    def test_plate_holds_as_given_and_absent_by_default(self):
+        # Without --plate-hold the plate runs carry no hold variables (the deck's default is no
+        # hold), so their inputs are what they were before holds existed.
+        for r in make_plan(SAND, ("plate",)).runs:
+            self.assertNotIn("hold", r.variables)
+            self.assertNotIn("hold_stages", r.variables)
+        p = make_plan(SAND, ("plate",), plate_hold=0.5, plate_hold_stages=4, speed_check=True)
+        self.assertEqual(len(p.runs), 3)
+        for r in p.runs:   # the half-speed twin holds as long
+            self.assertEqual((r.variables["hold"], r.variables["hold_stages"]), ("0.5", "4"))
+        one = make_plan(SAND, ("plate",), plate_hold=2.0).runs[0]
+        self.assertEqual(one.variables["hold_stages"], "1")
 
     def test_the_soil_carried_over_the_lower_frame_stays_on_it_and_in_the_domain(self):
         # The upper frame ends `distance` beyond the lower one: the lower frame's rim must be
