@@ -490,7 +490,8 @@ def hold_summary(h):
     return {"z_m": h["z_m"], "hold_s": h["hold_s"], "p_moving_Pa": h["p_moving_Pa"],
             "p_end_Pa": h["p_end_Pa"], "relaxation": h["relaxation"],
             **({} if f is None else {"tau_s": f.tau_s, "p_inf_Pa": f.p_inf_Pa, "fit_r2": f.r2,
-                                     "converged": f.converged})}
+                                     "converged": f.converged, "p0_Pa": f.p0_Pa,
+                                     "step_at_stop": 1.0 - f.p0_Pa / h["p_moving_Pa"]})}
 
 
 def summary(r: Results):

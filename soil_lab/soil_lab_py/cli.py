@@ -150,7 +150,8 @@ def _report(directory, quiet=False):
                 print(f"soil-lab: plate b = {w:.4g} m held {h['hold_s']:.3g} s at z "
                       f"{1e3 * h['z_m']:.3g} mm: p {h['p_moving_Pa'] / 1e3:.4g} -> "
                       f"{h['p_end_Pa'] / 1e3:.4g} kPa ({-100 * h['relaxation']:+.1f} %)"
-                      + ("" if f is None else f", tau {f.tau_s:.3g} s, p_inf "
+                      + ("" if f is None else f"; fit: step at the stop to "
+                         f"{f.p0_Pa / 1e3:.4g} kPa, then tau {f.tau_s:.3g} s to p_inf "
                          f"{f.p_inf_Pa / 1e3:.4g} kPa" + ("" if f.converged else
                                                          " (still relaxing)")))
         if r.bekker_relaxed:

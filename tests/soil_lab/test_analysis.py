@@ -167,6 +167,8 @@ class Analysis(unittest.TestCase):
             self.assertAlmostEqual(fit.Ke_Pa_m / KE_Pa_m, 1.0, delta=0.02, msg=f"b {b}")
         s = analysis.summary(r)["plate"]
         self.assertEqual(len(s["holds"]["b0.032"]), 3)
+        for h in s["holds"]["b0.032"]:   # the synthetic pressure has no step at the stop
+            self.assertLess(abs(h["step_at_stop"]), 0.01)
         self.assertTrue(s["relaxed"]["converged"])
         self.assertAlmostEqual(s["relaxed"]["n"], 1.1, places=3)
         self.assertIn(Path(r.directory) / "plate_holds.png", analysis.write_report(r))
