@@ -92,13 +92,19 @@ PLATE_LOAD, PLATE_UNLOAD, PLATE_RELOAD, PLATE_HOLD = 1, 2, 3, 4
 #: HOLD_END_FRACTION.
 HOLD_APPROACH_S = 0.02
 HOLD_END_FRACTION = 0.1
+#: A hold has relaxed (`converged`) if its exponential fit says so and, whatever the fit, the
+#: pressure fell by less than this share of the moving pressure from the hold's middle tenth to its
+#: last tenth: a long-tailed (creeping) relaxation can fit an exponential that looks done.
+HOLD_LATE_DROP_TOLERANCE = 0.02
 
 
 def plate_holds(plate):
     """The hold stages of a plate run (in.lab_plate, hold > 0; [] without), in time order: per
     stage its sinkage z_m [m], hold_s [s], the pressure at speed at the stop p_moving_Pa and at
-    the hold's end p_end_Pa [Pa], relaxation = 1 - p_end / p_moving, and the exponential fit (fits.fit_relaxation
-    of the pressure against the time since the stop)."""
+    the hold's end p_end_Pa [Pa], relaxation = 1 - p_end / p_moving, late_drop (the
+    fall from the hold's middle tenth to its last, over p_moving), the exponential fit
+    (fits.fit_relaxation of the pressure against the time since the stop) and converged (the fit
+    converged and late_drop < HOLD_LATE_DROP_TOLERANCE)."""
     t, z, p, phase = plate["t"], plate["z"], plate["p"], plate["phase"]
     held = np.flatnonzero(phase == PLATE_HOLD)
     if held.size == 0:
@@ -110,6 +116,7 @@ def plate_holds(plate):
         moving = (phase == PLATE_LOAD) & (t < t_stop) & (t >= t_stop - HOLD_APPROACH_S)
         th, ph = t[idx] - t_stop, p[idx]
         end = th >= (1.0 - HOLD_END_FRACTION) * th[-1]
+        middle = np.abs(th - 0.5 * th[-1]) <= 0.5 * HOLD_END_FRACTION * th[-1]
         if np.count_nonzero(moving) >= 2:
             slope, at_stop = np.polyfit(t[moving] - t_stop, p[moving], 1)
             p_moving = float(at_stop)
@@ -120,9 +127,14 @@ def plate_holds(plate):
             fit = fits.fit_relaxation(th, ph)
         except FitInputError:
             fit = None
+        late_drop = (float(np.mean(ph[middle])) - p_end) / p_moving if p_moving > 0 else \
+            float("nan")
         out.append({"z_m": float(np.mean(z[idx])), "hold_s": float(th[-1]),
                     "p_moving_Pa": p_moving, "p_end_Pa": p_end,
                     "relaxation": 1.0 - p_end / p_moving if p_moving > 0 else float("nan"),
+                    "late_drop": late_drop,
+                    "converged": bool(fit is not None and fit.converged
+                                      and abs(late_drop) < HOLD_LATE_DROP_TOLERANCE),
                     "fit": fit, "t_s": th, "p_Pa": ph})
     return out
 
@@ -488,9 +500,10 @@ def hold_summary(h):
     """A hold stage (plate_holds) as results.toml writes it."""
     f = h["fit"]
     return {"z_m": h["z_m"], "hold_s": h["hold_s"], "p_moving_Pa": h["p_moving_Pa"],
-            "p_end_Pa": h["p_end_Pa"], "relaxation": h["relaxation"],
+            "p_end_Pa": h["p_end_Pa"], "relaxation": h["relaxation"], "late_drop": h["late_drop"],
+            "converged": h["converged"],
             **({} if f is None else {"tau_s": f.tau_s, "p_inf_Pa": f.p_inf_Pa, "fit_r2": f.r2,
-                                     "converged": f.converged, "p0_Pa": f.p0_Pa,
+                                     "p0_Pa": f.p0_Pa,
                                      "step_at_stop": 1.0 - f.p0_Pa / h["p_moving_Pa"]})}
 
 
@@ -521,8 +534,7 @@ def summary(r: Results):
             out["plate"]["relaxed"] = {
                 "n": b.n, "kc_N_m_n1": b.kc, "kphi_N_m_n2": b.kphi, "rms_Pa": b.rms_Pa, "r2": b.r2,
                 "points": b.n_points, "at_bound": list(b.at_bound),
-                "converged": all(h["fit"] is not None and h["fit"].converged
-                                 for hs in r.holds.values() for h in hs),
+                "converged": all(h["converged"] for hs in r.holds.values() for h in hs),
                 "source": "the pressures at the ends of the holds"}
     if r.shears:
         out["shear"] = {"stresses": [
@@ -710,7 +722,7 @@ def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None
                                  f"--plate-hold-stages N)")
         stages = [h for hs in r.holds.values() for h in hs]
         open_ = [f"b = {b:.3g} m at z = {1e3 * h['z_m']:.3g} mm" for b, hs in r.holds.items()
-                 for h in hs if h["fit"] is None or not h["fit"].converged]
+                 for h in hs if not h["converged"]]
         if open_:
             raise LabResultError(f"{r.directory}: the plates were still relaxing at the end of "
                                  f"their holds ({'; '.join(open_)}): their end pressures are not "

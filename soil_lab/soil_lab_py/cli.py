@@ -152,8 +152,9 @@ def _report(directory, quiet=False):
                       f"{h['p_end_Pa'] / 1e3:.4g} kPa ({-100 * h['relaxation']:+.1f} %)"
                       + ("" if f is None else f"; fit: step at the stop to "
                          f"{f.p0_Pa / 1e3:.4g} kPa, then tau {f.tau_s:.3g} s to p_inf "
-                         f"{f.p_inf_Pa / 1e3:.4g} kPa" + ("" if f.converged else
-                                                         " (still relaxing)")))
+                         f"{f.p_inf_Pa / 1e3:.4g} kPa")
+                      + ("" if h["converged"] else f" (still relaxing: "
+                         f"{-100 * h['late_drop']:+.1f} % over its second half)"))
         if r.bekker_relaxed:
             b = r.bekker_relaxed
             print(f"soil-lab: plate, relaxed (hold ends): n {b.n:.4g}, kc {b.kc:.4g}, kphi "

@@ -73,7 +73,7 @@ def plot_holds(path, soil_name, holds):
                 ax.plot(tt, (f.p_inf_Pa + (f.p0_Pa - f.p_inf_Pa) * np.exp(-tt / f.tau_s)) / 1e3,
                         "--", color=color, lw=1,
                         label=f"fit: tau {f.tau_s:.3g} s, p_inf {f.p_inf_Pa / 1e3:.3g} kPa"
-                              + ("" if f.converged else " (not converged)"))
+                              + ("" if h.get("converged", f.converged) else " (still relaxing)"))
         ax.set_xlabel("time since the stop [s]")
         ax.set_ylabel("pressure p [kPa]")
         ax.set_title(f"{soil_name}: plate b = {b * 1e3:g} mm held, p [kPa] vs t [s]", fontsize=10)
