@@ -92,6 +92,8 @@ PLATE_LOAD, PLATE_UNLOAD, PLATE_RELOAD, PLATE_HOLD = 1, 2, 3, 4
 #: HOLD_END_FRACTION.
 HOLD_APPROACH_S = 0.02
 HOLD_END_FRACTION = 0.1
+#: The pressure just after the stop: the mean over the hold's first HOLD_STEP_S (a few samples).
+HOLD_STEP_S = 0.002
 #: A hold has relaxed (`converged`) if its exponential fit says so and, whatever the fit, the
 #: pressure fell by less than this share of the moving pressure from the hold's middle tenth to its
 #: last tenth: a long-tailed (creeping) relaxation can fit an exponential that looks done.
@@ -101,7 +103,8 @@ HOLD_LATE_DROP_TOLERANCE = 0.02
 def plate_holds(plate):
     """The hold stages of a plate run (in.lab_plate, hold > 0; [] without), in time order: per
     stage its sinkage z_m [m], hold_s [s], the pressure at speed at the stop p_moving_Pa and at
-    the hold's end p_end_Pa [Pa], relaxation = 1 - p_end / p_moving, late_drop (the
+    the hold's end p_end_Pa [Pa], relaxation = 1 - p_end / p_moving, step_at_stop = 1 - p_stop /
+    p_moving (p_stop_Pa: the mean over the hold's first HOLD_STEP_S), late_drop (the
     fall from the hold's middle tenth to its last, over p_moving), the exponential fit
     (fits.fit_relaxation of the pressure against the time since the stop) and converged (the fit
     converged and late_drop < HOLD_LATE_DROP_TOLERANCE)."""
@@ -129,10 +132,12 @@ def plate_holds(plate):
             fit = None
         late_drop = (float(np.mean(ph[middle])) - p_end) / p_moving if p_moving > 0 else \
             float("nan")
+        p_stop = float(np.mean(ph[th <= HOLD_STEP_S]))
         out.append({"z_m": float(np.mean(z[idx])), "hold_s": float(th[-1]),
                     "p_moving_Pa": p_moving, "p_end_Pa": p_end,
                     "relaxation": 1.0 - p_end / p_moving if p_moving > 0 else float("nan"),
-                    "late_drop": late_drop,
+                    "late_drop": late_drop, "p_stop_Pa": p_stop,
+                    "step_at_stop": 1.0 - p_stop / p_moving if p_moving > 0 else float("nan"),
                     "converged": bool(fit is not None and fit.converged
                                       and abs(late_drop) < HOLD_LATE_DROP_TOLERANCE),
                     "fit": fit, "t_s": th, "p_Pa": ph})
@@ -500,11 +505,11 @@ def hold_summary(h):
     """A hold stage (plate_holds) as results.toml writes it."""
     f = h["fit"]
     return {"z_m": h["z_m"], "hold_s": h["hold_s"], "p_moving_Pa": h["p_moving_Pa"],
-            "p_end_Pa": h["p_end_Pa"], "relaxation": h["relaxation"], "late_drop": h["late_drop"],
+            "p_end_Pa": h["p_end_Pa"], "relaxation": h["relaxation"], "p_stop_Pa": h["p_stop_Pa"],
+            "step_at_stop": h["step_at_stop"], "late_drop": h["late_drop"],
             "converged": h["converged"],
             **({} if f is None else {"tau_s": f.tau_s, "p_inf_Pa": f.p_inf_Pa, "fit_r2": f.r2,
-                                     "p0_Pa": f.p0_Pa,
-                                     "step_at_stop": 1.0 - f.p0_Pa / h["p_moving_Pa"]})}
+                                     "p0_Pa": f.p0_Pa})}
 
 
 def summary(r: Results):

@@ -149,9 +149,10 @@ def _report(directory, quiet=False):
                 f = h["fit"]
                 print(f"soil-lab: plate b = {w:.4g} m held {h['hold_s']:.3g} s at z "
                       f"{1e3 * h['z_m']:.3g} mm: p {h['p_moving_Pa'] / 1e3:.4g} -> "
-                      f"{h['p_end_Pa'] / 1e3:.4g} kPa ({-100 * h['relaxation']:+.1f} %)"
-                      + ("" if f is None else f"; fit: step at the stop to "
-                         f"{f.p0_Pa / 1e3:.4g} kPa, then tau {f.tau_s:.3g} s to p_inf "
+                      f"{h['p_end_Pa'] / 1e3:.4g} kPa ({-100 * h['relaxation']:+.1f} %; "
+                      f"{-100 * h['step_at_stop']:+.1f} % within "
+                      f"{1e3 * analysis.HOLD_STEP_S:g} ms)"
+                      + ("" if f is None else f"; fit tau {f.tau_s:.3g} s, p_inf "
                          f"{f.p_inf_Pa / 1e3:.4g} kPa")
                       + ("" if h["converged"] else f" (still relaxing: "
                          f"{-100 * h['late_drop']:+.1f} % over its second half)"))
