@@ -15,6 +15,15 @@ __all__ = ["plot_pressure_sinkage", "plot_holds", "plot_shear_curves", "plot_moh
 _DPI = 120
 
 
+def _axes(ax, xlabel, ylabel, title, title_size=11, legend_size=8):
+    """Every plot's axis labels (with units), title (soil and test), grid and legend."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=title_size)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=legend_size)
+
+
 def _save(fig, path):
     fig.tight_layout()
     fig.savefig(path, dpi=_DPI)
@@ -44,11 +53,8 @@ def plot_pressure_sinkage(path, soil_name, plates, fit=None):
             )
     if fit is not None:
         ax.plot([], [], " ", label=_bekker_text(fit))
-    ax.set_xlabel("sinkage z [mm]")
-    ax.set_ylabel("pressure p [kPa]")
-    ax.set_title(f"{soil_name}: plate sinkage, p [kPa] vs z [mm]", fontsize=11)
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    _axes(ax, "sinkage z [mm]", "pressure p [kPa]",
+          f"{soil_name}: plate sinkage, p [kPa] vs z [mm]")
     return _save(fig, path)
 
 
@@ -74,11 +80,8 @@ def plot_holds(path, soil_name, holds):
                         "--", color=color, lw=1,
                         label=f"fit: tau {f.tau_s:.3g} s, p_inf {f.p_inf_Pa / 1e3:.3g} kPa"
                               + ("" if h.get("converged", f.converged) else " (still relaxing)"))
-        ax.set_xlabel("time since the stop [s]")
-        ax.set_ylabel("pressure p [kPa]")
-        ax.set_title(f"{soil_name}: plate b = {b * 1e3:g} mm held, p [kPa] vs t [s]", fontsize=10)
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
+        _axes(ax, "time since the stop [s]", "pressure p [kPa]",
+              f"{soil_name}: plate b = {b * 1e3:g} mm held, p [kPa] vs t [s]", 10, 7)
     return _save(fig, path)
 
 
@@ -129,11 +132,8 @@ def plot_shear_curves(path, soil_name, curves, fits=None, lid_dz=None):
                 color=color,
                 label=f"Janosi: K = {fit.K_m * 1e3:.3g} mm, τmax = {fit.tau_max_Pa / 1e3:.3g} kPa",
             )
-    ax.set_xlabel("shear displacement j [mm]")
-    ax.set_ylabel("shear stress τ [kPa]")
-    ax.set_title(f"{soil_name}: direct shear, τ [kPa] vs j [mm]", fontsize=11)
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    _axes(ax, "shear displacement j [mm]", "shear stress τ [kPa]",
+          f"{soil_name}: direct shear, τ [kPa] vs j [mm]")
     return _save(fig, path)
 
 
@@ -164,11 +164,8 @@ def plot_mohr_coulomb(
                 f"(RMS {fit.rms_Pa / 1e3:.2g} kPa)",
             )
     ax.set_xlim(left=0.0)
-    ax.set_xlabel("normal stress σn [kPa]")
-    ax.set_ylabel("shear strength τ [kPa]")
-    ax.set_title(f"{soil_name}: Mohr–Coulomb envelope, τ [kPa] vs σn [kPa]", fontsize=11)
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    _axes(ax, "normal stress σn [kPa]", "shear strength τ [kPa]",
+          f"{soil_name}: Mohr–Coulomb envelope, τ [kPa] vs σn [kPa]")
     return _save(fig, path)
 
 
@@ -198,11 +195,6 @@ def plot_repose(path, soil_name, x_m, h_m, fit):
     lo, hi = fit.band_m
     ax.plot([], [], " ", label=f"band fitted: {lo * 1e3:.3g}–{hi * 1e3:.3g} mm")
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("horizontal position x [mm]")
-    ax.set_ylabel("surface height h [mm]")
-    ax.set_title(
-        f"{soil_name}: angle of repose {fit.angle_deg:.1f}°, h [mm] vs x [mm]", fontsize=11
-    )
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    _axes(ax, "horizontal position x [mm]", "surface height h [mm]",
+          f"{soil_name}: angle of repose {fit.angle_deg:.1f}°, h [mm] vs x [mm]")
     return _save(fig, path)
