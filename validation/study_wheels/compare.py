@@ -3,13 +3,14 @@
 traction force T/R_eff, drawbar pull, sinkage and tractive efficiency, and the active domain's
 effect (the full-domain run of the same point), its run-to-run scatter (the same point on another
 ranks' grid), the grain-size sensitivity, issue 12's goal point (21-52 mm grains) and the active
-domain's sinkage allowance and the wheel-sand friction (the same point with each raised); and where
-SCM and DEM part, split into traction force and motion resistance.
+domain's sinkage allowance and the wheel-sand friction (the same point with each raised), the
+wheel's speed (the same point at half of it); and where SCM and DEM part, split into traction
+force and motion resistance.
 
     compare.py RESULTS.csv [--scm RESULTS_SCM.csv ...] [--full-domain RESULTS_FULL.csv]
                [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--goal RESULTS_GOAL.csv]
                [--goal-wide RESULTS_GOAL_WIDE.csv] [--allowance RESULTS_ALLOWANCE.csv]
-               [--wheel-mu RESULTS_WHEEL_MU.csv]
+               [--wheel-mu RESULTS_WHEEL_MU.csv] [--speed RESULTS_SPEED.csv]
                [--label CONFIG]
                [--md OUT.md] [--png OUT.png]
 
@@ -231,6 +232,8 @@ def main():
                     "raised from sweep.toml's 0.3 m (sweep_allowance.toml)")
     ap.add_argument("--wheel-mu", help="a point with the wheel-sand friction raised from 0.5 to "
                     "the grains' (sweep_wheel_mu.toml)")
+    ap.add_argument("--speed", help="a point at half the wheel speed over the same travel "
+                    "(sweep_speed.toml)")
     ap.add_argument("--wide", help="the active domain's point with a larger distance (its sinkage "
                     "allowance raised), compared with --full-domain's")
     ap.add_argument("--repeat", help="the repeat of the active domain's point on another ranks' "
@@ -286,7 +289,9 @@ def main():
             (a.allowance, "The active domain's sinkage allowance: 0.3 m ({}) against 0.45 m "
              "(sweep_allowance.toml: same bed, grains and ranks)", "0.45 m allowance"),
             (a.wheel_mu, "The wheel-sand friction: 0.5 ({}) against the grains' 0.7869 "
-             "(sweep_wheel_mu.toml: same bed, grains and ranks)", "wheel_mu 0.7869")):
+             "(sweep_wheel_mu.toml: same bed, grains and ranks)", "wheel_mu 0.7869"),
+            (a.speed, "The wheel's speed: 1.05 rad/s ({}) against 0.525 rad/s (sweep_speed.toml: "
+             "same bed, grains, ranks and travel; window 4-12 s)", "0.525 rad/s")):
         if table:
             lines += ["## " + heading.format(a.label), ""]
             lines += point_table(dem, read(table), name, ref=a.label)[0] + [""]

@@ -26,7 +26,9 @@
 # allowance at 0.45 m instead of 0.3 (sweep_allowance.toml, the same bed; ~1.5 h): what the
 # deepest points' active_domain_sinkage warning costs; wheel_mu — wheel 1 at 20 % with the
 # wheel-sand friction at the grains' 0.7869 instead of 0.5 (sweep_wheel_mu.toml, the same bed;
-# ~1.2 h): how much of the DEM-SCM traction gap is the interface. Resumable: a re-run skips
+# ~1.2 h): how much of the DEM-SCM traction gap is the interface; speed — wheel 1 at 20 % at half
+# the wheel speed, 0.525 rad/s, over the same travel (sweep_speed.toml: test phase 12 s, window
+# 4-12 s; ~2.4 h): how much of the case depends on the speed. Resumable: a re-run skips
 # finished points. Writes here results.csv (DEM), results_<part>.csv (the others), comparison.md
 # and comparison.png (the case), comparison_active_domain.md (the check) and
 # provenance[_<part>].toml (git hash, command, machine, wall time); finished DEM points are kept in points/ (committed) and restored on the
@@ -55,7 +57,7 @@ while (($#)); do
   esac
 done
 # the parts besides dem: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
-parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide allowance wheel_mu)
+parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide allowance wheel_mu speed)
 for part in ${only//,/ }; do
   [[ " dem ${parts[*]} " == *" $part "* ]] || {
     echo "run.sh: --only: unknown part '$part' (expected dem ${parts[*]})" >&2; exit 2; }
@@ -67,6 +69,9 @@ done
 # Window: test-phase seconds 2-6 (10 lug passes; the first 2 s are the approach to steady
 # sinkage at the new slip); smoke: the second half of its 0.2 s.
 window=(--window-start 2.0 --window-end 6.0)
+# A part whose wheel turns at another speed averages over the same stretch of bed: its window in
+# seconds scaled (sweep_speed.toml: half the speed, 4-12 s).
+declare -A part_window=([sweep_speed.toml]="--window-start 4.0 --window-end 12.0")
 status=0
 
 # part CONFIG OUT RESULTS PROVENANCE: one sweep, its results table and provenance file. The full
@@ -92,7 +97,9 @@ sys.exit(tomllib.load(open(sys.argv[1], "rb")).get("terrain") != "scm")' "$here/
   ((${#runs[@]})) || { echo "run.sh: no finished run under $dir" >&2; status=1; return 0; }
   mkdir -p "$dir"   # --tables on a machine whose runs/ holds none of them: curves.csv goes there
   table_kept=1   # stays 1 if no table is written
-  if "$root/postprocess/wheelsim-post" curves "${runs[@]}" "${window[@]}" --results "$results.new" \
+  local win=("${window[@]}")
+  [[ -n ${part_window[$config]:-} ]] && read -ra win <<< "${part_window[$config]}"
+  if "$root/postprocess/wheelsim-post" curves "${runs[@]}" "${win[@]}" --results "$results.new" \
     --csv "$dir/curves.csv"; then keep_table "$results.new" "$results"; else status=1; fi
   # --tables: the provenance of a table whose rows did not change stays that of the run that made it
   if ((tables && table_kept)); then return 0; fi
@@ -129,6 +136,7 @@ if [[ -f $here/results.csv ]]; then
   [[ -f $here/results_goal_wide.csv ]] && extra+=(--goal-wide "$here/results_goal_wide.csv")
   [[ -f $here/results_allowance.csv ]] && extra+=(--allowance "$here/results_allowance.csv")
   [[ -f $here/results_wheel_mu.csv ]] && extra+=(--wheel-mu "$here/results_wheel_mu.csv")
+  [[ -f $here/results_speed.csv ]] && extra+=(--speed "$here/results_speed.csv")
   "$python" "$here/compare.py" "$here/results.csv" "${extra[@]}" \
     --md "$here/comparison.md" --png "$here/comparison.png" || status=1
 fi
