@@ -121,7 +121,7 @@ def plate_holds(plate):
         end = th >= (1.0 - HOLD_END_FRACTION) * th[-1]
         middle = np.abs(th - 0.5 * th[-1]) <= 0.5 * HOLD_END_FRACTION * th[-1]
         if np.count_nonzero(moving) >= 2:
-            slope, at_stop = np.polyfit(t[moving] - t_stop, p[moving], 1)
+            _, at_stop = np.polyfit(t[moving] - t_stop, p[moving], 1)
             p_moving = float(at_stop)
         else:
             p_moving = float(ph[0])
