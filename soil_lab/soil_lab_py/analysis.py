@@ -100,6 +100,17 @@ HOLD_STEP_S = 0.002
 HOLD_LATE_DROP_TOLERANCE = 0.02
 
 
+def loading_branch(plate):
+    """(z [m], p [Pa]) of a plate run's loading branch (phase 1: moving down, holds left out)."""
+    load = plate["phase"] == PLATE_LOAD
+    return plate["z"][load], plate["p"][load]
+
+
+def unrelaxed_holds(r):
+    """The holds of lab `r` still relaxing at their end, as (b_m, hold) pairs."""
+    return [(b, h) for b, hs in r.holds.items() for h in hs if not h["converged"]]
+
+
 def plate_holds(plate):
     """The hold stages of a plate run (in.lab_plate, hold > 0; [] without), in time order: per
     stage its sinkage z_m [m], hold_s [s], the pressure at speed at the stop p_moving_Pa and at
@@ -153,7 +164,7 @@ PLATE_PROFILE_BANDS = 5
 def plate_pressure_profile(plate):
     """(band centres [m], mean pressure [Pa] in each band) of the loading branch, its sinkage range
     [0, z_max] cut into PLATE_PROFILE_BANDS equal bands (the last one ends at z_max, included)."""
-    z, p = plate["z"][plate["phase"] == PLATE_LOAD], plate["p"][plate["phase"] == PLATE_LOAD]
+    z, p = loading_branch(plate)
     edges = np.linspace(0.0, z.max(), PLATE_PROFILE_BANDS + 1)
     band = np.minimum(np.searchsorted(edges, z, side="right") - 1, PLATE_PROFILE_BANDS - 1)
     means = [float(np.mean(p[band == k])) if np.any(band == k) else float("nan")
@@ -419,8 +430,7 @@ def analyse(directory):
     for run, done in _runs(d, "plate_b*"):
         r.plates.append(read_plate(run, done))
     if len(r.plates) >= 2:
-        loading = [(p["b_m"], p["z"][p["phase"] == PLATE_LOAD], p["p"][p["phase"] == PLATE_LOAD])
-                   for p in r.plates]
+        loading = [(p["b_m"], *loading_branch(p)) for p in r.plates]
         r.bekker = fits.fit_bekker(loading)
         for p in r.plates:
             # The unloading branch starts at the turning point (the last sample before the unload:
@@ -466,7 +476,10 @@ def analyse(directory):
         full_dir = d / run.name[: -len("_half")]
         extra = {}
         if test == "plate":
-            za, ma = plate_pressure_profile(read_plate(full_dir, full))
+            # the full-speed run is one of the lab's plates, read above
+            plate = next((p for p in r.plates if p["b_m"] == full["meta"]["b_m"]), None) or \
+                read_plate(full_dir, full)
+            za, ma = plate_pressure_profile(plate)
             zb, mb = plate_pressure_profile(read_plate(run, half))
             a, b = ma[-1], mb[-1]  # plate_end_pressure of each
             what, unit, diff = "pressure at the end of loading", "Pa", (b - a) / a
@@ -539,7 +552,7 @@ def summary(r: Results):
             out["plate"]["relaxed"] = {
                 "n": b.n, "kc_N_m_n1": b.kc, "kphi_N_m_n2": b.kphi, "rms_Pa": b.rms_Pa, "r2": b.r2,
                 "points": b.n_points, "at_bound": list(b.at_bound),
-                "converged": all(h["converged"] for hs in r.holds.values() for h in hs),
+                "converged": not unrelaxed_holds(r),
                 "source": "the pressures at the ends of the holds"}
     if r.shears:
         out["shear"] = {"stresses": [
@@ -726,8 +739,7 @@ def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None
                                  f"need holds at 2 depths or more (soil-lab run --plate-hold S "
                                  f"--plate-hold-stages N)")
         stages = [h for hs in r.holds.values() for h in hs]
-        open_ = [f"b = {b:.3g} m at z = {1e3 * h['z_m']:.3g} mm" for b, hs in r.holds.items()
-                 for h in hs if not h["converged"]]
+        open_ = [f"b = {b:.3g} m at z = {1e3 * h['z_m']:.3g} mm" for b, h in unrelaxed_holds(r)]
         if open_:
             raise LabResultError(f"{r.directory}: the plates were still relaxing at the end of "
                                  f"their holds ({'; '.join(open_)}): their end pressures are not "
@@ -739,7 +751,7 @@ def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None
     else:
         bekker = r.bekker
         # the deepest loading sample: SCM below it extrapolates the fit (docs/soil-lab.md)
-        z_fitted = max(float(np.max(p["z"][p["phase"] == PLATE_LOAD])) for p in r.plates)
+        z_fitted = max(float(np.max(loading_branch(p)[0])) for p in r.plates)
         how = (f"square plates b = {widths} m, loading branches to z = {z_fitted:.3g} m (deeper "
                f"sinkage extrapolates)")
     if shear is not None and r.mc_peak is not None:
