@@ -37,7 +37,10 @@ import tomllib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "soil_lab"))
+from soil_lab_py import analysis, plan  # noqa: E402
 LAB = ROOT / "soil_lab" / "soil-lab"
+HOLD_S, HOLD_STAGES = 0.05, 2  # the quick lab's plate holds (--plate-hold, --plate-hold-stages)
 failures = []
 
 
@@ -59,12 +62,11 @@ def wall_gran_reference(out, build, lab_holds):
     54.5/56.3, 55.3/51.6 and, wall/gran, 54.3/51.9 %; mean loading pressure 3013, 3019 and 3145
     Pa; single moving pressures at the 8 mm stop scatter more, 7.15 / 8.13 / 9.21 kPa, and are
     not compared)."""
-    sys.path.insert(0, str(ROOT / "soil_lab"))
-    from soil_lab_py import analysis, plan
     soil = tomllib.loads((out / "soil.toml").read_text())
     info = plan.SoilInfo(**{k: soil[k] for k in plan.SoilInfo.__dataclass_fields__})
-    run, = [r for r in plan.make_plan(info, ("plate",), "quick", plate_hold=0.05,
-                                      plate_hold_stages=2).runs if r.name == "plate_b0.032"]
+    run, = [r for r in plan.make_plan(info, ("plate",), "quick", plate_hold=HOLD_S,
+                                      plate_hold_stages=HOLD_STAGES).runs
+            if r.name == "plate_b0.032"]
     work = out / "wall_gran"
     work.mkdir(exist_ok=True)
     b, _, t = run.meshes["plate_mesh"][1:4]
@@ -91,8 +93,7 @@ def wall_gran_reference(out, build, lab_holds):
     lab_plate = analysis.read_plate(out / "plate_b0.032", {"meta": {"b_m": float(b)}})
     ref = analysis.plate_holds(ref_plate)
     pairs = list(zip(lab_holds, ref))
-    loading = [float(pl["p"][pl["phase"] == analysis.PLATE_LOAD].mean())
-               for pl in (lab_plate, ref_plate)]
+    loading = [float(analysis.loading_branch(pl)[1].mean()) for pl in (lab_plate, ref_plate)]
     relax = [sum(h["relaxation"] for h in hs) / max(len(hs), 1) for hs in (lab_holds, ref)]
     check(len(ref) == 2 and len(pairs) == 2 and abs(loading[0] / loading[1] - 1) < 0.15 and
           abs(relax[0] - relax[1]) < 0.1,
@@ -117,7 +118,7 @@ def main():
     shutil.rmtree(out, ignore_errors=True)  # a fresh lab: the first run must do everything
     env = {**os.environ, "WHEELSIM_BUILD_DIR": str(build)}
     t0 = time.monotonic()
-    hold = ["--plate-hold", "0.05", "--plate-hold-stages", "2"]
+    hold = ["--plate-hold", f"{HOLD_S:g}", "--plate-hold-stages", str(HOLD_STAGES)]
     command = ["run", "ci", "--preset", "quick", "--speed-check", *hold, "--out", str(out),
                "--np", a.np]
     box = out / "shear_s3000"
@@ -190,11 +191,11 @@ def main():
         len(hs) == 2 and all(abs(h["hold_s"] - 0.05) < 0.002 and h["p_end_Pa"] > 0 for h in hs)
         and abs(hs[1]["z_m"] - 2 * hs[0]["z_m"]) < 1e-3 * hs[1]["z_m"] for hs in holds.values()),
         f"two 0.05 s holds per plate at half and all of the loading depth ({holds})")
-    csv = out / "plate_b0.032" / "plate.csv"
-    plate_rows = [[float(x) for x in line.split()] for line in csv.read_text().splitlines()
-                  if line and not line.startswith("#")] if csv.is_file() else []
-    held = [r_[1] for r_ in plate_rows if int(r_[5]) == 4]
-    plate_phases = [int(r_[5]) for r_ in plate_rows]
+    plate_b = (analysis.read_plate(out / "plate_b0.032", {"meta": {"b_m": 0.032}})
+               if (out / "plate_b0.032" / "plate.csv").is_file() else
+               {"z": [], "phase": []})
+    held = [z for z, ph in zip(plate_b["z"], plate_b["phase"]) if ph == analysis.PLATE_HOLD]
+    plate_phases = [int(ph) for ph in plate_b["phase"]]
     order = [ph for k, ph in enumerate(plate_phases) if k == 0 or ph != plate_phases[k - 1]]
     check(order == [1, 4, 1, 4, 2, 3] and len({round(z, 12) for z in held}) == 2,
           f"plate_b0.032's phases load, hold, load, hold, unload, reload ({order}); the plate "
