@@ -63,8 +63,8 @@ def plot_holds(path, soil_name, holds):
     panel per plate, one colour per hold stage (its sinkage in the legend), the pressure moving
     into the stop as a marker at t = 0 and the exponential fit as a dashed line.
 
-    holds: {b_m: [stage, ...]}, each stage a dict with t_s, p_Pa, z_m, p_moving_Pa and fit (a
-    fits.RelaxationFit or None), as analysis.plate_holds returns them."""
+    holds: {b_m: [stage, ...]}, each stage a dict with t_s, p_Pa, z_m, p_moving_Pa, converged
+    and fit (a fits.RelaxationFit or None), as analysis.plate_holds returns them."""
     fig = Figure(figsize=(5.5 * len(holds), 4.5))
     for i, (b, stages) in enumerate(sorted(holds.items())):
         ax = fig.add_subplot(1, len(holds), i + 1)
@@ -79,7 +79,7 @@ def plot_holds(path, soil_name, holds):
                 ax.plot(tt, (f.p_inf_Pa + (f.p0_Pa - f.p_inf_Pa) * np.exp(-tt / f.tau_s)) / 1e3,
                         "--", color=color, lw=1,
                         label=f"fit: tau {f.tau_s:.3g} s, p_inf {f.p_inf_Pa / 1e3:.3g} kPa"
-                              + ("" if h.get("converged", f.converged) else " (still relaxing)"))
+                              + ("" if h["converged"] else " (still relaxing)"))
         _axes(ax, "time since the stop [s]", "pressure p [kPa]",
               f"{soil_name}: plate b = {b * 1e3:g} mm held, p [kPa] vs t [s]", 10, 7)
     return _save(fig, path)
