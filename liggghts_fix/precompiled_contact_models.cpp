@@ -15,6 +15,7 @@
 #include "granular_pair_style.h" // PairStyles::Factory
 #include "granular_wall.h"       // Walls::Factory
 #include "pair_gran_base.h"      // PairStyles::Granular
+#include "rolling_model_epsdt.h" // wheelsim's rolling_friction epsdt
 #include "rolling_model_krot.h"  // wheelsim's rolling_friction krot
 
 #include <cstdlib>
@@ -64,15 +65,19 @@ Combination combination(const char *keywords) {
 
 /// The combinations, each declared once here. A model named here must be listed in
 /// contact_model_styles/ (its id is declared there).
-/// Every combination with `rolling_friction krot` must be here: LIGGGHTS' generic class does not
-/// know the model and stops with "Unknown rolling model".
+/// Every combination with wheelsim's `rolling_friction krot` or `epsdt` must be here: LIGGGHTS'
+/// generic class does not know these models and stops with "Unknown rolling model".
 std::vector<Combination> combinations() {
   return {combination<HERTZ, TANGENTIAL_HISTORY, COHESION_SJKR, ROLLING_CDT, SURFACE_DEFAULT>(
               "model hertz tangential history cohesion sjkr rolling_friction cdt"),
           combination<HERTZ, TANGENTIAL_HISTORY, COHESION_OFF, ROLLING_KROT, SURFACE_DEFAULT>(
               "model hertz tangential history rolling_friction krot"),
           combination<HERTZ, TANGENTIAL_HISTORY, COHESION_SJKR, ROLLING_KROT, SURFACE_DEFAULT>(
-              "model hertz tangential history cohesion sjkr rolling_friction krot")};
+              "model hertz tangential history cohesion sjkr rolling_friction krot"),
+          combination<HERTZ, TANGENTIAL_HISTORY, COHESION_OFF, ROLLING_EPSDT, SURFACE_DEFAULT>(
+              "model hertz tangential history rolling_friction epsdt"),
+          combination<HERTZ, TANGENTIAL_HISTORY, COHESION_SJKR, ROLLING_EPSDT, SURFACE_DEFAULT>(
+              "model hertz tangential history cohesion sjkr rolling_friction epsdt")};
 }
 
 } // namespace
@@ -94,7 +99,9 @@ int register_precompiled_contact_models() {
                              "': expected 1 (LIGGGHTS' own contact-model classes "
                              "only) or 0 / unset (liggghts-wheel's precompiled combinations)");
   static_assert(ROLLING_KROT == kKrotRollingModelId, "rolling_model_krot.h: two ids");
+  static_assert(ROLLING_EPSDT == kEpsdtRollingModelId, "rolling_model_epsdt.h: two ids");
   ContactModels::Factory::instance().addRollingModel("krot", kKrotRollingModelId);
+  ContactModels::Factory::instance().addRollingModel("epsdt", kEpsdtRollingModelId);
   PairStyles::Factory &pairs = PairStyles::Factory::instance();
   Walls::Factory &walls = Walls::Factory::instance();
   int registered = 0;

@@ -9,8 +9,9 @@
 //   epsd2 | cdt
 // term by term and in the same order (surface model -> normal -> cohesion -> tangential ->
 // rolling), so that the fix and LIGGGHTS give the same forces on identical states. It adds
-// `rolling_friction krot` (Yade's rolling spring), whose LIGGGHTS side is our own
-// rolling_model_krot.h, and which alone acts on the spin relative to the wheel's.
+// `rolling_friction krot` (Yade's rolling spring) and `epsdt` (epsd2 with its moment turned with
+// the contact), whose LIGGGHTS sides are our own rolling_model_krot.h and rolling_model_epsdt.h,
+// and which alone act on the spin relative to the wheel's.
 // docs/contact-law.md lists every constant with its formula and the LIGGGHTS file it matches.
 // Each model is one header models/<name>.h (its descriptor and its kernel), listed in
 // model_list.h; contact_models.h is the descriptor table the fix parses and validates with.
@@ -46,7 +47,8 @@ enum class CohesionModel { WHEELSIM_COHESION_MODELS(WHEELSIM_CONTACT_ENUMERATOR)
 
 /// Rolling resistance (LIGGGHTS `rolling_friction ...`): Off, Epsd2 (elastic-plastic spring,
 /// torque capped at μr R |Fn|), Cdt (constant torque μr kn δ (R − δ/2) against the spin), Krot
-/// (linear spring k_r on the rotation relative to the wheel, no cap: Yade's krot).
+/// (linear spring k_r on the rotation relative to the wheel, no cap: Yade's krot), Epsdt (epsd2's
+/// capped spring, turned with the contact, on the rotation relative to the wheel).
 enum class RollingModel { WHEELSIM_ROLLING_MODELS(WHEELSIM_CONTACT_ENUMERATOR) };
 
 #undef WHEELSIM_CONTACT_ENUMERATOR
@@ -67,7 +69,7 @@ struct Material {
 struct PairMaterial {
   double coefficientRestitution = 0.5;     ///< e [-], 0.05 < e <= 1 (LIGGGHTS' sanity range)
   double coefficientFriction = 0.5;        ///< μ [-], sliding friction, >= 0
-  double coefficientRollingFriction = 0.0; ///< μr [-], epsd2 and cdt, >= 0
+  double coefficientRollingFriction = 0.0; ///< μr [-], epsd2, cdt and epsdt, >= 0
   double cohesionEnergyDensity = 0.0;      ///< k_coh [J/m³ = Pa], sjkr only, >= 0
   double rollingSpringStiffness = 0.0;     ///< k_r [N·m/rad], krot only, >= 0
   // --- model edinburgh (EEPA) ---
@@ -125,7 +127,7 @@ struct ContactHistory {
   double oldDelta;      ///< EEPA overlap at the previous evaluation [m] ("old_delta")
   double kc;            ///< EEPA last adhesive stiffness [N/m^X], diagnostic ("kc")
   double fo;            ///< EEPA pull-off force applied [N], diagnostic ("fo")
-  double rollTorque[3]; ///< epsd2/krot rolling spring torque [N·m] ("r_torquex_old" ...)
+  double rollTorque[3]; ///< epsd2/krot/epsdt rolling spring torque [N·m] ("r_torquex_old" ...)
 
   void reset() { *this = ContactHistory{}; }
   double *data() { return shear; }
@@ -148,7 +150,7 @@ struct ContactState {
   Eigen::Vector3d vRel = Eigen::Vector3d::Zero();
   /// ω: particle angular velocity [rad/s] (rolling resistance only)
   Eigen::Vector3d omega = Eigen::Vector3d::Zero();
-  /// ω_w: the wheel's angular velocity [rad/s] (rolling_friction krot only, which acts on the
+  /// ω_w: the wheel's angular velocity [rad/s] (rolling_friction krot and epsdt only, which act on the
   /// rotation relative to the wheel; LIGGGHTS' own wall models ignore the wall's spin)
   Eigen::Vector3d omegaSurface = Eigen::Vector3d::Zero();
 };

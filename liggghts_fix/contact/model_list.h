@@ -22,7 +22,8 @@
 #define WHEELSIM_COHESION_MODELS(X) X(Off, cohesion_off) X(Sjkr, cohesion_sjkr)
 /// `rolling_friction ...`: rolling resistance (a torque on the particle).
 #define WHEELSIM_ROLLING_MODELS(X)                                                                 \
-  X(Off, rolling_off) X(Epsd2, rolling_epsd2) X(Cdt, rolling_cdt) X(Krot, rolling_krot)
+  X(Off, rolling_off)                                                                              \
+  X(Epsd2, rolling_epsd2) X(Cdt, rolling_cdt) X(Krot, rolling_krot) X(Epsdt, rolling_epsdt)
 
 #endif
 
@@ -33,6 +34,7 @@
 #include "models/normal_hertz.h"
 #include "models/rolling_cdt.h"
 #include "models/rolling_epsd2.h"
+#include "models/rolling_epsdt.h"
 #include "models/rolling_krot.h"
 #include "models/rolling_off.h"
 #include "models/tangential_history.h"

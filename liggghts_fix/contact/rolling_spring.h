@@ -1,7 +1,8 @@
-// The update of `rolling_friction krot`'s spring, shared by its two sides: the wheel contact of
-// fix wheel/cosim (models/rolling_krot.h) and LIGGGHTS' pair style and walls
-// (../rolling_model_krot.h). Plain doubles, no Eigen and no LIGGGHTS headers, so that both include
-// it and compute the same numbers. docs/contact-law.md, "Rolling: rolling_friction krot".
+// The update of wheelsim's rolling springs (`rolling_friction krot` and `epsdt`), shared by their
+// two sides: the wheel contact of fix wheel/cosim (models/rolling_krot.h, models/rolling_epsdt.h)
+// and LIGGGHTS' pair style and walls (../rolling_model_krot.h, ../rolling_model_epsdt.h). Plain
+// doubles, no Eigen and no LIGGGHTS headers, so that both sides include it and compute the same
+// numbers. docs/contact-law.md, "Rolling: rolling_friction krot" and "... epsdt".
 #pragma once
 
 #include <cmath>
@@ -32,6 +33,18 @@ inline void advance_rolling_spring(double moment[3], const double n[3], const do
   }
   for (int k = 0; k < 3; ++k)
     moment[k] += k_dt * w[k];
+}
+
+/// The plastic limit of `epsdt` (as epsd2's): a moment longer than `cap` [N·m] (>= 0) is scaled
+/// back to length `cap`, keeping its direction. In place.
+inline void cap_rolling_moment(double moment[3], double cap) {
+  const double mag =
+      std::sqrt(moment[0] * moment[0] + moment[1] * moment[1] + moment[2] * moment[2]);
+  if (mag > cap) {
+    const double factor = cap / mag;
+    for (int k = 0; k < 3; ++k)
+      moment[k] *= factor;
+  }
 }
 
 } // namespace wheelsim::contact

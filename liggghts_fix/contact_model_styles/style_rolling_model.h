@@ -3,5 +3,6 @@
 // its own id (e.g. ROLLING_MODEL(ROLLING_CDT,cdt,1)), the same the library was built with. No
 // include guard: LIGGGHTS reads this file once per X_MODEL macro definition. See README.md here.
 #include "rolling_model_cdt.h"
-// wheelsim's own model (liggghts_fix/): the keyword is registered by precompiled_contact_models.cpp
+// wheelsim's own models (liggghts_fix/): the keywords are registered by precompiled_contact_models.cpp
 #include "rolling_model_krot.h"
+#include "rolling_model_epsdt.h"

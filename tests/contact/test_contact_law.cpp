@@ -6,8 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace wc = wheelsim::contact;
 using Eigen::Vector3d;
@@ -381,6 +383,106 @@ TEST(RollingKrot, TimestepRuleFromTheRotationalInertia) {
   const double m = 1e-4, R = 2.5e-3; // 0.5 sqrt(0.4 m R² / k_r) = 2.236e-3 s
   EXPECT_NEAR(entry->spec->timestep(pc, R, m), 0.5 * std::sqrt(0.4 * m * R * R / 5e-5), 1e-15);
   EXPECT_TRUE(std::isinf(entry->spec->timestep(krot(0.0), R, m)));
+}
+
+/// Pair constants with rolling friction μr under `model` (Cdt or Epsdt).
+wc::PairConstants rolling(wc::RollingModel model, double mur) {
+  wc::PairMaterial pair;
+  pair.coefficientRollingFriction = mur;
+  wc::ContactSettings settings;
+  settings.rolling = model;
+  return constants(pair, settings);
+}
+
+TEST(RollingEpsdt, CappedSpringOnTheRotationRelativeToTheWheel) {
+  // M = k_t R² θ_rel,t (k_t = 8 G* sqrt(R δ), epsd2's spring; θ_rel from ω − ω_w, twist part
+  // removed) until |M| reaches μr R |Fn|, then it stays on the cap.
+  const auto pc = rolling(wc::RollingModel::Epsdt, 0.1);
+  const double delta = 1e-5, dt = 1e-6;
+  wc::ContactHistory h{};
+  auto s = state(delta); // normal +z
+  s.omega = Vector3d(3.0, -4.0, 7.0);
+  s.omegaSurface = Vector3d(1.0, 0.0, -2.0); // ω_rel,t = (2, -4, 0)
+  const Vector3d wRelT(2.0, -4.0, 0.0);
+  const double kr = 8.0 * pc.Geff * std::sqrt(kR * delta) * kR * kR;
+  auto r = wc::evaluate(pc, s, dt, true, h); // vRel = 0: the torque is all rolling
+  EXPECT_NEAR((r.torque + kr * dt * wRelT).norm(), 0.0, 1e-12 * kr * dt * wRelT.norm());
+  const double cap = 0.1 * kR * std::fabs(r.normalForce);
+  const int toCap = static_cast<int>(cap / (kr * dt * wRelT.norm()));
+  ASSERT_GT(toCap, 10);
+  for (int i = 2; i <= toCap; ++i)
+    r = wc::evaluate(pc, s, dt, true, h);
+  EXPECT_NEAR((r.torque + kr * dt * toCap * wRelT).norm(), 0.0, 1e-9 * cap); // still elastic
+  for (int i = 0; i < 3 * toCap; ++i)
+    r = wc::evaluate(pc, s, dt, true, h);
+  EXPECT_NEAR(r.torque.norm(), cap, 1e-12 * cap); // plastic: on the cap, against the rotation
+  EXPECT_NEAR((r.torque / cap + wRelT.normalized()).norm(), 0.0, 1e-12);
+  // spinning back unloads it elastically at once (no waiting for a sign switch)
+  s.omega = s.omegaSurface - Vector3d(2.0, -4.0, 0.0);
+  r = wc::evaluate(pc, s, dt, true, h);
+  EXPECT_NEAR(r.torque.norm(), cap - kr * dt * wRelT.norm(), 1e-9 * cap);
+  // the particle turning with the wheel winds nothing
+  wc::ContactHistory h2{};
+  s.omega = s.omegaSurface;
+  EXPECT_EQ(wc::evaluate(pc, s, dt, true, h2).torque.norm(), 0.0);
+}
+
+TEST(RollingEpsdt, StoredMomentFollowsTheContactPlane) {
+  // as krot: a stored moment whose contact normal turns by 90° keeps its magnitude (below the
+  // cap), in the new plane; epsd2 would keep a normal (twisting) part
+  const auto pc = rolling(wc::RollingModel::Epsdt, 10.0); // a cap far above the moment
+  wc::ContactHistory h{};
+  h.rollTorque[0] = 2e-9;
+  h.rollTorque[1] = 1e-9;
+  auto s = state(1e-5);
+  s.normal = Vector3d(1.0, 0.0, 0.0);
+  const auto r = wc::evaluate(pc, s, 1e-6, true, h);
+  EXPECT_NEAR(r.torque.x(), 0.0, 1e-21);
+  EXPECT_NEAR(r.torque.y(), -std::sqrt(5.0) * 1e-9, 1e-18);
+}
+
+/// A sphere on a still contact under a steady external torque `torque` [N·m] about x, below the
+/// rolling cap: its rotation angle [rad] after `steps` steps of dt (symplectic Euler, as LIGGGHTS'
+/// nve/sphere), and the largest |angle| on the way. The contact holds the sphere's centre.
+std::pair<double, double> heldSphereRotation(const wc::PairConstants &pc, double torque, double dt,
+                                             int steps) {
+  const double inertia = 0.4 * kM * kR * kR;
+  wc::ContactHistory h{};
+  auto s = state(1e-5);
+  double angle = 0.0, largest = 0.0;
+  for (int i = 0; i < steps; ++i) {
+    const auto r = wc::evaluate(pc, s, dt, true, h);
+    s.omega.x() += (torque + r.torque.x()) / inertia * dt;
+    angle += s.omega.x() * dt;
+    largest = std::max(largest, std::fabs(angle));
+  }
+  return {angle, largest};
+}
+
+TEST(RollingEpsdt, HoldsASteadyMomentBelowTheCapWhereCdtCreepsAtARateProportionalToDt) {
+  // cdt's torque has no spring: at rest it switches sign every step, and under a steady moment
+  // below its cap the sphere keeps turning, at a steady mean rate that halves with dt (a numerical
+  // creep). epsdt winds its spring to the moment and holds: the angle stays within twice the
+  // static wind-up T / k_r (an undamped spring released from rest overshoots to twice it).
+  const double mur = 0.1, dt = 2e-7, t = 0.05;
+  const int steps = static_cast<int>(t / dt);
+  const auto cdt = rolling(wc::RollingModel::Cdt, mur);
+  const auto epsdt = rolling(wc::RollingModel::Epsdt, mur);
+  wc::ContactHistory probe{};
+  const double Fn = wc::evaluate(cdt, state(1e-5), dt, false, probe).normalForce;
+  const double torque = 0.5 * mur * kR * Fn; // half of either cap
+  const double cdtT = heldSphereRotation(cdt, torque, dt, steps).first;
+  const double cdt2T = heldSphereRotation(cdt, torque, dt, 2 * steps).first;
+  const double cdtHalfDt = heldSphereRotation(cdt, torque, dt / 2, 2 * steps).first;
+  EXPECT_GT(cdtT, 0.0);
+  EXPECT_NEAR(cdt2T / cdtT, 2.0, 0.05) << "cdt creeps steadily: " << cdtT << ", " << cdt2T;
+  EXPECT_NEAR(cdtHalfDt / cdtT, 0.5, 0.05) << "cdt's creep goes as dt: " << cdtHalfDt;
+  const double kr = 8.0 * epsdt.Geff * std::sqrt(kR * 1e-5) * kR * kR;
+  const double wound = torque / kr;
+  const auto [epsdtAngle, epsdtLargest] = heldSphereRotation(epsdt, torque, dt, 2 * steps);
+  EXPECT_LE(epsdtLargest, 2.0 * wound * 1.01);
+  EXPECT_LE(std::fabs(epsdtAngle), 2.0 * wound * 1.01);
+  EXPECT_GT(cdt2T, 2.0 * epsdtLargest) << "over 2t cdt has crept past epsdt's largest swing";
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -44,7 +44,7 @@ TEST(ContactModels, TableHoldsTheModelsOfTheFix) {
   EXPECT_EQ(wc::model_names(wc::ModelKind::Normal), "hertz, eepa (alias edinburgh)");
   EXPECT_EQ(wc::model_names(wc::ModelKind::Tangential), "history");
   EXPECT_EQ(wc::model_names(wc::ModelKind::Cohesion), "off, sjkr");
-  EXPECT_EQ(wc::model_names(wc::ModelKind::Rolling), "off, epsd2, cdt, krot");
+  EXPECT_EQ(wc::model_names(wc::ModelKind::Rolling), "off, epsd2, cdt, krot, epsdt");
   EXPECT_EQ(wc::switch_keywords(),
             "tangential_damping, limitForce, fixKc, tangential_reduce, torsionTorque");
 }
