@@ -12,7 +12,8 @@
 // same model on the wheel is contact/models/rolling_epsdt.h. docs/contact-law.md, "Rolling:
 // rolling_friction epsdt".
 //
-// Read like rolling_model_krot.h (once with ROLLING_MODEL defined, once for the class); only
+// The history slots, spins and torques are rolling_spring_model.h's (shared with krot). Read like
+// rolling_model_krot.h (once with ROLLING_MODEL defined, once for the class); only
 // precompiled_contact_models.cpp instantiates it and registers the keyword (kEpsdtRollingModelId).
 #ifdef ROLLING_MODEL
 
@@ -23,10 +24,8 @@ ROLLING_MODEL(ROLLING_EPSDT, epsdt, 21)
 #ifndef WHEELSIM_ROLLING_MODEL_EPSDT_H
 #define WHEELSIM_ROLLING_MODEL_EPSDT_H
 
-#include "contact/rolling_spring.h"
-#include "contact_models.h"
 #include "global_properties.h"
-#include "rolling_model_base.h"
+#include "rolling_spring_model.h"
 
 #include <cmath>
 
@@ -37,18 +36,11 @@ namespace ContactModels {
 /// models use 1-6, krot 20). Must equal the ROLLING_MODEL line above.
 constexpr int kEpsdtRollingModelId = 21;
 
-template <> class RollingModel<ROLLING_EPSDT> : public RollingModelBase {
+template <>
+class RollingModel<ROLLING_EPSDT> : public RollingSpringModel<RollingModel<ROLLING_EPSDT>> {
 public:
   RollingModel(LAMMPS_NS::LAMMPS *lmp, IContactHistorySetup *hsetup, ContactModelBase *c)
-      : RollingModelBase(lmp, hsetup, c) {
-    // the slots of epsd2 and krot; "1": the values change sign when the pair's i and j swap
-    history_offset_ = hsetup->add_history_value("r_torquex_old", "1");
-    hsetup->add_history_value("r_torquey_old", "1");
-    hsetup->add_history_value("r_torquez_old", "1");
-  }
-
-  void registerSettings(Settings &) override {}
-  void postSettings(IContactHistorySetup *, ContactModelBase *) override {}
+      : RollingSpringModel(lmp, hsetup, c) {}
 
   void connectToProperties(PropertyRegistry &registry) override {
     registry.registerProperty("coeffRollFrict", &MODEL_PARAMS::createCoeffRollFrict);
@@ -57,45 +49,18 @@ public:
       error->cg(FLERR, "rolling model epsdt");
   }
 
-  void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces,
-                         ForceData &j_forces) override {
-    if (sidata.contact_flags)
-      *sidata.contact_flags |= CONTACT_ROLLING_MODEL;
+  /// M turned into the tangent plane, M += k_t R*² dt ω_rel,t, then |M| <= μr R* |Fn|.
+  void step(const SurfacesIntersectData &sidata, double M[3], const double spin[3]) const {
     const double reff =
         sidata.is_wall ? sidata.radi : sidata.radi * sidata.radj / (sidata.radi + sidata.radj);
-    const double *const *const omega = atom->omega;
-    double w[3] = {omega[sidata.i][0], omega[sidata.i][1], omega[sidata.i][2]};
-    if (!sidata.is_wall)
-      for (int k = 0; k < 3; ++k)
-        w[k] -= omega[sidata.j][k];
-    double *const hist = &sidata.contact_history[history_offset_];
-    double M[3] = {hist[0], hist[1], hist[2]};
-    const double kr = sidata.kt * reff * reff; // epsd2's spring
-    wheelsim::contact::advance_rolling_spring(M, sidata.en, w, update->dt * kr);
+    wheelsim::contact::advance_rolling_spring(M, sidata.en, spin,
+                                              update->dt * sidata.kt * reff * reff);
     wheelsim::contact::cap_rolling_moment(
         M, std::fabs(sidata.Fn) * reff * coeff_roll_frict_[sidata.itype][sidata.jtype]);
-    if (sidata.computeflag && sidata.shearupdate)
-      for (int k = 0; k < 3; ++k)
-        hist[k] = M[k];
-    for (int k = 0; k < 3; ++k) {
-      i_forces.delta_torque[k] -= M[k];
-      j_forces.delta_torque[k] += M[k];
-    }
   }
-
-  void surfacesClose(SurfacesCloseData &scdata, ForceData &, ForceData &) override {
-    if (scdata.contact_flags)
-      *scdata.contact_flags &= ~CONTACT_ROLLING_MODEL;
-    double *const hist = &scdata.contact_history[history_offset_];
-    hist[0] = hist[1] = hist[2] = 0.0;
-  }
-
-  void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) override {}
-  void endPass(SurfacesIntersectData &, ForceData &, ForceData &) override {}
 
 private:
   double **coeff_roll_frict_ = nullptr;
-  int history_offset_ = 0;
 };
 
 } // namespace ContactModels

@@ -8,8 +8,8 @@
 // spring on the wheel is contact/models/rolling_krot.h (there ω_rel is relative to the wheel's
 // spin). docs/contact-law.md, "Rolling: rolling_friction krot".
 //
-// Written after LIGGGHTS' rolling_model_epsd2.h (its history slots and hooks): this header is
-// read like one of LIGGGHTS' own model headers, once with ROLLING_MODEL defined (the id line,
+// The history slots, spins and torques are rolling_spring_model.h's (shared with epsdt). This
+// header is read like one of LIGGGHTS' own model headers, once with ROLLING_MODEL defined (the id line,
 // via contact_model_styles/style_rolling_model.h) and once for the class. Only
 // precompiled_contact_models.cpp instantiates it; it registers the keyword (kKrotRollingModelId).
 #ifdef ROLLING_MODEL
@@ -21,10 +21,8 @@ ROLLING_MODEL(ROLLING_KROT, krot, 20)
 #ifndef WHEELSIM_ROLLING_MODEL_KROT_H
 #define WHEELSIM_ROLLING_MODEL_KROT_H
 
-#include "contact/rolling_spring.h"
-#include "contact_models.h"
 #include "global_properties.h"
-#include "rolling_model_base.h"
+#include "rolling_spring_model.h"
 
 namespace LIGGGHTS {
 namespace ContactModels {
@@ -33,18 +31,11 @@ namespace ContactModels {
 /// models use 1-6). Must equal the ROLLING_MODEL line above.
 constexpr int kKrotRollingModelId = 20;
 
-template <> class RollingModel<ROLLING_KROT> : public RollingModelBase {
+template <>
+class RollingModel<ROLLING_KROT> : public RollingSpringModel<RollingModel<ROLLING_KROT>> {
 public:
   RollingModel(LAMMPS_NS::LAMMPS *lmp, IContactHistorySetup *hsetup, ContactModelBase *c)
-      : RollingModelBase(lmp, hsetup, c) {
-    // "1": the values change sign when the pair's i and j swap (as epsd2's)
-    history_offset_ = hsetup->add_history_value("r_torquex_old", "1");
-    hsetup->add_history_value("r_torquey_old", "1");
-    hsetup->add_history_value("r_torquez_old", "1");
-  }
-
-  void registerSettings(Settings &) override {}
-  void postSettings(IContactHistorySetup *, ContactModelBase *) override {}
+      : RollingSpringModel(lmp, hsetup, c) {}
 
   void connectToProperties(PropertyRegistry &registry) override {
     registry.registerProperty("rollingSpringStiffness", &createRollingSpringStiffness);
@@ -53,37 +44,11 @@ public:
       error->cg(FLERR, "rolling model krot");
   }
 
-  void surfacesIntersect(SurfacesIntersectData &sidata, ForceData &i_forces,
-                         ForceData &j_forces) override {
-    if (sidata.contact_flags)
-      *sidata.contact_flags |= CONTACT_ROLLING_MODEL;
-    const double *const *const omega = atom->omega;
-    double w[3] = {omega[sidata.i][0], omega[sidata.i][1], omega[sidata.i][2]};
-    if (!sidata.is_wall)
-      for (int k = 0; k < 3; ++k)
-        w[k] -= omega[sidata.j][k];
-    double *const hist = &sidata.contact_history[history_offset_];
-    double M[3] = {hist[0], hist[1], hist[2]};
-    wheelsim::contact::advance_rolling_spring(M, sidata.en, w,
+  /// M turned into the tangent plane, then M += k_r dt ω_rel,t.
+  void step(const SurfacesIntersectData &sidata, double M[3], const double spin[3]) const {
+    wheelsim::contact::advance_rolling_spring(M, sidata.en, spin,
                                               update->dt * stiffness_[sidata.itype][sidata.jtype]);
-    if (sidata.computeflag && sidata.shearupdate)
-      for (int k = 0; k < 3; ++k)
-        hist[k] = M[k];
-    for (int k = 0; k < 3; ++k) {
-      i_forces.delta_torque[k] -= M[k];
-      j_forces.delta_torque[k] += M[k];
-    }
   }
-
-  void surfacesClose(SurfacesCloseData &scdata, ForceData &, ForceData &) override {
-    if (scdata.contact_flags)
-      *scdata.contact_flags &= ~CONTACT_ROLLING_MODEL;
-    double *const hist = &scdata.contact_history[history_offset_];
-    hist[0] = hist[1] = hist[2] = 0.0;
-  }
-
-  void beginPass(SurfacesIntersectData &, ForceData &, ForceData &) override {}
-  void endPass(SurfacesIntersectData &, ForceData &, ForceData &) override {}
 
 private:
   /// `fix property/global rollingSpringStiffness peratomtypepair N k_11 k_12 ...` [N·m/rad], >= 0.
@@ -94,7 +59,6 @@ private:
   }
 
   double **stiffness_ = nullptr;
-  int history_offset_ = 0;
 };
 
 } // namespace ContactModels

@@ -18,14 +18,12 @@ deck's material (E 5e6 Pa, ν 0.3; the wall has the particles' type) and the dat
 """
 import argparse
 import math
-import shlex
-import subprocess
 import sys
 
-R, RHO, E, NU, DELTA = 0.002, 2500.0, 5e6, 0.3, 1e-4
-MASS = RHO * 4.0 / 3.0 * math.pi * R**3
-INERTIA = 0.4 * MASS * R * R
-W0 = 10.0
+sys.dont_write_bytecode = True  # keep the source tree clean
+from spin_deck import DELTA, INERTIA, R, W0, run_spin_deck  # noqa: E402
+
+E, NU = 5e6, 0.3  # [Pa], [-]: the deck's material
 G_EFF = 1.0 / (2 * 2.0 * (2.0 - NU) * (1.0 + NU) / E)  # LIGGGHTS' Geff, both sides alike
 Y_EFF = 1.0 / (2 * (1.0 - NU**2) / E)
 
@@ -37,18 +35,8 @@ def spring_and_cap(r_eff, mur):
 
 
 def run(args, mur, steps):
-    cmd = shlex.split(args.launch) + [
-        "-in", args.deck, "-log", "none", "-echo", "none", "-var", "data", args.data,
-        "-var", "mur", repr(mur), "-var", "dt", repr(args.dt), "-var", "steps", str(steps)]
-    out = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                         timeout=120)
-    if out.returncode != 0:
-        sys.exit(f"liggghts-wheel failed ({out.returncode}):\n{out.stdout[-4000:]}")
-    rows = [list(map(float, line.split()[1:5])) for line in out.stdout.splitlines()
-            if line.startswith("epsdt_spin ")]
-    if len(rows) < 10:
-        sys.exit(f"only {len(rows)} epsdt_spin lines in the output:\n{out.stdout[-4000:]}")
-    return rows
+    return run_spin_deck(args.launch, args.deck, args.data, "epsdt_spin",
+                         {"mur": repr(mur), "dt": repr(args.dt), "steps": steps})
 
 
 def main():

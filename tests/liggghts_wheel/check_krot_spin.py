@@ -11,14 +11,10 @@ first step a tangential force, whose lever torque shifts the spins by ~2e-3 ω0.
 """
 import argparse
 import math
-import shlex
-import subprocess
 import sys
 
-R, RHO = 0.002, 2500.0
-MASS = RHO * 4.0 / 3.0 * math.pi * R**3
-INERTIA = 0.4 * MASS * R * R
-W0 = 10.0
+sys.dont_write_bytecode = True  # keep the source tree clean
+from spin_deck import INERTIA, W0, run_spin_deck  # noqa: E402
 
 
 def main():
@@ -34,17 +30,8 @@ def main():
     omega1 = math.sqrt(args.kr / INERTIA)
     omega2 = math.sqrt(2.0 * args.kr / INERTIA)
     steps = int(round(1.5 * 2.0 * math.pi / omega2 / args.dt / 50.0)) * 50
-    cmd = shlex.split(args.launch) + [
-        "-in", args.deck, "-log", "none", "-echo", "none", "-var", "data", args.data,
-        "-var", "kr", repr(args.kr), "-var", "dt", repr(args.dt), "-var", "steps", str(steps)]
-    run = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                         timeout=120)
-    if run.returncode != 0:
-        sys.exit(f"liggghts-wheel failed ({run.returncode}):\n{run.stdout[-4000:]}")
-    rows = [list(map(float, line.split()[1:5])) for line in run.stdout.splitlines()
-            if line.startswith("krot_spin ")]
-    if len(rows) < 10:
-        sys.exit(f"only {len(rows)} krot_spin lines in the output:\n{run.stdout[-4000:]}")
+    rows = run_spin_deck(args.launch, args.deck, args.data, "krot_spin",
+                         {"kr": repr(args.kr), "dt": repr(args.dt), "steps": steps})
     worst = 0.0
     for t, w1, w2, w3 in rows:
         c2, c1 = math.cos(omega2 * t), math.cos(omega1 * t)
