@@ -21,7 +21,7 @@ import math
 import sys
 
 sys.dont_write_bytecode = True  # keep the source tree clean
-from spin_deck import DELTA, INERTIA, R, W0, run_spin_deck  # noqa: E402
+from spin_deck import DELTA, INERTIA, R, W0, oscillator_error, run_spin_deck  # noqa: E402
 
 E, NU = 5e6, 0.3  # [Pa], [-]: the deck's material
 G_EFF = 1.0 / (2 * 2.0 * (2.0 - NU) * (1.0 + NU) / E)  # LIGGGHTS' Geff, both sides alike
@@ -52,12 +52,7 @@ def main():
     kr_pair, _ = spring_and_cap(0.5 * R, 10.0)
     omega1, omega2 = math.sqrt(kr_wall / INERTIA), math.sqrt(2.0 * kr_pair / INERTIA)
     rows = run(args, 10.0, int(round(1.5 * 2.0 * math.pi / omega2 / args.dt / 10.0)) * 10)
-    worst = 0.0
-    for t, w1, w2, w3 in rows:
-        c2, c1 = math.cos(omega2 * t), math.cos(omega1 * t)
-        errs = (w1 - 0.5 * W0 * (1 + c2), w2 - 0.5 * W0 * (1 - c2), w3 - W0 * c1)
-        worst = max(worst, max(abs(e) for e in errs) / W0)
-    swung = min(r[1] for r in rows) < 0.05 * W0
+    worst, swung = oscillator_error(rows, omega1, omega2)
     print(f"epsdt elastic: {len(rows)} samples, Ω1 {omega1:.0f} rad/s (k_r {kr_wall:.4g} N m/rad), "
           f"Ω2 {omega2:.0f} rad/s (k_r {kr_pair:.4g}), worst |Δω|/ω0 = {worst:.2e} (tolerance 2e-4)")
     if worst > 2e-4 or not swung:

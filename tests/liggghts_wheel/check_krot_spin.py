@@ -14,7 +14,7 @@ import math
 import sys
 
 sys.dont_write_bytecode = True  # keep the source tree clean
-from spin_deck import INERTIA, W0, run_spin_deck  # noqa: E402
+from spin_deck import INERTIA, oscillator_error, run_spin_deck  # noqa: E402
 
 
 def main():
@@ -32,13 +32,7 @@ def main():
     steps = int(round(1.5 * 2.0 * math.pi / omega2 / args.dt / 50.0)) * 50
     rows = run_spin_deck(args.launch, args.deck, args.data, "krot_spin",
                          {"kr": repr(args.kr), "dt": repr(args.dt), "steps": steps})
-    worst = 0.0
-    for t, w1, w2, w3 in rows:
-        c2, c1 = math.cos(omega2 * t), math.cos(omega1 * t)
-        errs = (w1 - 0.5 * W0 * (1 + c2), w2 - 0.5 * W0 * (1 - c2), w3 - W0 * c1)
-        worst = max(worst, max(abs(e) for e in errs) / W0)
-    # the pair must have swung through: ω1 near 0 at half its period
-    swung = min(r[1] for r in rows) < 0.05 * W0
+    worst, swung = oscillator_error(rows, omega1, omega2)
     print(f"krot spin check: {len(rows)} samples over {rows[-1][0]:.4g} s, Ω1 {omega1:.1f} rad/s, "
           f"Ω2 {omega2:.1f} rad/s, worst |Δω|/ω0 = {worst:.2e} (tolerance {args.tol:g})")
     if worst > args.tol or not swung:

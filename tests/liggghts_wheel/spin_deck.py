@@ -27,3 +27,15 @@ def run_spin_deck(launch, deck, data, tag, variables):
     if len(rows) < 10:
         sys.exit(f"only {len(rows)} {tag} lines in the output:\n{run.stdout[-4000:]}")
     return rows
+
+
+def oscillator_error(rows, omega1, omega2):
+    """(worst |ω − ω_exact| / W0, swung) of rows against the undamped oscillators of the held
+    spheres: the pair ω1,2 = W0/2 (1 ± cos Ω2 t), the wall sphere ω3 = W0 cos Ω1 t; `swung`: the
+    pair has swung through (ω1 near 0 at half its period)."""
+    worst = 0.0
+    for t, w1, w2, w3 in rows:
+        c2, c1 = math.cos(omega2 * t), math.cos(omega1 * t)
+        errs = (w1 - 0.5 * W0 * (1 + c2), w2 - 0.5 * W0 * (1 - c2), w3 - W0 * c1)
+        worst = max(worst, max(abs(e) for e in errs) / W0)
+    return worst, min(r[1] for r in rows) < 0.05 * W0
