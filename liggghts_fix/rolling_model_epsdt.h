@@ -55,8 +55,8 @@ public:
         sidata.is_wall ? sidata.radi : sidata.radi * sidata.radj / (sidata.radi + sidata.radj);
     wheelsim::contact::advance_rolling_spring(M, sidata.en, spin,
                                               update->dt * sidata.kt * reff * reff);
-    wheelsim::contact::cap_rolling_moment(
-        M, std::fabs(sidata.Fn) * reff * coeff_roll_frict_[sidata.itype][sidata.jtype]);
+    wheelsim::contact::cap_rolling_moment(M, std::fabs(sidata.Fn) * reff *
+                                                 coeff_roll_frict_[sidata.itype][sidata.jtype]);
   }
 
 private:

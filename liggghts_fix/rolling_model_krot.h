@@ -9,8 +9,8 @@
 // spin). docs/contact-law.md, "Rolling: rolling_friction krot".
 //
 // The history slots, spins and torques are rolling_spring_model.h's (shared with epsdt). This
-// header is read like one of LIGGGHTS' own model headers, once with ROLLING_MODEL defined (the id line,
-// via contact_model_styles/style_rolling_model.h) and once for the class. Only
+// header is read like one of LIGGGHTS' own model headers, once with ROLLING_MODEL defined (the id
+// line, via contact_model_styles/style_rolling_model.h) and once for the class. Only
 // precompiled_contact_models.cpp instantiates it; it registers the keyword (kKrotRollingModelId).
 #ifdef ROLLING_MODEL
 

@@ -150,8 +150,8 @@ struct ContactState {
   Eigen::Vector3d vRel = Eigen::Vector3d::Zero();
   /// ω: particle angular velocity [rad/s] (rolling resistance only)
   Eigen::Vector3d omega = Eigen::Vector3d::Zero();
-  /// ω_w: the wheel's angular velocity [rad/s] (rolling_friction krot and epsdt only, which act on the
-  /// rotation relative to the wheel; LIGGGHTS' own wall models ignore the wall's spin)
+  /// ω_w: the wheel's angular velocity [rad/s] (rolling_friction krot and epsdt only, which act on
+  /// the rotation relative to the wheel; LIGGGHTS' own wall models ignore the wall's spin)
   Eigen::Vector3d omegaSurface = Eigen::Vector3d::Zero();
 };
 
