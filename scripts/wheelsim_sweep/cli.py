@@ -10,6 +10,7 @@ import os
 import sys
 from pathlib import Path
 
+from wheelsim_post import bed_hold
 from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 
 from . import accept, config, estimate, rate, runner
@@ -63,6 +64,11 @@ def main(argv=None):
                          "re-running them; runs nothing (repeatable)")
     ap.add_argument("--reason", metavar="TEXT",
                     help="why the --accept-change edit changes no result (required with it)")
+    ap.add_argument("--bed-hold", type=float, default=bed_hold.DEFAULT_HOLD_S, metavar="S",
+                    help="the bed-hold check: each prepared bed is left alone S seconds under "
+                         "the soil's test settings, and the sweep stops if it settles by more "
+                         f"than {100 * bed_hold.SETTLE_LIMIT:.0f} %% (default "
+                         f"{bed_hold.DEFAULT_HOLD_S:g}; 0: no check; docs/soil-bins.md)")
     ap.add_argument("--archive", metavar="DIR",
                     help="keep each finished point's done.json, run.h5, rig.toml and run.log in "
                          "DIR (e.g. a folder committed to git) and restore them from there into "
@@ -90,6 +96,8 @@ def main(argv=None):
         ap.error(f"--jobs must be >= 1, got {a.jobs}")
     if a.cores is not None and a.cores < 1:
         ap.error(f"--cores must be >= 1, got {a.cores}")
+    if not a.bed_hold >= 0:  # also NaN
+        ap.error(f"--bed-hold must be a time >= 0 s (0: no check), got {a.bed_hold:g}")
     if a.budget is not None and not a.budget > 0:
         ap.error(f"--budget must be a number of hours > 0, got {a.budget:g}")
     if a.config is None and not a.measure_rate:
@@ -154,7 +162,8 @@ def main(argv=None):
     cost = {"rate": machine_rate, "cores": cores, "yes": a.yes,
             "budget_h": a.budget if a.budget is not None else sweep.budget_h}
     r = runner.Runner(sweep, out, REPO, build, jobs, force=a.force, dry_run=a.dry_run,
-                      cost=cost, beds_only=a.beds_only, archive_dir=a.archive)
+                      cost=cost, beds_only=a.beds_only, archive_dir=a.archive,
+                      bed_hold_s=a.bed_hold)
     if a.estimate:
         return print_estimate(r, sweep, cost)
     if a.accept_change:

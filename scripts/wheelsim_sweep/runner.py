@@ -11,6 +11,7 @@ import fcntl
 import hashlib
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -21,7 +22,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
 from pathlib import Path
 
-from wheelsim_post import mpi_launch, step_archive
+from wheelsim_post import bed_hold, mpi_launch, step_archive
 from wheelsim_post.deck_files import deck_includes
 
 from . import active_domain, archive, estimate, health, toml_out, watchdog
@@ -114,8 +115,9 @@ class Interrupted(Exception):
 
 class Runner:
     def __init__(self, sweep, out_dir, repo, build_dir, jobs, force=False, dry_run=False,
-                 cost=None, beds_only=False, archive_dir=None):
+                 cost=None, beds_only=False, archive_dir=None, bed_hold_s=bed_hold.DEFAULT_HOLD_S):
         self.sweep = sweep
+        self.bed_hold_s = bed_hold_s  # [s] the bed-hold check's length (cli --bed-hold; 0: none)
         # --archive DIR: finished points are kept there and restored from there (archive.py)
         self.archive = Path(archive_dir).resolve() if archive_dir is not None else None
         self.restored = []  # reldirs of the points restored from the archive by this run
@@ -575,9 +577,11 @@ class Runner:
                 elif not inputs_file.is_file():  # a bed from before the inputs were recorded
                     self.say(f"bed {soil.label}: reusing {restart} (prepared before its input "
                              "files' hashes were recorded: not checked against them)")
+                    self.check_bed_hold(soil, restart)
                     continue
                 elif _same_bed_inputs(inputs_file, inputs):
                     self.say(f"bed {soil.label}: reusing {restart}")
+                    self.check_bed_hold(soil, restart)
                     continue
                 else:
                     why = (" again: its soil file, inputs/in.soilbin or a file they include "
@@ -614,6 +618,60 @@ class Runner:
             os.replace(f"{part}.vars", f"{restart}.vars")
             os.replace(part, restart)
             self.say(f"bed {soil.label}: ready in {estimate.fmt_time(time.monotonic() - t0)}")
+            self.check_bed_hold(soil, restart)
+
+    def check_bed_hold(self, soil, restart):
+        """The bed-hold check (docs/soil-bins.md "The bed-hold check") of a recipe bed: the bed
+        left alone bed_hold_s under the soil's test settings (inputs/in.bedhold, on the bed's
+        ranks). Recorded in <restart>.hold.json with what it was made from (the restart's and the
+        soil's inputs' hashes, bed_hold_s) and not run again for the same; raises RuntimeError when
+        the bed settles by more than bed_hold.SETTLE_LIMIT."""
+        if self.bed_hold_s <= 0:
+            return
+        record = restart.parent / f"{restart.name}.hold.json"
+        log = restart.parent / "bedhold.log"
+        key = {"hold_s": self.bed_hold_s, "restart_sha256": self.file_hash(restart),
+               "bed_inputs": self.bed_inputs(soil)}
+        done = None
+        if record.is_file():
+            try:
+                done = json.loads(record.read_text())
+            except ValueError:
+                done = None
+            if done is not None and done.get("key") != key:
+                done = None
+        if done is None:
+            if self.dry_run:
+                self.say(f"bed {soil.label}: would leave it alone {self.bed_hold_s:g} s under the "
+                         f"soil's test settings (the bed-hold check)")
+                return
+            cmd = mpi_launch.mpirun(self.sweep.bed_np)
+            cmd += [str(self.build / "bin" / "liggghts-wheel"),
+                    "-in", str(self.repo / "inputs" / bed_hold.DECK),
+                    "-var", "inputs_dir", str(self.repo / "inputs"),
+                    "-var", "restart_file", str(restart), "-var", "hold_s", str(self.bed_hold_s),
+                    "-log", "none"]
+            t0 = time.monotonic()
+            rc = self._run_child(cmd, log, cwd=restart.parent)
+            if rc != 0:
+                raise RuntimeError(f"bed '{soil.label}': {bed_hold.DECK} failed (exit {rc}): "
+                                   f"{_last_error(log)} [log {log}]")
+            try:
+                result = bed_hold.parse(log.read_text(errors="replace"), log)
+            except bed_hold.BedHoldError as e:
+                raise RuntimeError(f"bed '{soil.label}': {e}") from None
+            done = {"key": key, "result": result, "wall_s": round(time.monotonic() - t0, 1),
+                    "np": self.sweep.bed_np}
+            _write_atomic(record, json.dumps(done, indent=1) + "\n")
+        r = done["result"]
+        prep_log = restart.parent / "soilbin.log"  # in.soilbin's verdict on its settling
+        unsettled = prep_log.is_file() and re.search(
+            r"^soilbin: settled = 0\b", prep_log.read_text(errors="replace"), re.M) is not None
+        error = bed_hold.failure(r, soil.label, log, settled=not unsettled)
+        if error:
+            raise RuntimeError(error)
+        self.say(f"bed {soil.label}: {bed_hold.verdict(r)} under the soil's test settings: "
+                 f"{bed_hold.describe(r)} ({estimate.fmt_time(done['wall_s'])})")
 
     # ---- the sweep ------------------------------------------------------------------------------
     def write_manifest(self):

@@ -1,6 +1,7 @@
 """`soil-lab report` and `soil-lab scm`: read a lab directory's outputs, fit, summarise, plot.
 
 What is read (runner.py writes it): soil.toml; beds/plate/done.json (bulk density, porosity);
+beds/*/hold/done.json (the bed-hold check);
 plate_b*/plate.csv; shear_s*/shear.csv; repose/repose.dump; each run's done.json (cost).
 What is written by write_report: results.toml, results.csv, plate.png, shear_curves.png,
 mohr_coulomb.png, repose.png (for the tests that ran). docs/soil-lab.md, "Outputs".
@@ -44,6 +45,7 @@ class Results:
     quasi_static: List[dict] = field(default_factory=list)  # half-speed comparisons
     costs: List[dict] = field(default_factory=list)
     bed_costs: Dict[str, float] = field(default_factory=dict)  # bed name -> wall time [s]
+    bed_holds: Dict[str, dict] = field(default_factory=dict)  # bed name -> bed-hold check result
 
     @property
     def janosi_K_m(self):
@@ -511,6 +513,10 @@ def analyse(directory):
     for bed, done in [(q, _done(q)) for q in sorted(beds.iterdir())] if beds.is_dir() else []:
         if done is not None and "wall_s" in done:
             r.bed_costs[bed.name] = float(done["wall_s"])
+        hold = _done(bed / "hold")  # the bed-hold check (runner.Lab.bed_hold)
+        if hold is not None and "result" in hold:
+            r.bed_holds[bed.name] = hold["result"]
+            r.bed_costs[f"{bed.name}/hold"] = float(hold.get("wall_s", 0.0))
     return r
 
 
@@ -600,6 +606,8 @@ def summary(r: Results):
                                                               "profile_depth_m",
                                                               "profile_difference") if k in q}
                                for q in r.quasi_static}
+    if r.bed_holds:
+        out["bed_hold"] = r.bed_holds
     if r.costs:
         out["cost"] = {c["run"]: {k: c[k] for k in COST_KEYS} for c in r.costs}
     if r.costs or r.bed_costs:

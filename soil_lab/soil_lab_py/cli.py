@@ -14,6 +14,7 @@ import os
 import sys
 from pathlib import Path
 
+from wheelsim_post import bed_hold
 from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 
 from . import analysis, plan, runner
@@ -96,11 +97,14 @@ def _run(a):
     if a.checkpoints < 0:
         raise plan.LabInputError(f"--checkpoints: expected a number >= 0 (0: none), got "
                                  f"{a.checkpoints}")
+    if not a.bed_hold >= 0:  # also NaN
+        raise plan.LabInputError(f"--bed-hold: expected a time >= 0 s (0: no check), got "
+                                 f"{a.bed_hold}")
     soil_file = runner.resolve_soil_file(a.soil, REPO / "inputs")
     out = Path(a.out or RUNS / "soil_lab" / Path(soil_file).stem).resolve()
     out.mkdir(parents=True, exist_ok=True)
     lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet, archive=a.archive,
-                     checkpoints=a.checkpoints)
+                     checkpoints=a.checkpoints, bed_hold_s=a.bed_hold)
     soil = lab.soil_info(soil_file)
     p = plan.make_plan(soil, tests, a.preset, stresses, bed_vars, widths, a.plate_bin,
                        a.speed_check, a.shear_travel, a.plate_speed, a.shear_speed,
@@ -140,6 +144,10 @@ def _report(directory, quiet=False):
             print(f"soil-lab: warning: repose: {r.repose_error}")
         for w in s.get("shear", {}).get("warnings", []):
             print(f"soil-lab: warning: {w}")
+        for bed, h in sorted(r.bed_holds.items()):
+            print(f"soil-lab: bed '{bed}' left alone {h['hold_s']:.3g} s under the test settings:"
+                  f" centre of mass {-100 * h['settlement']:+.2f} % (last quarter "
+                  f"{-100 * h['settlement_last_quarter']:+.3f} %)")
         if r.costs or r.bed_costs:
             c = s["cost_total"]
             print(f"soil-lab: cost: beds {c['beds_wall_s']:.0f} s + runs {c['runs_wall_s']:.0f} s "
@@ -220,6 +228,11 @@ def main(argv=None):
                         "the differences")
     r.add_argument("--bed-var", action="append", metavar="NAME=VALUE",
                    help="an inputs/in.soilbin variable for every bed (e.g. compaction=plate)")
+    r.add_argument("--bed-hold", type=float, default=bed_hold.DEFAULT_HOLD_S, metavar="S",
+                   help="the bed-hold check: each bed is left alone S seconds under the soil's "
+                        "test settings, and the lab stops if it settles by more than "
+                        f"{100 * bed_hold.SETTLE_LIMIT:.0f} %% (default "
+                        f"{bed_hold.DEFAULT_HOLD_S:g}; 0: no check)")
     r.add_argument("--archive", metavar="DIR",
                    help="keep each finished test run's files (CSV or dump, log, done.json) in "
                         "DIR/<run>/ (e.g. a folder committed to git) and restore them from there "

@@ -23,7 +23,7 @@ import time
 from pathlib import Path
 from typing import NamedTuple
 
-from wheelsim_post import liggghts_log, mpi_launch, step_archive
+from wheelsim_post import bed_hold, liggghts_log, mpi_launch, step_archive
 from wheelsim_post.deck_files import deck_includes
 
 from .checkpoints import Checkpoints
@@ -82,7 +82,7 @@ def resolve_soil_file(soil, inputs_dir):
 
 class Lab:
     def __init__(self, repo, build_dir, out_dir, np=1, quiet=False, archive=None,
-                 checkpoints=DEFAULT_CHECKPOINTS):
+                 checkpoints=DEFAULT_CHECKPOINTS, bed_hold_s=bed_hold.DEFAULT_HOLD_S):
         self.repo = Path(repo)
         self.build = Path(build_dir)
         self.out = Path(out_dir)
@@ -91,6 +91,7 @@ class Lab:
         self.archive = Path(archive).resolve() if archive is not None else None
         self.np = np
         self.checkpoints = checkpoints  # restart files per plate or shear run (0: none)
+        self.bed_hold_s = bed_hold_s  # [s] the bed-hold check's length (0: no check)
         self.quiet = quiet
         self.inputs = self.repo / "inputs"
         self.liggghts = self.build / "bin" / "liggghts-wheel"
@@ -271,8 +272,42 @@ class Lab:
         else:
             self.say(f"bed '{bed.name}': done before, skipped")
         restart = done["result"]["restart"]
+        if self.bed_hold_s > 0:
+            self.bed_hold(soil, bed.name, restart, key,
+                          settled=done["result"].get("settled", "1") != "0")
         return Bed(restart, _sha256(restart),
                    {"inputs": key.inputs, "included_sha256": key.included, "np": done.get("np")})
+
+    def bed_hold(self, soil, name, restart, bed_key, settled=True):
+        """The bed-hold check of bed `name` (skipped if done for this bed recipe; docs/soil-bins.md
+        "The bed-hold check"): inputs/in.bedhold leaves the bed alone under the soil's test
+        settings for bed_hold_s; writes beds/<name>/hold/done.json and returns its result. Raises
+        LabRunError when the bed settles by more than bed_hold.SETTLE_LIMIT: the tests would run
+        on another bed than the one prepared and measured."""
+        d = self.out / "beds" / name / "hold"
+        d.mkdir(parents=True, exist_ok=True)
+        deck = self.inputs / bed_hold.DECK
+        key = self._key({"hold_s": self.bed_hold_s}, named={"bed recipe": bed_key.inputs},
+                        files=(deck, soil.file))
+        log = d / "liggghts.log"
+        done = self._done(d, key)
+        if done is None:
+            t0 = time.monotonic()
+            text = self._liggghts(deck, {"restart_file": restart, "hold_s": self.bed_hold_s},
+                                  log, d)
+            try:
+                result = bed_hold.parse(text, log)
+            except bed_hold.BedHoldError as e:
+                raise LabRunError(str(e)) from None
+            done = {"result": result, "wall_s": round(time.monotonic() - t0, 1), "np": self.np}
+            self._finish(d, key, **done)
+        r = done["result"]
+        error = bed_hold.failure(r, name, log, settled)
+        if error:
+            raise LabRunError(error)
+        self.say(f"bed '{name}': {bed_hold.verdict(r)} under the test settings: "
+                 f"{bed_hold.describe(r)} ({done['wall_s']} s)")
+        return r
 
     def run(self, soil, run, bed, progress=""):
         """Runs one plate, shear or repose deck on `bed` (a Bed; skipped when done before, resumed

@@ -212,8 +212,12 @@ def main():
           f"no grain leaves the shear boxes (lost fractions {lost})")
     check(len(res.get("cost", {})) == 8, f"cost of 8 runs recorded ({len(res.get('cost', {}))})")
     total = res.get("cost_total", {})
-    check(len(total.get("beds", {})) == 3 and total.get("lab_wall_s", 0) > total.get("runs_wall_s", 0) > 0,
-          f"lab wall time = beds + runs ({total})")
+    check(len(total.get("beds", {})) == 6 and total.get("lab_wall_s", 0) > total.get("runs_wall_s", 0) > 0,
+          f"lab wall time = beds (3, each with its bed-hold check) + runs ({total})")
+    holds_bed = res.get("bed_hold", {})
+    check(sorted(holds_bed) == ["plate", "repose", "shear"] and
+          all(0 <= h["settlement"] < 0.01 for h in holds_bed.values()),
+          f"each ci bed holds under its test settings, settling < 1 % in 0.2 s ({holds_bed})")
     inv = res.get("soil", {}).get("invocations", [])
     check(len(inv) == 2 and all(len(i.get("git_commit", "")) == 40 and "--preset quick" in
                                 i.get("command", "") and i.get("host") for i in inv),

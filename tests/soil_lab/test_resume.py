@@ -30,7 +30,7 @@ class Resume(unittest.TestCase):
         self.variant = root / "my_sand.in"
         self.variant.write_text("variable soil_size_scale index 2.0\n"
                                 "include ${inputs_dir}/soils/base_sand.in\n")
-        self.lab = Lab(root / "repo", root / "build", root / "out", quiet=True)
+        self.lab = Lab(root / "repo", root / "build", root / "out", quiet=True, bed_hold_s=0)
         self.step = root / "out" / "beds" / "plate"
         self.step.mkdir(parents=True)
 
@@ -56,7 +56,8 @@ class Resume(unittest.TestCase):
 
     def test_archive_keeps_and_restores_a_finished_step(self):
         root = Path(self.tmp.name)
-        lab = Lab(root / "repo", root / "build", root / "out", quiet=True, archive=root / "arch")
+        lab = Lab(root / "repo", root / "build", root / "out", quiet=True, archive=root / "arch",
+                  bed_hold_s=0)
         step = root / "out" / "shear_s5000"
         step.mkdir()
         (step / "shear.csv").write_text("# t tau\n0 1\n")
@@ -115,7 +116,8 @@ class BedIdentity(unittest.TestCase):
         self.soil = self.root / "sand.in"
         self.soil.write_text("variable soil_mur index 0.3\n")
         self.lab = Lab(self.root / "repo", self.root / "build", self.root / "out", quiet=True,
-                       archive=self.root / "arch")
+                       archive=self.root / "arch", bed_hold_s=0)  # no bed-hold run to fake
+
         self.messages = []
         self.lab.say = self.messages.append
 

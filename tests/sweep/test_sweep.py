@@ -465,9 +465,14 @@ def dem_repo(a):
     return Path(a.sweep).resolve().parents[1]
 
 
+NO_BED_HOLD = ("--bed-hold", "0")  # small_dem_sweep's unsettled beds
+
+
 def small_dem_sweep(path, repo, soil, deck, fill=0.03, soil_keys=""):
     """A one-point DEM sweep: test_small at 20 % on a 0.12 x 0.08 m bin recipe of `soil` (fill
-    height `fill`, more recipe keys `soil_keys`), 150 coupled steps of `deck` on one rank."""
+    height `fill`, more recipe keys `soil_keys`), 150 coupled steps of `deck` on one rank. Its bed's
+    settling is cut short (max_settle_time 0.006 s), so wheel-sweep's bed-hold check refuses it:
+    run it with --bed-hold 0 (NO_BED_HOLD) unless that is what is tested."""
     extra = f", {soil_keys}" if soil_keys else ""
     path.write_text(f"""terrain = "dem"
 base = "{repo}/inputs/rigs/ci_small_wheel.toml"
@@ -489,8 +494,9 @@ def case_dem_soil_file(a, work):
     is prepared with it and named after soil_name, its .vars records the absolute path, the
     coupled point (tests/cosim/in.motion_compare, 150 steps, 1 rank) includes the same file and
     its run file records bed/soil and bed/soil_file; the bed is prepared with soil_preparing_bed 1,
-    the point sees 0; a changed soil file (same path) makes the finished point re-run and the bed
-    be prepared again (--dry-run)."""
+    the point sees 0; the bed, its settling cut short for speed, is first refused by the bed-hold
+    check (exit 1, "had not settled", no point run) and then used with --bed-hold 0; a changed soil
+    file (same path) makes the finished point re-run and the bed be prepared again (--dry-run)."""
     repo = dem_repo(a)
     soil = work / "elsewhere" / "my_sand.in"
     soil.parent.mkdir()
@@ -512,9 +518,21 @@ def case_dem_soil_file(a, work):
     small_dem_sweep(cfg, repo, "elsewhere/my_sand.in", deck)
     out = work / "out"
     cmd = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--out-dir", str(out), "--jobs", "1"]
+    # the recipe cuts the bed's settling short (max_settle_time 0.006 s, for speed): the bed-hold
+    # check (docs/soil-bins.md) sees it fall and stops the sweep before any point, naming why
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     print(r.stdout[-3000:], r.stderr[-2000:])
     bed = out / "beds" / "my_sand" / "soilbin_my_sand.restart"
+    check(r.returncode == 1 and "wheel-sweep: error: bed 'my_sand' had not settled when it was "
+          "prepared (in.soilbin: settled = 0" in r.stdout and "--bed-hold 0" in r.stdout
+          and Path(f"{bed}.hold.json").is_file()
+          and not (out / "test_small" / "my_sand" / "s0.200" / "done.json").exists(),
+          "the unsettled bed was not stopped by the bed-hold check, with its reason")
+    cmd += NO_BED_HOLD  # a bed meant to be unsettled
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    print(r.stdout[-3000:], r.stderr[-2000:])
+    check(r.returncode == 0 and f"bed my_sand: reusing {bed}" in r.stdout,
+          "with --bed-hold 0 the sweep did not go on on the same bed")
     check(bed.is_file() and Path(f"{bed}.vars").is_file(),
           f"no bed {bed} named after the file's soil_name")
     bvars = Path(f"{bed}.vars").read_text()
@@ -571,7 +589,8 @@ def case_dem_tiled_bed(a, work):
         small_dem_sweep(cfg, repo, "ci", repo / "tests" / "cosim" / "in.motion_compare", fill,
                         f"tile_length = {tile}, tile_relax_time = 0.002, tile_relax_max = 0.004")
     out = work / "out"
-    cmd = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--out-dir", str(out), "--jobs", "1"]
+    cmd = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--out-dir", str(out), "--jobs", "1",
+           *NO_BED_HOLD]
     bed = out / "beds" / "ci" / "soilbin_ci.restart"
     pdir = out / "test_small" / "ci" / "s0.200"
 
@@ -1056,7 +1075,8 @@ def case_dem_archive_bed(a, work):
     cfg = work / "sweep.toml"
     small_dem_sweep(cfg, repo, "ci", repo / "tests" / "cosim" / "in.motion_compare")
     out, arch = work / "out", work / "archive"
-    r = run_sweep(a, cfg, "--out-dir", str(out), "--archive", str(arch), timeout=300)
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--archive", str(arch), *NO_BED_HOLD,
+                  timeout=300)
     check(r.returncode == 0, "the DEM sweep failed")
     bed = out / "beds" / "ci" / "soilbin_ci.restart"
     rel = "test_small/ci/s0.200"
@@ -1064,15 +1084,15 @@ def case_dem_archive_bed(a, work):
     want = {bed.name: hashlib.sha256(bed.read_bytes()).hexdigest()}
     check(record["bed_sha256"] == want, f"archived.json bed_sha256 {record['bed_sha256']} != {want}")
     shutil.rmtree(out / rel)
-    r = run_sweep(a, cfg, "--out-dir", str(out), "--archive", str(arch), "--beds-only",
-                  timeout=120)
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--archive", str(arch), *NO_BED_HOLD,
+                  "--beds-only", timeout=120)
     check(r.returncode == 0 and "restored 1 finished point(s)" in r.stdout
           and "another preparation" not in r.stdout, "restored onto the same bed: wrong report")
     shutil.rmtree(out / rel)
     with open(bed, "ab") as f:
         f.write(b"another preparation")
-    r = run_sweep(a, cfg, "--out-dir", str(out), "--archive", str(arch), "--beds-only",
-                  timeout=120)
+    r = run_sweep(a, cfg, "--out-dir", str(out), "--archive", str(arch), *NO_BED_HOLD,
+                  "--beds-only", timeout=120)
     check(r.returncode == 0 and f"{rel} (restored from the archive) ran on another preparation "
           "of its bed" in r.stdout, "a point restored onto a different bed file is not named")
 

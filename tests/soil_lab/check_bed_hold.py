@@ -1,0 +1,85 @@
+#!/usr/bin/python3
+"""The soil lab's bed-hold check (docs/soil-lab.md "The bed-hold check"), on real LIGGGHTS beds:
+- `ci_loose_pour.in` (ci grains poured with sliding friction 0.9 and rolling friction 0.5, tested
+  frictionless) falls in once its test settings apply: the lab stops with exit 1 and an error
+  naming the bed, its settlement (more than the 3 % limit) and the docs section;
+- the same soil with `--bed-hold 0` (no check) runs through (exit 0) and records no check;
+- the `ci` soil (the same settings for the pour and the tests) holds: exit 0, and results.toml's
+  [bed_hold.plate] records a settlement under 1 %, over the 0.2 s asked for.
+Each lab is a bulk test on a 0.12 m bin (~4 400 spheres, seconds).
+
+  check_bed_hold.py --build-dir BUILD --work DIR
+Exit 0 pass, 1 fail, 77 skip (liggghts-wheel not built).
+"""
+
+import argparse
+import re
+import shutil
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+
+
+def lab(build_dir, out, soil, *extra):
+    cmd = [str(ROOT / "soil_lab" / "soil-lab"), "run", soil, "--tests", "bulk", "--preset",
+           "quick", "--plate-bin", "0.12", "--np", "1", "--out", str(out), "--build-dir",
+           build_dir, *extra]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    print(f"$ {' '.join(cmd)}\n  exit {r.returncode}\n" + "".join(
+        f"  {ln}\n" for ln in (r.stdout + r.stderr).splitlines() if "bed" in ln or "error" in ln))
+    return r
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build-dir", required=True)
+    ap.add_argument("--work", required=True)
+    a = ap.parse_args()
+    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").is_file():
+        print("SKIP: liggghts-wheel not built")
+        return 77
+    work = Path(a.work).resolve()
+    shutil.rmtree(work, ignore_errors=True)
+    failures = []
+
+    loose = str(HERE / "ci_loose_pour.in")
+    r = lab(a.build_dir, work / "loose", loose)
+    m = re.search(r"bed 'plate' does not hold under the soil's test settings: centre of mass "
+                  r"\S+ -> \S+ m \(-(\d+\.\d+) %\)", r.stderr)
+    if r.returncode != 1 or m is None or "Preparing the bed with other contact settings" \
+            not in r.stderr:
+        failures.append("the loose pour: expected exit 1 and the error naming bed 'plate', its "
+                        "settlement and docs/soils.md's section")
+    elif not float(m.group(1)) > 3.0:
+        failures.append(f"the loose pour stopped at a settlement of {m.group(1)} %, not above 3 %")
+
+    r = lab(a.build_dir, work / "loose_unchecked", loose, "--bed-hold", "0")
+    res = work / "loose_unchecked" / "results.toml"
+    if r.returncode != 0 or not res.is_file():
+        failures.append("the loose pour with --bed-hold 0: expected exit 0 and results.toml")
+    elif "bed_hold" in tomllib.loads(res.read_text()):
+        failures.append("the loose pour with --bed-hold 0 recorded a bed-hold check")
+
+    r = lab(a.build_dir, work / "ci", "ci")
+    res = work / "ci" / "results.toml"
+    if r.returncode != 0 or not res.is_file():
+        failures.append("ci: expected exit 0 and results.toml")
+    else:
+        h = tomllib.loads(res.read_text()).get("bed_hold", {}).get("plate")
+        if h is None:
+            failures.append("ci: results.toml has no [bed_hold.plate]")
+        elif not (0.0 <= h["settlement"] < 0.01 and abs(h["hold_s"] - 0.2) < 1e-3):
+            failures.append(f"ci: bed-hold record {h}: expected a settlement in [0, 1 %) over "
+                            f"0.2 s")
+    for f in failures:
+        print(f"FAIL: {f}")
+    print("PASS" if not failures else f"{len(failures)} failure(s)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
