@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """validation/study_wheels/compare.py (case 3's comparison) on synthetic results tables with known
-values: the DEM-beside-SCM row (SCM's difference in % of DEM, an unhealthy SCM point marked † and
-its code named under the table), the split of SCM − DEM into traction force and motion resistance
-(ΔDP = ΔF_T − ΔR), a point under another setting (the sinkage allowance's and the wheel
-friction's and the speed's sections), and a missing column (exit 2, one line naming the file).
+values: the DEM-beside-SCM row (SCM's difference in % of DEM for F_T and sinkage, in kN for DP;
+an unhealthy SCM point marked † and its code named under the table), the split of SCM − DEM into
+traction force and motion resistance (ΔDP = ΔF_T − ΔR), a point under another setting (the sinkage
+allowance's and the wheel friction's and the speed's sections), and a missing column (exit 2, one
+line naming the file).
 
     test_study_wheels_compare.py --work DIR
 """
@@ -45,9 +46,9 @@ def main():
     rows = [l for l in text.splitlines() if l.startswith("| 0.")]
     # TE = DP/F_T (1 - s): DEM -2/4 x 0.9 = -0.45, SCM 2/7 x 0.9 = 0.257
     want = ["| 0.100 | 4.00 ± 0.04 | -2.00 ± 0.05 | 250.0 ± 1.0 | -0.45 | 7.00 (+75) † | "
-            "2.00 (+200) † | 400.0 (+60) | 0.26 |",
+            "2.00 (+4.00) † | 400.0 (+60) | 0.26 |",
             "| 0.200 | 5.00 ± 0.04 | -1.00 ± 0.05 | 300.0 ± 1.0 | -0.16 | 7.20 (+44) | "
-            "2.50 (+350) | 420.0 (+40) | 0.28 | (health: warning)"]
+            "2.50 (+3.50) | 420.0 (+40) | 0.28 | (health: warning)"]
     check(rows == want, f"comparison rows\n{rows}\nexpected\n{want}")
     check("† SCM point with health warnings: scm_rim_skid" in text, "the † footnote names the code")
     gap = [l for l in text.splitlines() if l.startswith("| wheel1 |")]
@@ -62,7 +63,9 @@ def main():
     text = md.read_text() if r.returncode == 0 and md.is_file() else ""
     check("## The active domain's sinkage allowance: 0.3 m (sweep.toml) against 0.45 m" in text,
           f"the allowance section (exit {r.returncode})")
-    # the difference is in % of the other setting's value: (-1.0 - -0.9) / 0.9
+    # the difference is in % of the other setting's value: (-1.0 - -0.9) / 0.9, and says so
+    check("| point | quantity | sweep.toml | 0.45 m allowance | (sweep.toml − 0.45 m allowance) "
+          "/ \\|0.45 m allowance\\| |" in text, "the allowance table's header names its difference")
     check("| wheel1 s 0.2 | drawbar pull [kN] | -1 ± 0.05 | -0.9 ± 0.05 | -11.11 % |" in text,
           "the allowance row: DP -1.0 against -0.9 kN")
     r = run_script(SCRIPT, dem, "--wheel-mu", allowance, "--md", md)

@@ -75,7 +75,8 @@ def fmt(v, digits=3):
 
 
 def comparison_table(dem, scm):
-    """Markdown: per wheel and slip, DEM beside each SCM soil, SCM's difference in % of DEM;
+    """Markdown: per wheel and slip, DEM beside each SCM soil, SCM's difference in % of DEM
+    (F_T, sinkage) or in kN (DP: it crosses zero, where a relative difference means nothing);
     an SCM point whose health is not ok is marked † and its codes listed under the table."""
     scm_soils = sorted({r["soil"] for r in scm})
     out, scm_codes = [], set()
@@ -83,7 +84,7 @@ def comparison_table(dem, scm):
         out += [f"### {wheel}", ""]
         head = ["slip", "DEM F_T [kN]", "DEM DP [kN]", "DEM sinkage [mm]", "DEM TE"]
         for s in scm_soils:
-            head += [f"{s}: F_T [kN] (Δ %)", "DP [kN] (Δ %)", "sinkage [mm] (Δ %)", "TE"]
+            head += [f"{s}: F_T [kN] (Δ %)", "DP [kN] (Δ kN)", "sinkage [mm] (Δ %)", "TE"]
         out += ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
         scm_at = by_point(scm)
         for r in sorted((r for r in dem if r["wheel"] == wheel), key=lambda r: num(r["slip"])):
@@ -105,7 +106,7 @@ def comparison_table(dem, scm):
                     mark = " †"
                     scm_codes.update(c for c in m.get("health_codes", "").split(";") if c)
                 cells += [f"{mft / 1e3:.2f} ({pct(mft, ft):+.0f}){mark}",
-                          f"{mdp / 1e3:.2f} ({pct(mdp, dp):+.0f}){mark}",
+                          f"{mdp / 1e3:.2f} ({(mdp - dp) / 1e3:+.2f}){mark}",
                           f"{mz * 1e3:.1f} ({pct(mz, z):+.0f})", fmt(m["te"], 2)]
             flag = "" if r["health"] == "ok" else f" (health: {r['health']})"
             out.append("| " + " | ".join(cells) + " |" + flag)
@@ -155,7 +156,11 @@ def point_table(dem, other, other_name, tolerance=None, ref="sweep.toml"):
     tolerance (a fraction) each difference gets a verdict, also returned."""
     dem_at = {(r["wheel"], round(num(r["target_slip"]), 4)): r for r in dem}
     verdict_head = f" within {tolerance:.0%} |" if tolerance is not None else ""
-    out = [f"| point | quantity | {ref} | {other_name} | difference |{verdict_head}",
+    # the difference is the reference's (the case, or the active domain) against the other run,
+    # in % of the other run's value: said in the header, since it reads the other way round from
+    # a sensitivity's "what the change did"
+    out = [f"| point | quantity | {ref} | {other_name} | ({ref} − {other_name}) / "
+           f"\\|{other_name}\\| |{verdict_head}",
            "|---|---|---|---|---|" + ("---|" if tolerance is not None else "")]
     verdicts = []
     for f in other:
@@ -250,7 +255,8 @@ def main():
     scm = [row for path in a.scm for row in read(path)]
     lines = ["# Validation case 3: comparison (written by compare.py)", "",
              f"DEM: mean ± standard error over test-phase seconds {a.window}; SCM: the same window; Δ: "
-             "SCM against DEM in % of DEM. TE = (DP / F_T)(1 - s).", ""]
+             "SCM − DEM, in % of DEM for F_T and sinkage, in kN for DP (DEM's DP crosses zero, where a "
+             "difference in % means nothing). TE = (DP / F_T)(1 - s).", ""]
     lines += comparison_table(dem, scm)
     if scm:
         lines += gap_table(dem, scm)
