@@ -315,9 +315,10 @@ def _recipe_num(recipe, defaults, key):
         raise EstimateError(f"recipe key {key} = {v!r}: expected a number")
 
 
-def bed_info(soil, restart, query, soilbin):
+def bed_info(soil, restart, query, soilbin, hold_s=0.0):
     """BedInfo of a sweep soil: `restart` is where its bed is (or will be), `query` a SoilQuery,
-    `soilbin` inputs/in.soilbin (the recipe keys' defaults)."""
+    `soilbin` inputs/in.soilbin (the recipe keys' defaults), `hold_s` [s] the bed-hold check run
+    after a bed is prepared (wheel-sweep --bed-hold; counted in a bed to prepare)."""
     restart = Path(restart)
     vf = Path(f"{restart}.vars")
     if restart.is_file() and vf.is_file():
@@ -357,6 +358,8 @@ def bed_info(soil, restart, query, soilbin):
                    sv["soil_dt"], "soil_dt (soil file)", False, soil_name=sv["soil_name"],
                    box=(dims[0], dims[1], dims[2]))
     info.prep_parts = bed_prep_times(r, defaults, sv)
+    if hold_s > 0:  # the whole bed, left alone (inputs/in.bedhold)
+        info.prep_parts["bed-hold check"] = hold_s
     dt = sv["soil_dt"]
     if "tile_length" in r:
         info.prep_weights = tile_weights(r, defaults, sv)

@@ -494,7 +494,8 @@ class Runner:
         be estimable); raises estimate.EstimateError."""
         query = estimate.SoilQuery(self.build / "bin" / "liggghts-wheel", self.repo / "inputs")
         soilbin = self.repo / "inputs" / "in.soilbin"
-        infos = {s.label: estimate.bed_info(s, self.bed_restart(s), query, soilbin)
+        infos = {s.label: estimate.bed_info(s, self.bed_restart(s), query, soilbin,
+                                            self.bed_hold_s)
                  for s in self.sweep.soils}
         done = {p.index for p in self.sweep.points if self.finished(p)[0]} if not self.force \
             else set()

@@ -382,6 +382,11 @@ def case_estimate_arithmetic(a, work):
     check(round(bi.particles) == 11625 and not bi.prepared, f"recipe particles {bi.particles}")
     check(bi.prep_parts == {"settle": 3.0} and bi.prep_steps == 1 + math.ceil(3.0 / ci["soil_dt"]),
           f"bed prep (max_settle_time 3 s, in.soilbin's default): {bi.prep_parts} {bi.prep_steps}")
+    # the bed-hold check (wheel-sweep --bed-hold 0.2) adds its 0.2 s on the whole bed
+    bi = E.bed_info(recipe, work / "none" / "soilbin_ci.restart", lambda f: ci, soilbin, 0.2)
+    check(bi.prep_parts == {"settle": 3.0, "bed-hold check": 0.2} and bi.prep_steps ==
+          1 + math.ceil(3.0 / ci["soil_dt"]) + math.ceil(0.2 / ci["soil_dt"]),
+          f"bed prep with the bed-hold check: {bi.prep_parts} {bi.prep_steps}")
     recipe.recipe.update(compaction="plate", plate_time=0.4, max_settle_time=0.5)
     bi = E.bed_info(recipe, work / "none" / "soilbin_ci.restart", lambda f: ci, soilbin)
     _close(sum(bi.prep_parts.values()), 0.5 + 0.5 + 1.25 * 0.4, "plate compaction")
