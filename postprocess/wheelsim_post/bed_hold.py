@@ -23,7 +23,9 @@ def parse(text, log="the log"):
     """in.bedhold's printed lines as the check's result: the hold's length [s], the centre of mass
     and the highest grain at its start and end [m], and how far the centre of mass sank as a
     fraction of its starting height, over the whole hold (`settlement`) and over its last quarter
-    (`settlement_last_quarter`, relative to the height before that quarter)."""
+    (`settlement_last_quarter`, relative to the height before that quarter), and the speed it
+    sank at over that quarter (`sink_rate_m_s`, > 0 sinking: a bed that creeps at rest, e.g. on
+    `cdt`, keeps that up)."""
     rows = [dict(kv.split("=", 1) for kv in m.group(1).split())
             for m in re.finditer(r"^bedhold: (.*)$", text, re.M)]
     if len(rows) != 5:
@@ -31,16 +33,22 @@ def parse(text, log="the log"):
     z = [float(r["zcm"]) for r in rows]
     if not all(v > 0 for v in z):
         raise BedHoldError(f"{DECK}: a centre of mass at or below the floor, {z} m (log: {log})")
-    return {"hold_s": float(rows[-1]["t"]), "zcm_start_m": z[0], "zcm_end_m": z[-1],
+    t = [float(r["t"]) for r in rows]
+    if not all(b > a for a, b in zip(t, t[1:])):
+        raise BedHoldError(f"{DECK}: times {t} s do not increase (log: {log})")
+    return {"hold_s": t[-1], "zcm_start_m": z[0], "zcm_end_m": z[-1],
             "ztop_start_m": float(rows[0]["ztop"]), "ztop_end_m": float(rows[-1]["ztop"]),
-            "settlement": 1.0 - z[-1] / z[0], "settlement_last_quarter": 1.0 - z[-1] / z[-2]}
+            "settlement": 1.0 - z[-1] / z[0], "settlement_last_quarter": 1.0 - z[-1] / z[-2],
+            "sink_rate_m_s": (z[-2] - z[-1]) / (t[-1] - t[-2])}
 
 
 def describe(r):
     """One line on a result of parse: the centre of mass before and after, in m and %."""
+    rate = r.get("sink_rate_m_s")  # (not in records written before 2026-11-29, 22:00)
     return (f"centre of mass {r['zcm_start_m']:.5g} -> {r['zcm_end_m']:.5g} m "
             f"({-100 * r['settlement']:+.2f} %) over {r['hold_s']:.3g} s, last quarter "
-            f"{-100 * r['settlement_last_quarter']:+.3f} %")
+            f"{-100 * r['settlement_last_quarter']:+.3f} %"
+            + ("" if rate is None else f" (sinking {1e3 * rate:.2g} mm/s)"))
 
 
 def failure(r, bed, log, settled=True):

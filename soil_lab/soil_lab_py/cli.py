@@ -145,9 +145,8 @@ def _report(directory, quiet=False):
         for w in s.get("shear", {}).get("warnings", []):
             print(f"soil-lab: warning: {w}")
         for bed, h in sorted(r.bed_holds.items()):
-            print(f"soil-lab: bed '{bed}' left alone {h['hold_s']:.3g} s under the test settings:"
-                  f" centre of mass {-100 * h['settlement']:+.2f} % (last quarter "
-                  f"{-100 * h['settlement_last_quarter']:+.3f} %)")
+            print(f"soil-lab: bed '{bed}' left alone under the test settings: "
+                  f"{bed_hold.describe(h)}")
         if r.costs or r.bed_costs:
             c = s["cost_total"]
             print(f"soil-lab: cost: beds {c['beds_wall_s']:.0f} s + runs {c['runs_wall_s']:.0f} s "

@@ -20,6 +20,8 @@ class Parse(unittest.TestCase):
         self.assertAlmostEqual(r["settlement_last_quarter"], 1 - 0.095 / 0.097, places=12)
         self.assertEqual((r["zcm_start_m"], r["zcm_end_m"], r["hold_s"]), (0.100, 0.095, 0.2))
         self.assertEqual((r["ztop_start_m"], r["ztop_end_m"]), (0.05, 0.05))
+        self.assertAlmostEqual(r["sink_rate_m_s"], 0.002 / 0.05, places=12)  # last quarter
+        self.assertIn("(sinking 40 mm/s)", bed_hold.describe(r))
 
     def test_a_bed_that_rises_settles_negatively(self):
         r = bed_hold.parse(screen([0.1, 0.1, 0.1, 0.1, 0.101]))
@@ -30,6 +32,10 @@ class Parse(unittest.TestCase):
         text = "".join(screen([0.1] * 5).splitlines(keepends=True)[:5])
         with self.assertRaisesRegex(bed_hold.BedHoldError, r"printed 3 of its 5 lines.*x\.log"):
             bed_hold.parse(text, "x.log")
+
+    def test_times_that_do_not_increase_are_an_error(self):
+        with self.assertRaisesRegex(bed_hold.BedHoldError, "do not increase"):
+            bed_hold.parse(screen([0.1] * 5, t_end=0.0))
 
     def test_a_centre_of_mass_under_the_floor_is_an_error(self):
         with self.assertRaisesRegex(bed_hold.BedHoldError, "at or below the floor"):
