@@ -11,7 +11,7 @@ import re
 
 DECK = "in.bedhold"  #: in inputs/
 DEFAULT_HOLD_S = 0.2  #: [s] how long a bed is left alone
-SETTLE_LIMIT = 0.03  #: a larger settlement stops the tool: the bed is not the one prepared
+SETTLE_LIMIT = 0.03  #: a larger settlement (or rise) stops the tool: not the bed prepared
 SETTLE_NOTE = 0.01  #: a larger one is reported as "settles, within the limit"
 
 
@@ -26,18 +26,23 @@ def parse(text, log="the log"):
     (`settlement_last_quarter`, relative to the height before that quarter), and the speed it
     sank at over that quarter (`sink_rate_m_s`, > 0 sinking: a bed that creeps at rest, e.g. on
     `cdt`, keeps that up)."""
-    rows = [dict(kv.split("=", 1) for kv in m.group(1).split())
-            for m in re.finditer(r"^bedhold: (.*)$", text, re.M)]
-    if len(rows) != 5:
-        raise BedHoldError(f"{DECK} printed {len(rows)} of its 5 lines (log: {log})")
-    z = [float(r["zcm"]) for r in rows]
+    lines = [m.group(1) for m in re.finditer(r"^bedhold: (.*)$", text, re.M)]
+    if len(lines) != 5:
+        raise BedHoldError(f"{DECK} printed {len(lines)} of its 5 lines (log: {log})")
+    try:
+        rows = [dict(kv.split("=", 1) for kv in line.split()) for line in lines]
+        z = [float(r["zcm"]) for r in rows]
+        t = [float(r["t"]) for r in rows]
+        ztop = [float(r["ztop"]) for r in rows]
+    except (ValueError, KeyError) as e:
+        raise BedHoldError(f"{DECK}: a line not of the form 'bedhold: quarter=Q t=T zcm=Z "
+                           f"ztop=Z' ({type(e).__name__}: {e}) (log: {log})") from None
     if not all(v > 0 for v in z):
         raise BedHoldError(f"{DECK}: a centre of mass at or below the floor, {z} m (log: {log})")
-    t = [float(r["t"]) for r in rows]
     if not all(b > a for a, b in zip(t, t[1:])):
         raise BedHoldError(f"{DECK}: times {t} s do not increase (log: {log})")
     return {"hold_s": t[-1], "zcm_start_m": z[0], "zcm_end_m": z[-1],
-            "ztop_start_m": float(rows[0]["ztop"]), "ztop_end_m": float(rows[-1]["ztop"]),
+            "ztop_start_m": ztop[0], "ztop_end_m": ztop[-1],
             "settlement": 1.0 - z[-1] / z[0], "settlement_last_quarter": 1.0 - z[-1] / z[-2],
             "sink_rate_m_s": (z[-2] - z[-1]) / (t[-1] - t[-2])}
 
@@ -52,11 +57,18 @@ def describe(r):
 
 
 def failure(r, bed, log, settled=True):
-    """The error message when bed `bed` (its name, for the message) settled by more than
-    SETTLE_LIMIT, else None. `settled`: in.soilbin's verdict on the bed's preparation (its printed
-    `settled`); a bed whose settling was cut off is told so, not blamed on its settings."""
-    if r["settlement"] <= SETTLE_LIMIT:
+    """The error message when bed `bed` (its name, for the message) settled, or rose, by more
+    than SETTLE_LIMIT, else None. `settled`: in.soilbin's verdict on the bed's preparation (its
+    printed `settled`); a bed whose settling was cut off is told so, not blamed on its settings."""
+    if abs(r["settlement"]) <= SETTLE_LIMIT:
         return None
+    if r["settlement"] < 0:
+        return (f"bed '{bed}' does not hold under the soil's test settings: it rises, "
+                f"{describe(r)}, by more than the {100 * SETTLE_LIMIT:.0f} % a bed may move (its "
+                f"bulk density would be off by as much as the calibration's tolerance): the test "
+                f"settings push its grains apart (e.g. a cohesion or overlap the preparation did "
+                f"not have). Prepare it with settings it can hold (docs/soils.md \"Preparing the "
+                f"bed with other contact settings\"; log: {log})")
     if not settled:
         return (f"bed '{bed}' had not settled when it was prepared (in.soilbin: settled = 0, its "
                 f"settling cut off by max_settle_time) and is still falling: {describe(r)}, more "
@@ -71,5 +83,8 @@ def failure(r, bed, log, settled=True):
 
 
 def verdict(r):
-    """'holds' or 'settles, within the limit' (above SETTLE_NOTE) for a result that passed."""
-    return "settles, within the limit" if r["settlement"] > SETTLE_NOTE else "holds"
+    """'holds' or 'settles (rises), within the limit' (beyond SETTLE_NOTE) for a result that
+    passed."""
+    if r["settlement"] > SETTLE_NOTE:
+        return "settles, within the limit"
+    return "rises, within the limit" if r["settlement"] < -SETTLE_NOTE else "holds"

@@ -624,15 +624,18 @@ class Runner:
     def check_bed_hold(self, soil, restart):
         """The bed-hold check (docs/soil-bins.md "The bed-hold check") of a recipe bed: the bed
         left alone bed_hold_s under the soil's test settings (inputs/in.bedhold, on the bed's
-        ranks). Recorded in <restart>.hold.json with what it was made from (the restart's and the
-        soil's inputs' hashes, bed_hold_s) and not run again for the same; raises RuntimeError when
-        the bed settles by more than bed_hold.SETTLE_LIMIT."""
+        ranks). Recorded in <restart>.hold.json with what it was made from (the hashes of the
+        restart, of the soil's inputs and of in.bedhold and what it includes; bed_hold_s) and not
+        run again for the same; raises RuntimeError when the bed settles (or rises) by more than
+        bed_hold.SETTLE_LIMIT (a dry run says it would)."""
         if self.bed_hold_s <= 0:
             return
         record = restart.parent / f"{restart.name}.hold.json"
         log = restart.parent / "bedhold.log"
+        deck = self.repo / "inputs" / bed_hold.DECK
         key = {"hold_s": self.bed_hold_s, "restart_sha256": self.file_hash(restart),
-               "bed_inputs": self.bed_inputs(soil)}
+               "bed_inputs": self.bed_inputs(soil), "deck_sha256": self.file_hash(deck),
+               "deck_included_sha256": self.included_files((deck,))}
         done = None
         if record.is_file():
             try:
@@ -647,8 +650,7 @@ class Runner:
                          f"soil's test settings (the bed-hold check)")
                 return
             cmd = mpi_launch.mpirun(self.sweep.bed_np)
-            cmd += [str(self.build / "bin" / "liggghts-wheel"),
-                    "-in", str(self.repo / "inputs" / bed_hold.DECK),
+            cmd += [str(self.build / "bin" / "liggghts-wheel"), "-in", str(deck),
                     "-var", "inputs_dir", str(self.repo / "inputs"),
                     "-var", "restart_file", str(restart), "-var", "hold_s", str(self.bed_hold_s),
                     "-log", "none"]
@@ -669,6 +671,10 @@ class Runner:
         unsettled = prep_log.is_file() and re.search(
             r"^soilbin: settled = 0\b", prep_log.read_text(errors="replace"), re.M) is not None
         error = bed_hold.failure(r, soil.label, log, settled=not unsettled)
+        if error and self.dry_run:
+            self.say(f"bed {soil.label}: would stop the sweep (its bed-hold check, recorded): "
+                     f"{error}")
+            return
         if error:
             raise RuntimeError(error)
         self.say(f"bed {soil.label}: {bed_hold.verdict(r)} under the soil's test settings: "

@@ -513,8 +513,9 @@ def analyse(directory):
     for bed, done in [(q, _done(q)) for q in sorted(beds.iterdir())] if beds.is_dir() else []:
         if done is not None and "wall_s" in done:
             r.bed_costs[bed.name] = float(done["wall_s"])
-        hold = _done(bed / "hold")  # the bed-hold check (runner.Lab.bed_hold)
-        if hold is not None and "result" in hold:
+        hold = _done(bed / "hold")  # the bed-hold check (runner.Lab.bed_hold) of this bed only
+        if (hold is not None and "result" in hold and done is not None
+                and hold.get("bed_inputs") == done.get("inputs")):
             r.bed_holds[bed.name] = hold["result"]
             r.bed_costs[f"{bed.name}/hold"] = float(hold.get("wall_s", 0.0))
     return r

@@ -145,7 +145,11 @@ def _report(directory, quiet=False):
         for w in s.get("shear", {}).get("warnings", []):
             print(f"soil-lab: warning: {w}")
         for bed, h in sorted(r.bed_holds.items()):
-            print(f"soil-lab: bed '{bed}' left alone under the test settings: "
+            # a failed check in the report: the lab ran on with --bed-hold 0
+            failed = bed_hold.failure(h, bed, Path(directory) / "beds" / bed / "hold" /
+                                      "liggghts.log")
+            print(f"soil-lab: warning: {failed} (this lab ran with the check off)" if failed else
+                  f"soil-lab: bed '{bed}' left alone under the test settings: "
                   f"{bed_hold.describe(h)}")
         if r.costs or r.bed_costs:
             c = s["cost_total"]

@@ -299,7 +299,9 @@ class Lab:
                 result = bed_hold.parse(text, log)
             except bed_hold.BedHoldError as e:
                 raise LabRunError(str(e)) from None
-            done = {"result": result, "wall_s": round(time.monotonic() - t0, 1), "np": self.np}
+            # bed_inputs: the bed the record is of, for the report (analysis.analyse)
+            done = {"result": result, "wall_s": round(time.monotonic() - t0, 1), "np": self.np,
+                    "bed_inputs": bed_key.inputs}
             self._finish(d, key, **done)
         r = done["result"]
         error = bed_hold.failure(r, name, log, settled)

@@ -28,6 +28,13 @@ class Parse(unittest.TestCase):
         self.assertAlmostEqual(r["settlement"], -0.01, places=12)
         self.assertIsNone(bed_hold.failure(r, "b", "log"))
 
+    def test_a_garbled_line_is_an_error_naming_the_log(self):
+        text = screen([0.1] * 5).replace("zcm=0.1 ztop", "zcm ztop", 1)
+        with self.assertRaisesRegex(bed_hold.BedHoldError, r"not of the form.*x\.log"):
+            bed_hold.parse(text, "x.log")
+        with self.assertRaisesRegex(bed_hold.BedHoldError, r"not of the form"):
+            bed_hold.parse(screen([0.1] * 5).replace("ztop=", "top=", 1))
+
     def test_a_cut_output_names_the_count_and_the_log(self):
         text = "".join(screen([0.1] * 5).splitlines(keepends=True)[:5])
         with self.assertRaisesRegex(bed_hold.BedHoldError, r"printed 3 of its 5 lines.*x\.log"):
@@ -55,6 +62,12 @@ class Verdict(unittest.TestCase):
                               r"centre of mass 0\.1 -> 0\.089 m \(-11\.00 %\)")
         self.assertIn("Preparing the bed with other contact settings", msg)
         self.assertIn("beds/plate/hold/liggghts.log", msg)
+
+    def test_a_bed_that_rises_beyond_the_limit_fails_too(self):
+        self.assertEqual(bed_hold.verdict(self.result(-0.02)), "rises, within the limit")
+        msg = bed_hold.failure(self.result(-0.05), "shear", "log")
+        self.assertRegex(msg, r"^bed 'shear' does not hold under the soil's test settings: it "
+                              r"rises, centre of mass 0\.1 -> 0\.105 m \(\+5\.00 %\)")
 
     def test_an_unsettled_bed_is_told_so(self):
         msg = bed_hold.failure(self.result(0.4), "my_sand", "bedhold.log", settled=False)

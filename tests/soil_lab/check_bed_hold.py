@@ -3,7 +3,8 @@
 - `ci_loose_pour.in` (ci grains poured with sliding friction 0.9 and rolling friction 0.5, tested
   frictionless) falls in once its test settings apply: the lab stops with exit 1 and an error
   naming the bed, its settlement (more than the 3 % limit) and the docs section;
-- the same soil with `--bed-hold 0` (no check) runs through (exit 0) and records no check;
+- the same lab again with `--bed-hold 0` runs on (exit 0), and its report warns of the failed
+  check it records; the same soil with `--bed-hold 0` from the start records no check;
 - the `ci` soil (the same settings for the pour and the tests) holds: exit 0, and results.toml's
   [bed_hold.plate] records a settlement under 1 %, over the 0.2 s asked for.
 Each lab is a bulk test on a 0.12 m bin (~4 400 spheres, seconds).
@@ -56,6 +57,15 @@ def main():
                         "settlement and docs/soils.md's section")
     elif not float(m.group(1)) > 3.0:
         failures.append(f"the loose pour stopped at a settlement of {m.group(1)} %, not above 3 %")
+
+    # the same lab again with the check off: it runs on, and its report warns of the failed check
+    r = lab(a.build_dir, work / "loose", loose, "--bed-hold", "0")
+    res = work / "loose" / "results.toml"
+    h = tomllib.loads(res.read_text()).get("bed_hold", {}).get("plate") if res.is_file() else None
+    if r.returncode != 0 or h is None or not h["settlement"] > 0.03 or \
+            "warning: bed 'plate' does not hold" not in r.stdout:
+        failures.append("the loose pour again with --bed-hold 0: expected exit 0, the failed check "
+                        "in results.toml and a warning")
 
     r = lab(a.build_dir, work / "loose_unchecked", loose, "--bed-hold", "0")
     res = work / "loose_unchecked" / "results.toml"
