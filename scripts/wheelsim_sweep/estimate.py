@@ -285,6 +285,7 @@ class BedInfo:
     prep_parts: dict = field(default_factory=dict)  # [s] insertion, settle, compaction
     # tiled beds: the fraction of the bed's particles each part runs with (a part not named: 1)
     prep_weights: dict = field(default_factory=dict)
+    hold_pending: bool = False  # prepared, its bed-hold check still to run (add_bed_hold)
 
 
 class SoilQuery:
@@ -359,7 +360,7 @@ def bed_info(soil, restart, query, soilbin, hold_s=0.0):
                    box=(dims[0], dims[1], dims[2]))
     info.prep_parts = bed_prep_times(r, defaults, sv)
     if hold_s > 0:  # the whole bed, left alone (inputs/in.bedhold)
-        info.prep_parts["bed-hold check"] = hold_s
+        info.prep_parts[BED_HOLD_PART] = hold_s
     dt = sv["soil_dt"]
     if "tile_length" in r:
         info.prep_weights = tile_weights(r, defaults, sv)
@@ -380,6 +381,20 @@ def tile_weights(recipe, defaults, sv):
     zone = num("tile_end_zone") * sv.get("soil_dmax", sv.get("soil_dref", 0.0))
     return {"block settle": 1.0 / n, "end-zone relax": min(1.0, 2.0 * zone / length),
             "relax": 1.0}
+
+
+BED_HOLD_PART = "bed-hold check"  #: its name among a bed's prep_parts
+
+
+def add_bed_hold(info, hold_s):
+    """A prepared bed whose bed-hold check (hold_s [s] on the whole bed) has still to run: counted
+    like a bed to prepare with that one part (needs the bed's time step)."""
+    if info.dt is None:
+        raise EstimateError(f"bed {info.label}: its bed-hold check needs the bed's time step "
+                            "(bed_dt in its .vars)")
+    info.hold_pending = True
+    info.prep_parts = {BED_HOLD_PART: hold_s}
+    info.prep_steps = math.ceil(hold_s / info.dt - 1e-9)
 
 
 def bed_prep_times(recipe, defaults, sv):
@@ -553,7 +568,7 @@ def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: F
     beds = []
     used = {p.soil.label for p in todo}
     for label, info in infos.items():
-        if info.prepared or label not in used:
+        if (info.prepared and not info.hold_pending) or label not in used:
             continue
         wall = run_wall(info.particles, info.prep_steps, bed_np, rate.bed_rate_per_rank,
                         rate.efficiency_np2, rate.startup_s, oversubscription(bed_np, cores))
@@ -578,8 +593,12 @@ def summary_line(est):
     shares = [e.active_share for e in todo if e.active_share is not None]
     active = (f"active domain {_range([100 * a for a in shares], lambda x: f'{x:.0f}')} % of "
               "the particles; " if shares else "")
-    beds = (f" (points {fmt_time(est.points_wall)} + {len(est.beds)} bed(s) to prepare <= "
-            f"{fmt_time(est.beds_wall)})" if est.beds else "")
+    checks = sum(b.info.hold_pending for b in est.beds)
+    what = " + ".join(w for w in (f"{len(est.beds) - checks} bed(s) to prepare" if
+                                  len(est.beds) > checks else "",
+                                  f"{checks} bed-hold check(s)" if checks else "") if w)
+    beds = (f" (points {fmt_time(est.points_wall)} + {what} <= {fmt_time(est.beds_wall)})"
+            if est.beds else "")
     return (f"estimate: {len(todo)} point(s) to run, "
             f"{_range([e.particles for e in todo], fmt_int)} particles, "
             f"dt {_range([e.dt for e in todo], lambda x: f'{x:.4g}')} s, "
@@ -623,8 +642,9 @@ def report(est, sweep_name):
         parts = " + ".join(f"{k} {v:.4g}" + (f" x {w[k]:.3g} of the particles" if k in w and
                                               w[k] != 1.0 else "")
                            for k, v in b.info.prep_parts.items())
+        what = ("prepared, its bed-hold check to run" if b.info.hold_pending else "to prepare")
         lines.append(
-            f"estimate: bed {b.info.label} (to prepare, {est.bed_np} rank(s)): particles "
+            f"estimate: bed {b.info.label} ({what}, {est.bed_np} rank(s)): particles "
             f"{fmt_int(b.info.particles)} ({b.info.particles_source}); dt {b.dt:.6g} s "
             f"({b.info.dt_source}); simulated <= {sum(b.info.prep_parts.values()):.4g} s "
             f"({parts}); {'particle-weighted steps' if w else 'steps'} <= {fmt_int(b.steps)}; "

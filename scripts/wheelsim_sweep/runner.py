@@ -497,6 +497,11 @@ class Runner:
         infos = {s.label: estimate.bed_info(s, self.bed_restart(s), query, soilbin,
                                             self.bed_hold_s)
                  for s in self.sweep.soils}
+        for s in self.sweep.soils:  # a prepared recipe bed whose bed-hold check is still to run
+            info = infos[s.label]
+            if (info.prepared and s.recipe is not None and self.bed_hold_s > 0
+                    and self.bed_hold_record(s, self.bed_restart(s)) is None):
+                estimate.add_bed_hold(info, self.bed_hold_s)
         done = {p.index for p in self.sweep.points if self.finished(p)[0]} if not self.force \
             else set()
         return estimate.estimate(self.sweep.points, infos, rate(), self.sweep.np,
@@ -621,6 +626,28 @@ class Runner:
             self.say(f"bed {soil.label}: ready in {estimate.fmt_time(time.monotonic() - t0)}")
             self.check_bed_hold(soil, restart)
 
+    @staticmethod
+    def bed_hold_file(restart):
+        """The bed-hold check's record of a recipe bed."""
+        return restart.parent / f"{restart.name}.hold.json"
+
+    def bed_hold_key(self, soil, restart):
+        """What a bed-hold check's result depends on: its length, the bed (the restart's bytes,
+        what it was made from) and in.bedhold with what it includes."""
+        deck = self.repo / "inputs" / bed_hold.DECK
+        return {"hold_s": self.bed_hold_s, "restart_sha256": self.file_hash(restart),
+                "bed_inputs": self.bed_inputs(soil), "deck_sha256": self.file_hash(deck),
+                "deck_included_sha256": self.included_files((deck,))}
+
+    def bed_hold_record(self, soil, restart):
+        """The bed-hold check's record of this bed as it is now ({key, result, wall_s, np}), or
+        None (none, unreadable, or of other inputs)."""
+        try:
+            done = json.loads(self.bed_hold_file(restart).read_text())
+        except (OSError, ValueError):
+            return None
+        return done if done.get("key") == self.bed_hold_key(soil, restart) else None
+
     def check_bed_hold(self, soil, restart):
         """The bed-hold check (docs/soil-bins.md "The bed-hold check") of a recipe bed: the bed
         left alone bed_hold_s under the soil's test settings (inputs/in.bedhold, on the bed's
@@ -630,20 +657,9 @@ class Runner:
         bed_hold.SETTLE_LIMIT (a dry run says it would)."""
         if self.bed_hold_s <= 0:
             return
-        record = restart.parent / f"{restart.name}.hold.json"
         log = restart.parent / "bedhold.log"
         deck = self.repo / "inputs" / bed_hold.DECK
-        key = {"hold_s": self.bed_hold_s, "restart_sha256": self.file_hash(restart),
-               "bed_inputs": self.bed_inputs(soil), "deck_sha256": self.file_hash(deck),
-               "deck_included_sha256": self.included_files((deck,))}
-        done = None
-        if record.is_file():
-            try:
-                done = json.loads(record.read_text())
-            except ValueError:
-                done = None
-            if done is not None and done.get("key") != key:
-                done = None
+        done = self.bed_hold_record(soil, restart)
         if done is None:
             if self.dry_run:
                 self.say(f"bed {soil.label}: would leave it alone {self.bed_hold_s:g} s under the "
@@ -663,9 +679,9 @@ class Runner:
                 result = bed_hold.parse(log.read_text(errors="replace"), log)
             except bed_hold.BedHoldError as e:
                 raise RuntimeError(f"bed '{soil.label}': {e}") from None
-            done = {"key": key, "result": result, "wall_s": round(time.monotonic() - t0, 1),
-                    "np": self.sweep.bed_np}
-            _write_atomic(record, json.dumps(done, indent=1) + "\n")
+            done = {"key": self.bed_hold_key(soil, restart), "result": result,
+                    "wall_s": round(time.monotonic() - t0, 1), "np": self.sweep.bed_np}
+            _write_atomic(self.bed_hold_file(restart), json.dumps(done, indent=1) + "\n")
         r = done["result"]
         prep_log = restart.parent / "soilbin.log"  # in.soilbin's verdict on its settling
         unsettled = prep_log.is_file() and re.search(

@@ -338,6 +338,19 @@ def case_estimate_arithmetic(a, work):
                  "settle <= 0.5", "steps 20 000", "wall 1 min 4 s (64 s)", "bed bed1 (to prepare",
                  "steps <= 5 001", "1 min 56 s (117 s"):
         check(want in rep, f"report lacks {want!r}:\n{rep}")
+    # a prepared bed whose bed-hold check is still to run: 0.2 s at its dt 1e-4 = 2000 steps,
+    # 2 + 2000 x 1e4 / 1e6 = 22 s on 1 rank
+    held = E.BedInfo("bed1", 1e4, "test", 1e-4, "test", prepared=True)
+    est = E.estimate(pts, {"bed1": held}, rate, 2, 1, 2, 4, overhead_s=0.0)
+    check(not est.beds, "a prepared bed counted")
+    E.add_bed_hold(held, 0.2)
+    est = E.estimate(pts, {"bed1": held}, rate, 2, 1, 2, 4, overhead_s=0.0)
+    _close(est.beds_wall, 22.0, "bed-hold check wall")
+    line = E.summary_line(est)
+    rep = "\n".join(E.report(est, "synthetic.toml"))
+    check("+ 1 bed-hold check(s) <= 22.0 s" in line and "bed to prepare" not in line
+          and "bed bed1 (prepared, its bed-hold check to run" in rep
+          and "bed-hold check 0.2" in rep, f"the pending bed-hold check:\n{line}\n{rep}")
     # whole chunks of the deck's steps; the per-point overhead
     est = E.estimate(pts, {"bed1": info}, rate, 1, 1, 1, 4, chunk=3000, overhead_s=1.5)
     check(est.points[0].steps == 21000, f"chunked steps {est.points[0].steps}")
