@@ -1,7 +1,7 @@
 """soil-lab's analysis of a lab directory (soil_lab_py.analysis) on synthetic plate runs:
 the unloading stiffness is taken from the turning point on, whatever the loading's noise; the
 SCM file of a soil whose Mohr-Coulomb intercept is negative gets c = 0 and phi through the
-origin, and says so."""
+origin, and says so; a bed's bed-hold check is reported only for the bed as it is."""
 
 import json
 import tempfile
@@ -412,6 +412,29 @@ class Analysis(unittest.TestCase):
         w = int(j.size * 0.05)
         self.assertAlmostEqual(r.tau_peak_Pa, rising[-w:].mean(), delta=1e-6)
         self.assertAlmostEqual(r.j_peak_m, j[-w + w // 2], delta=1e-12)
+
+    def test_only_the_bed_hold_record_of_the_bed_as_it_is_is_reported(self):
+        d = Path(tempfile.mkdtemp())
+        (d / "soil.toml").write_text('name = "synthetic"\npreset = "standard"\ndmax_m = 0.004\n')
+        bed = d / "beds" / "plate"
+        (bed / "hold").mkdir(parents=True)
+        (bed / "done.json").write_text(json.dumps(
+            {"inputs": "bed-A", "wall_s": 10.0,
+             "result": {"bulk_density": "1000", "porosity": "0.5", "bed_depth": "0.1"}}))
+        hold = {"hold_s": 0.2, "settlement": 0.0004, "settlement_last_quarter": 1e-4,
+                "sink_rate_m_s": 1e-4}
+
+        def record(bed_inputs):
+            (bed / "hold" / "done.json").write_text(json.dumps(
+                {"inputs": "k", "bed_inputs": bed_inputs, "wall_s": 4.0, "result": hold}))
+            return analysis.analyse(d)
+        r = record("bed-A")
+        self.assertEqual(r.bed_holds, {"plate": hold})
+        self.assertEqual(r.bed_costs, {"plate": 10.0, "plate/hold": 4.0})
+        self.assertEqual(analysis.summary(r)["bed_hold"], {"plate": hold})
+        r = record("bed-B")  # the check of an earlier preparation of this bed: not this bed's
+        self.assertEqual((r.bed_holds, r.bed_costs), ({}, {"plate": 10.0}))
+        self.assertNotIn("bed_hold", analysis.summary(r))
 
 
 if __name__ == "__main__":
