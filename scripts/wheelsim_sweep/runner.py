@@ -683,9 +683,11 @@ class Runner:
                     "wall_s": round(time.monotonic() - t0, 1), "np": self.sweep.bed_np}
             _write_atomic(self.bed_hold_file(restart), json.dumps(done, indent=1) + "\n")
         r = done["result"]
-        prep_log = restart.parent / "soilbin.log"  # in.soilbin's verdict on its settling
-        unsettled = prep_log.is_file() and re.search(
-            r"^soilbin: settled = 0\b", prep_log.read_text(errors="replace"), re.M) is not None
+        # in.soilbin's verdict on its settling, read only for a bed beyond the limit
+        prep_log = restart.parent / "soilbin.log"
+        unsettled = (abs(r["settlement"]) > bed_hold.SETTLE_LIMIT and prep_log.is_file()
+                     and re.search(r"^soilbin: settled = 0\b",
+                                   prep_log.read_text(errors="replace"), re.M) is not None)
         error = bed_hold.failure(r, soil.label, log, settled=not unsettled)
         if error and self.dry_run:
             self.say(f"bed {soil.label}: would stop the sweep (its bed-hold check, recorded): "

@@ -13,13 +13,13 @@ Each lab is a bulk test on a 0.12 m bin (~4 400 spheres, seconds).
 Exit 0 pass, 1 fail, 77 skip (liggghts-wheel not built).
 """
 
-import argparse
 import re
-import shutil
 import subprocess
 import sys
 import tomllib
 from pathlib import Path
+
+import lab_check
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
@@ -36,15 +36,10 @@ def lab(build_dir, out, soil, *extra):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--build-dir", required=True)
-    ap.add_argument("--work", required=True)
-    a = ap.parse_args()
-    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").is_file():
-        print("SKIP: liggghts-wheel not built")
-        return 77
-    work = Path(a.work).resolve()
-    shutil.rmtree(work, ignore_errors=True)
+    started = lab_check.start()
+    if started is None:
+        return lab_check.SKIP
+    a, work = started
     failures = []
 
     loose = str(HERE / "ci_loose_pour.in")

@@ -8,14 +8,14 @@ through `setpriv --pdeathsig KILL`; docs/soil-lab.md "Stopping and resuming").
 Exit 0 pass, 1 fail, 77 skip (liggghts-wheel not built).
 """
 
-import argparse
 import os
-import shutil
 import signal
 import subprocess
 import sys
 import time
 from pathlib import Path
+
+import lab_check
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -39,16 +39,11 @@ def survivors(tag):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--build-dir", required=True)
-    ap.add_argument("--work", required=True)
-    ap.add_argument("--signal", choices=["KILL", "TERM"], default="KILL")
-    a = ap.parse_args()
-    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").is_file():
-        print("SKIP: liggghts-wheel not built")
-        return 77
-    work = Path(a.work).resolve()
-    shutil.rmtree(work, ignore_errors=True)
+    started = lab_check.start(
+        lambda ap: ap.add_argument("--signal", choices=["KILL", "TERM"], default="KILL"))
+    if started is None:
+        return lab_check.SKIP
+    a, work = started
     out = work / f"lab_{a.signal.lower()}"
     lab = subprocess.Popen(
         [str(ROOT / "soil_lab" / "soil-lab"), "run", "ci", "--preset", "quick", "--tests",
