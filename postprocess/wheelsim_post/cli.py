@@ -7,12 +7,12 @@ stderr and exit status 2; a misspelt option or command names the nearest valid o
 import sys
 
 from . import (cmd_approach, cmd_compare, cmd_curves, cmd_maps, cmd_pvd, cmd_series, cmd_study,
-               cmd_vtk)
+               cmd_surface, cmd_vtk)
 from .errors import PostError
 from .usage import EXIT_USAGE, UsageParser, add_version
 
 COMMANDS = (cmd_curves, cmd_series, cmd_approach, cmd_maps, cmd_compare, cmd_study, cmd_vtk,
-            cmd_pvd)
+            cmd_pvd, cmd_surface)
 
 
 def build_parser():

@@ -120,7 +120,7 @@ class UsageTest(TempDirTestCase):
             (
                 ["curvs", "run.h5"],
                 "wheelsim-post: error: argument COMMAND: invalid choice: 'curvs' (choose "
-                "from 'curves', 'series', 'approach', 'maps', 'compare', 'study', 'vtk', 'pvd')"
+                "from 'curves', 'series', 'approach', 'maps', 'compare', 'study', 'vtk', 'pvd', 'surface')"
                 " (did you mean 'curves'?)",
             ),
             (
@@ -169,7 +169,7 @@ class HelpTest(unittest.TestCase):
         )
         self.assertEqual(
             sorted(subparsers.choices),
-            ["approach", "compare", "curves", "maps", "pvd", "series", "study", "vtk"],
+            ["approach", "compare", "curves", "maps", "pvd", "series", "study", "surface", "vtk"],
         )
         for name, sub in subparsers.choices.items():
             for action in sub._actions:
