@@ -10,7 +10,7 @@ import tempfile
 
 import numpy as np
 
-from . import bed_surface, mpi_launch
+from . import bed_surface, box_frame, mpi_launch
 from .choices import split_list
 from .csvio import write_csv
 from .errors import PostError
@@ -93,19 +93,22 @@ def read_bed(restart, vars_file, args, label):
 
 
 def wheel_x_at(run_path, step):
-    """The wheel centre's x [m] in the run file at LIGGGHTS step `step` (the sample at that step,
-    else the last one before it)."""
+    """(x [m] in LIGGGHTS' box, the step of the sample) of the wheel centre in the run file at
+    LIGGGHTS step `step`: the sample at that step, else the last one before it."""
     with RunFile(run_path) as run_file:
         if not run_file.has_observable(WHEEL_POSITION):
             raise PostError(f"--run: '{run_path}' has no observable {WHEEL_POSITION}")
         series = run_file.observable(WHEEL_POSITION)
+        origin, source = box_frame.origin_x(run_file)
+    if origin is None:
+        raise PostError(f"--run: where '{run_path}' started the wheel in the box is {source}")
     before = np.flatnonzero(series.step <= step)
     if before.size == 0:
         raise PostError(f"--run: '{run_path}' has no sample at or before step {step} (its first "
                         f"is step {int(series.step[0]) if len(series) else 'none'}): not the run "
                         "that wrote this checkpoint?")
     i = before[-1]
-    return float(series.value.reshape(len(series), -1)[i, 0]), int(series.step[i])
+    return float(series.value.reshape(len(series), -1)[i, 0]) + origin, int(series.step[i])
 
 
 def parse_band(text):

@@ -27,6 +27,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import box_frame
 from .errors import PostError
 from .metadata import rig_config
 from .quantities import EFFICIENCY_OF_MEANS, of_means
@@ -409,7 +410,8 @@ def steady_state(run, window, lug_count=None, lug_source="unknown"):
     conventions of slip.py: 'slip' driving, 'slip_skid', 'slip_signed'), of_means(<slip
     name>) and EFFICIENCY_OF_MEANS -> Stat (std NaN), 'n_samples', 'span' (the WindowSpan), 'r_eff',
     'vertical_load' and 'vertical_load_source', 'dp_trend' ((change, standard error) [N]),
-    'wheel_x_max' (the wheel centre's largest x in the window [m], NaN without wheel/position).
+    'wheel_x_max' (the wheel centre's largest x in the window [m] in LIGGGHTS' box, box_frame.py;
+    NaN without wheel/position or where the box origin is unknown).
     """
     span = resolve_window(run, window, lug_count, lug_source)
     r_eff = run.parameter_float("wheel/effective_radius")
@@ -466,7 +468,9 @@ def steady_state(run, window, lug_count=None, lug_source="unknown"):
             "correlation time, so the SEMs are probably too small (use a longer window)"
         )
     result["dp_batch_correlation"] = correlation
-    result["wheel_x_max"] = _window_max_x(run, "wheel/position", span.steps)
+    origin, _ = box_frame.origin_x(run)  # the recorded x is from the wheel's start
+    result["wheel_x_max"] = (_window_max_x(run, "wheel/position", span.steps) + origin
+                             if origin is not None else math.nan)
     result["n_samples"] = int(len(span.steps))
     result["span"] = span
     result["r_eff"] = r_eff

@@ -267,8 +267,13 @@ def dt_from_bed(a):
         dt = float(f["parameters/run/dt"][()])
         source = f["parameters/run/dt_source"].asstr()[()]
         steps = len(f["observables/wheel/position/step"])
+        # --kinematic records the box frame itself: its origin is (0, 0)
+        origin = (float(f["parameters/coupling/origin_x"][()]),
+                  float(f["parameters/coupling/origin_y"][()]))
     ok = (run.returncode == 0 and f"dt {bed_dt} s from the bed's time step" in run.stdout
-          and dt == float(bed_dt) and "--dt" in source and steps >= a.steps and short_socket)
+          and dt == float(bed_dt) and "--dt" in source and steps >= a.steps and short_socket
+          and origin == (0.0, 0.0))
+    print(f"run_cosim_case: --kinematic positions' origin {origin} m (expected (0, 0))")
     print(f"run_cosim_case: bed_dt {bed_dt} s, run file dt {dt!r} s from '{source}', {steps} rows "
           f"{'PASS' if ok else 'FAIL'}")
     return 0 if ok else 1
@@ -344,12 +349,17 @@ def active_coupled(a):
     m = re.search(r"([0-9.]+) of ([0-9.]+) particles active on average", screen)
     import h5py
 
-    rows, recorded = 0, None
+    rows, recorded, origin, x_first = 0, None, None, None
     if os.path.exists(os.path.join(work, "run.h5")):
         with h5py.File(os.path.join(work, "run.h5"), "r") as f:
             rows = len(f["observables/wheel/position/step"])
             name = "parameters/liggghts/active_sinkage_allowance"
             recorded = float(f[name][()]) if name in f else None
+            # the rig records x from the wheel's start and the start itself (hdf5-layout.md)
+            if "parameters/coupling/origin_x" in f:
+                origin = (float(f["parameters/coupling/origin_x"][()]),
+                          float(f["parameters/coupling/origin_y"][()]))
+            x_first = float(f["observables/wheel/position/value"][0, 0]) if rows else None
     frozen = m is not None and float(m.group(1)) < float(m.group(2))
     regrouped = "unfix wall_z0" in screen or "act_active" in screen
     # The sinkage allowance of 'distance 0.03' (the sinkage whose default distance 0.5 R + 2 z it
@@ -358,7 +368,11 @@ def active_coupled(a):
     expected = max(0.0, (0.03 - 0.5 * float(radius.group(1))) / 2) if radius else None
     allowance_ok = (recorded is not None and expected is not None
                     and abs(recorded - expected) <= 1e-4 * max(1.0, expected))
-    ok = run.returncode == 0 and frozen and rows > 0 and allowance_ok
+    # in.wheel_coupled's default x0 0.10 m: the wheel starts there in the box, at x = 0 recorded
+    origin_ok = origin == (0.10, 0.0) and x_first is not None and abs(x_first) < 1e-12
+    ok = run.returncode == 0 and frozen and rows > 0 and allowance_ok and origin_ok
+    print(f"run_cosim_case: positions' origin in the box {origin} m (expected (0.1, 0.0)), first "
+          f"recorded x {x_first} m (expected 0)")
     print(f"run_cosim_case: exit {run.returncode}; active on average "
           f"{m.group(1) + ' of ' + m.group(2) if m else 'not reported'}; run file rows {rows}; "
           f"active group in the log: {regrouped}; sinkage allowance recorded {recorded} m, "

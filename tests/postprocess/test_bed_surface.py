@@ -157,6 +157,16 @@ class WheelPosition(TempDirTestCase):
         self.assertEqual(cmd_surface.wheel_x_at(run, 400)[1], 9)
         with self.assertRaisesRegex(PostError, r"no sample at or before step -1"):
             cmd_surface.wheel_x_at(run, -1)
+        # a coupled run records x from the wheel's start: the box x adds it (box_frame.py)
+        coupled = self.path("coupled.h5")
+        write_run(coupled, 0.01 * np.arange(n), np.full(n, 3), {"wheel/position": (x, "m")},
+                  parameters={"coupling/start_step": (0, "1"), "coupling/origin_x": (0.67, "m")})
+        self.assertAlmostEqual(cmd_surface.wheel_x_at(coupled, 4)[0], 0.9 + 0.67, places=12)
+        lost = self.path("lost.h5")
+        write_run(lost, 0.01 * np.arange(n), np.full(n, 3), {"wheel/position": (x, "m")},
+                  parameters={"coupling/start_step": (0, "1")})
+        with self.assertRaisesRegex(PostError, r"started the wheel in the box is unknown"):
+            cmd_surface.wheel_x_at(lost, 4)
         bare = self.path("bare.h5")
         write_run(bare, [0.0], [3], {})
         with self.assertRaisesRegex(PostError, r"has no observable wheel/position"):

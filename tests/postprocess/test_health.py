@@ -121,6 +121,30 @@ class HealthTest(TempDirTestCase):
                          ("nopos.h5", {"parameters": {**params, "bed/bin_length_m": ("0.63", "m")}})):
             self.assertEqual(self.verdict(self.write(name, health=("healthy", []), **kw)), ("ok", ""))
 
+    def test_end_wall_clearance_places_a_coupled_run_s_wheel_in_the_box(self):
+        # A coupled run records x from the wheel's start (box_frame.py): a centre recorded at
+        # 0.5 m that started at x0 = 0.1 m is at 0.6 m in the bin; its rim (0.1 m) ends 0.03 m
+        # from the far wall of a 0.73 m bin (< 2 x 0.02 m sinkage). Without the origin, 0.13 m.
+        params = {"wheel/rim_radius": (0.1, "m"), "bed/bin_length_m": ("0.73", "m"),
+                  "coupling/start_step": (100, "1")}
+        message = ("the rim's front came to 0.03 m from the bin's far wall (bin length 0.73 m, "
+                   "wheel centre at x = 0.6 m")
+        deck = self.path("in.deck")
+        with open(deck, "w") as f:
+            f.write("variable x  index 9\nvariable x0 index 0.10   # [m]\n")
+        for name, extra in (
+                ("recorded.h5", {"coupling/origin_x": (0.1, "m")}),
+                ("extra_args.h5", {"liggghts/extra_args": "-var max_steps 9 -var x0 0.1"}),
+                ("deck.h5", {"liggghts/extra_args": "-var max_steps 9", "liggghts/deck": deck})):
+            run = self.write(name, parameters={**params, **extra}, health=("healthy", []),
+                             x_end=0.5)
+            self.assertEqual(self.verdict(run), ("warning", "end_wall_clearance"), name)
+            self.assertIn(message, analyse_run(run, HALF).health.findings[0].message, name)
+        # the origin unknown (no record, no x0, the deck gone): no finding rather than a wrong one
+        lost = self.write("lost.h5", parameters={**params, "liggghts/deck": self.path("gone")},
+                          health=("healthy", []), x_end=0.5)
+        self.assertEqual(self.verdict(lost), ("ok", ""))
+
     def test_particles_lost(self):
         # 78 577 at the start (case 1's bed), 77 928 at the end: 649 lost, 0.83 % > 0.1 %
         start, end = "liggghts/atoms_start", "liggghts/atoms"

@@ -125,6 +125,9 @@ public:
   virtual coupler::WheelState advance(const WheelWrench &wrench, double contacts) = 0;
   virtual bool finished() const = 0;
   virtual std::string where() const = 0; ///< "t = ... s (phase)" for messages
+  /// Where the origin of the recorded positions lies in LIGGGHTS' box [m]: box = recorded +
+  /// origin (valid once start() has run). Zero where the driver records in the box frame.
+  virtual Eigen::Vector3d origin_in_box() const { return Eigen::Vector3d::Zero(); }
 };
 
 /// The rig. Its x and y are measured from the wheel's initial position in LIGGGHTS' box.
@@ -159,6 +162,7 @@ public:
   }
   /// The rig frame's origin in LIGGGHTS' box (x, y of the wheel's initial position).
   const Eigen::Vector3d &offset() const { return offset_; }
+  Eigen::Vector3d origin_in_box() const override { return offset_; }
   coupler::WheelState advance(const WheelWrench &wrench, double contacts) override {
     sink_.advance(wrench, contacts);
     return message();
@@ -355,6 +359,13 @@ void run_dem(const rig::RigConfig &config, DemDriver &driver, runfile::RunFile &
     throw;
   }
   server.welcome(welcome);
+  // The positions' frame (docs/hdf5-layout.md): the rig records x and y from the wheel's start
+  // in the box, so a reader needs the start to place the wheel in the bin (a resumed file has it).
+  if (!file.has_parameter("coupling/origin_x")) {
+    const Eigen::Vector3d origin = driver.origin_in_box();
+    file.set_parameter("coupling/origin_x", origin.x(), "m");
+    file.set_parameter("coupling/origin_y", origin.y(), "m");
+  }
   if (checkpointer)
     checkpointer->start(hello.start_step);
   if (!quiet)
