@@ -24,6 +24,8 @@ resume"): real wheel-rig, real LIGGGHTS (np 1 or 2), the launcher.
    force and torque, drawbar pull, driving torque and sinkage within --mean-tol;
    /parameters/resume/1/step = the checkpoint's step; /health as the reference's. The
    differences are printed (MEASURED lines).
+5. `wheelsim-post surface` reads the newest LIGGGHTS checkpoint (set aside in 2.): its step, the
+   bed's sphere count, the wheel centre placed in the box.
 """
 import argparse
 import glob
@@ -119,6 +121,36 @@ def expect_refused(a, name, cmd, needle):
           f"{'names' if needle in text else 'does NOT name'} '{needle}' {'ok' if ok else 'FAIL'}")
     if not ok:
         print(text[-2500:])
+    return ok
+
+
+def surface_of_checkpoint(a, restart, step, run):
+    """5. `wheelsim-post surface` reads a LIGGGHTS checkpoint of a coupled run (the newest one, set
+    aside in 2.; docs/postprocess.md "surface"): its step, the bed's sphere count, and the wheel
+    centre placed in the box from the run file (recorded x + coupling/origin_x at that step)."""
+    import h5py
+
+    with h5py.File(run, "r") as f:
+        g = f["observables/wheel/position"]
+        x = float(g["value"][list(g["step"][()]).index(step), 0])
+        x_box = x + float(f["parameters/coupling/origin_x"][()])
+    r = subprocess.run(
+        ["/usr/bin/python3", os.path.join(a.root, "postprocess", "wheelsim-post"), "surface",
+         restart, "--bed-vars", a.bed + ".vars", "--reference", a.bed, "--run", run,
+         "--build-dir", a.build], capture_output=True, text=True, timeout=300, env=env(a))
+    print(r.stdout[-1500:], r.stderr[-1500:])
+    bed = re.search(r"(?m)^soilbin: spheres = (\d+)", "".join(
+        open(q).read() for q in glob.glob(os.path.join(os.path.dirname(a.bed), "log.*"))))
+    read = re.search(r": step (\d+), (\d+) spheres;", r.stdout)
+    shown = re.search(r"wheel centre at x = (\S+) m", r.stdout)
+    # every sphere of the bed (a coupled run may lose a few grains over the box's top: 1 %)
+    ok = (r.returncode == 0 and bed is not None and read is not None and shown is not None
+          and int(read.group(1)) == step
+          and 0.99 * int(bed.group(1)) <= int(read.group(2)) <= int(bed.group(1))
+          and abs(float(shown.group(1)) - x_box) < 1e-4)
+    print(f"run_checkpoint_case: surface of the checkpoint at step {step}: exit {r.returncode}, "
+          f"{read and read.group(2)} of the bed's {bed and bed.group(1)} spheres, wheel centre {shown and shown.group(1)} m, expected {x_box:.4f} m (recorded {x:.4f} + "
+          f"origin) {'ok' if ok else 'FAIL'}")
     return ok
 
 
@@ -303,6 +335,8 @@ def main():
     if ref_health != res_health or ref_codes != res_codes:
         print(f"health: reference {ref_health} {ref_codes}, resumed {res_health} {res_codes} FAIL")
         ok = False
+    ok &= surface_of_checkpoint(a, os.path.join(a.work, f"liggghts-{newest}.restart"), newest,
+                                os.path.join(ref, "run.h5"))
     print("run_checkpoint_case:", "ok" if ok else "FAIL")
     return 0 if ok else 1
 
