@@ -21,6 +21,7 @@ HELP = ("free-surface profile of a bed restart or a run's LIGGGHTS checkpoint al
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DEFAULT_STRETCH_M = 0.5
 WHEEL_POSITION = "wheel/position"
+READ_TIMEOUT_S = 1800  # [s] for LIGGGHTS to read a restart and dump it (nothing hangs)
 
 
 def add_parser(subparsers):
@@ -82,8 +83,12 @@ def read_bed(restart, vars_file, args, label):
             exe, "-in", os.path.join(REPO, "inputs", "in.bed_surface"),
             "-var", "inputs_dir", os.path.join(REPO, "inputs"), "-var", "restart_file", bed,
             "-var", "dump_file", dump]
-        proc = subprocess.run(cmd, cwd=work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                              text=True, check=False)
+        try:
+            proc = subprocess.run(cmd, cwd=work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                  text=True, check=False, timeout=READ_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            raise PostError(f"{label}: LIGGGHTS did not finish reading '{restart}' within "
+                            f"{READ_TIMEOUT_S} s (a 221 000-sphere bed takes ~6 s)") from None
         tail = "\n".join(proc.stdout.splitlines()[-8:])
         if proc.returncode != 0 or not os.path.isfile(dump):
             raise PostError(f"{label}: LIGGGHTS could not read '{restart}' (exit "
