@@ -448,6 +448,9 @@ class PointEstimate:
     # measured / modelled wall of the finished points on the same bed (wall is scaled by it)
     calibration: float | None = None
     calibration_points: int = 0
+    # where the wheel's travel ends: its rim's front from the bin's far wall [m] (None: unknown)
+    end_gap_m: float | None = None
+    end_note: str = ""
 
 
 @dataclass
@@ -516,6 +519,30 @@ def active_share(point, info, active, x0, ph):
     return share, note
 
 
+def end_of_travel(point, info, x0, ph):
+    """(gap [m], note) of a DEM point: where its wheel centre ends (active_domain.wheel_path's
+    model: held through release and settle, the ramp, the test at the slip's speed) and how far
+    its rim's front then is from the bin's far wall; (None, "") when the bed's length, the mesh
+    or the speed is not known. The run-health check end_wall_clearance warns after the run when
+    the gap is under 2 x the window's sinkage (docs/run-health.md): the soil the wheel pushes
+    ahead then meets the wall (case 3's bow wave reached 0.7 m ahead of its rim)."""
+    ext = wheel_extent(point.rig, getattr(getattr(point, "wheel", None), "mesh", None))
+    if info.box is None or ext is None:
+        return None, ""
+    outer = ext[1]
+    speed = active_domain.travel_speed(point.rig, getattr(point, "slip", None), outer)
+    if not speed > 0:
+        return None, ""
+    length = info.box[0]
+    x_end = x0 + 0.5 * speed * ph["ramp"] + speed * ph["test"]
+    gap = length - (x_end + outer)
+    where = (f"its rim's front {gap:.3g} m from the far wall ({gap / outer:.2g} outer radii)"
+             if gap > 0 else f"past the far wall: its rim's front would be {-gap:.3g} m beyond it")
+    return gap, (f"travel: from x0 {x0:g} m at {speed:.3g} m/s the wheel centre ends at x = "
+                 f"{x_end:.4g} m of the {length:g} m bin, {where}; the run-health check warns "
+                 "when that gap is under 2 x the sinkage (end_wall_clearance)")
+
+
 def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: False, chunk=1,
              overhead_s=COSIM_OVERHEAD_S, active=None, x0=0.0, measured_wall=lambda p: None):
     """The sweep's estimate. points: the sweep's points (each with .rig and .soil.label; a
@@ -551,8 +578,10 @@ def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: F
                                  share + FROZEN_COST * (1.0 - share))
         wall = run_wall(cost, steps, np_, rate.rate_per_rank, rate.efficiency_np2,
                         rate.startup_s + overhead_s, over)
+        gap, end_note = end_of_travel(p, info, x0, ph)
         out.append(PointEstimate(p, info.particles, info.particles_source, dt, dt_src, ph, sim,
-                                 steps, wall, finished(p), share, note))
+                                 steps, wall, finished(p), share, note, end_gap_m=gap,
+                                 end_note=end_note))
     # the sweep's own measurements: measured / modelled wall of its finished points, per bed
     sums = {}
     for e in out:
@@ -637,6 +666,8 @@ def report(est, sweep_name):
                 cost = (f"; a frozen particle costs {FROZEN_COST:.3g} of an active one: the "
                         f"point costs as {fmt_int(n_eff)} active particles")
             lines.append(f"estimate:   {e.active_note}{cost}")
+        if e.end_note:
+            lines.append(f"estimate:   {e.end_note}")
     for b in est.beds:
         w = b.info.prep_weights
         parts = " + ".join(f"{k} {v:.4g}" + (f" x {w[k]:.3g} of the particles" if k in w and

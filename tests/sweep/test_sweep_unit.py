@@ -510,6 +510,23 @@ def case_estimate_active(a, work):
           "calibration bookkeeping")
     rep = "\n".join(E.report(cal, "s.toml"))
     check("scaled by 3: the measured / estimated wall of 1 finished point(s)" in rep, rep)
+    # where the travel ends: no motor, no speed, no note; at omega 2 rad/s, slip 0.2 and outer
+    # radius 0.5 m the wheel runs 0.8 m/s for the 1 s test (no ramp) from x0 = 1: centre 1.8 m,
+    # rim front 2.3 m, 1.7 m from the far wall of the 4 m bed; in a 2 m bed 0.3 m past it
+    check(e.end_gap_m is None and not e.end_note, f"no speed: {e.end_note!r}")
+    driven = [NS(index=0, soil=soil, rig={**rig, "motor": {"ramp_time": 0, "omega": 2.0}},
+                 reldir="w/bed/s0.2", slip=0.2, wheel=NS(mesh=stl))]
+    end = E.estimate(driven, {"bed": info}, rate, 1, 1, 1, 1, overhead_s=0.0, x0=1.0).points[0]
+    _close(end.end_gap_m, 1.7, "gap to the far wall")
+    check("ends at x = 1.8 m of the 4 m bin, its rim's front 1.7 m from the far wall (3.4 outer "
+          "radii)" in end.end_note and end.end_note in "\n".join(E.report(
+              E.estimate(driven, {"bed": info}, rate, 1, 1, 1, 1, x0=1.0), "s.toml")),
+          end.end_note)
+    short = E.BedInfo("bed", 1e5, "test", 1e-4, "test", prepared=True, box=(2.0, 1.0, 0.3))
+    past = E.estimate(driven, {"bed": short}, rate, 1, 1, 1, 1, x0=1.0).points[0]
+    _close(past.end_gap_m, -0.3, "past the wall")
+    check("past the far wall: its rim's front would be 0.3 m beyond it" in past.end_note,
+          past.end_note)
 
 
 def _rate_entry(key, **kw):
