@@ -113,6 +113,12 @@ def wheel_x_at(run_path, step):
                         f"is step {int(series.step[0]) if len(series) else 'none'}): not the run "
                         "that wrote this checkpoint?")
     i = before[-1]
+    spacing = float(np.median(np.diff(series.step))) if len(series) > 1 else 0.0
+    if step - int(series.step[i]) > 2 * spacing:
+        raise PostError(f"--run: '{run_path}' has no sample near step {step}: its samples "
+                        f"{'end' if i == len(series) - 1 else 'pause'} at step "
+                        f"{int(series.step[i])} (every {spacing:g} steps); not the run that wrote "
+                        "this checkpoint, or a copy made before it?")
     return float(series.value.reshape(len(series), -1)[i, 0]) + origin, int(series.step[i])
 
 

@@ -153,8 +153,11 @@ class WheelPosition(TempDirTestCase):
         run = self.path("run.h5")
         write_run(run, 0.01 * np.arange(n), np.full(n, 3), {"wheel/position": (x, "m")})
         self.assertEqual(cmd_surface.wheel_x_at(run, 4), (0.9, 4))
-        self.assertAlmostEqual(cmd_surface.wheel_x_at(run, 400)[0], 1.4, places=12)
-        self.assertEqual(cmd_surface.wheel_x_at(run, 400)[1], 9)
+        self.assertEqual(cmd_surface.wheel_x_at(run, 11)[1], 9)  # within 2 samples: the last
+        # far past the run file's last sample: a run file that did not write this checkpoint
+        with self.assertRaisesRegex(PostError, r"no sample near step 400: its samples end at "
+                                               r"step 9 \(every 1 steps\)"):
+            cmd_surface.wheel_x_at(run, 400)
         with self.assertRaisesRegex(PostError, r"no sample at or before step -1"):
             cmd_surface.wheel_x_at(run, -1)
         # a coupled run records x from the wheel's start: the box x adds it (box_frame.py)
