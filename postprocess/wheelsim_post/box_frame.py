@@ -7,25 +7,18 @@ surface profile) add the start: box x = recorded x + origin_x. Sources, in order
 1. ``/parameters/coupling/origin_x`` (wheel-rig records it since 2026-12-01);
 2. for an earlier rig-driven coupled run (``coupling/start_step`` and a ``phase`` observable):
    the ``-var x0 V`` of ``/parameters/liggghts/extra_args``, else the ``variable x0 index V`` line
-   of the deck ``/parameters/liggghts/deck`` if that file is still there (the decks' x0 is the
-   fix's origin, where the rig starts the wheel);
+   of the deck ``/parameters/liggghts/deck`` if that file is still there (deck_files.deck_variable,
+   as LIGGGHTS resolves it; the decks' x0 is the fix's origin, where the rig starts the wheel);
 3. a run that is not coupled (SCM, flat ground) has no box: 0.
 
 Otherwise the origin is unknown (None).
 """
 
-import re
 import shlex
 
+from .deck_files import deck_variable
+
 ORIGIN_X_PARAMETER = "coupling/origin_x"
-_DECK_X0 = re.compile(r"^\s*variable\s+x0\s+index\s+(\S+)", re.MULTILINE)
-
-
-def _number(text):
-    try:
-        return float(text)
-    except (TypeError, ValueError):
-        return None
 
 
 def origin_x(run):
@@ -37,19 +30,9 @@ def origin_x(run):
         return 0.0, "not a coupled run"
     if not run.has_observable("phase"):  # --kinematic: the box frame itself
         return 0.0, "a --kinematic run (box frame)"
-    words = shlex.split(run.parameter_text("liggghts/extra_args", "") or "")
-    for i in range(len(words) - 2):
-        if words[i] == "-var" and words[i + 1] == "x0":
-            value = _number(words[i + 2])
-            if value is not None:
-                return value, "-var x0 of /parameters/liggghts/extra_args"
-    deck = run.parameter_text("liggghts/deck")
-    if deck:
-        try:
-            with open(deck, encoding="utf-8") as f:
-                match = _DECK_X0.search(f.read())
-        except OSError:
-            match = None
-        if match and _number(match.group(1)) is not None:
-            return float(match.group(1)), f"x0 of the deck {deck}"
-    return None, "unknown (no coupling/origin_x, no x0 given, deck not found)"
+    args = shlex.split(run.parameter_text("liggghts/extra_args", "") or "")
+    try:
+        return (float(deck_variable(run.parameter_text("liggghts/deck"), "x0", args)),
+                "x0 of /parameters/liggghts/deck run with /parameters/liggghts/extra_args")
+    except (TypeError, ValueError):
+        return None, "unknown (no coupling/origin_x, no x0 given, deck not found)"

@@ -110,19 +110,20 @@ def wheel_path(phases, x0, speed, length, samples=TIME_SAMPLES):
     """The wheel centre's x at `samples` instants spread evenly over the simulated time: x0
     through release and settle, then accelerating linearly to `speed` [m/s] over the ramp and
     keeping it through the test; clipped to the bin."""
-    t_hold = phases["release"] + phases["settle"]
-    ramp, total = phases["ramp"], sum(phases.values())
-    out = []
-    for k in range(samples):
-        t = (k + 0.5) * total / samples
-        if t <= t_hold:
-            s = 0.0
-        elif t <= t_hold + ramp:
-            s = 0.5 * speed * (t - t_hold) ** 2 / ramp if ramp > 0 else speed * (t - t_hold)
-        else:
-            s = 0.5 * speed * ramp + speed * (t - t_hold - ramp)
-        out.append(min(max(x0 + s, 0.0), length))
-    return out
+    total = sum(phases.values())
+    return [min(max(x0 + travel(phases, speed, (k + 0.5) * total / samples), 0.0), length)
+            for k in range(samples)]
+
+
+def travel(phases, speed, t):
+    """How far [m] the wheel centre has moved at simulated time `t` [s]: nothing through release
+    and settle, accelerating linearly to `speed` [m/s] over the ramp, then at that speed."""
+    t_hold, ramp = phases["release"] + phases["settle"], phases["ramp"]
+    if t <= t_hold:
+        return 0.0
+    if t <= t_hold + ramp:
+        return 0.5 * speed * (t - t_hold) ** 2 / ramp if ramp > 0 else speed * (t - t_hold)
+    return 0.5 * speed * ramp + speed * (t - t_hold - ramp)
 
 
 def travel_speed(rig, slip, outer_radius):

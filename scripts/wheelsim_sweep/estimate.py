@@ -520,8 +520,8 @@ def active_share(point, info, active, x0, ph):
 
 
 def end_of_travel(point, info, x0, ph):
-    """(gap [m], note) of a DEM point: where its wheel centre ends (active_domain.wheel_path's
-    model: held through release and settle, the ramp, the test at the slip's speed) and how far
+    """(gap [m], note) of a DEM point: where its wheel centre ends (active_domain.travel: held
+    through release and settle, the ramp, the test at the slip's speed) and how far
     its rim's front then is from the bin's far wall; (None, "") when the bed's length, the mesh
     or the speed is not known. The run-health check end_wall_clearance warns after the run when
     the gap is under 2 x the window's sinkage (docs/run-health.md): the soil the wheel pushes
@@ -534,7 +534,7 @@ def end_of_travel(point, info, x0, ph):
     if not speed > 0:
         return None, ""
     length = info.box[0]
-    x_end = x0 + 0.5 * speed * ph["ramp"] + speed * ph["test"]
+    x_end = x0 + active_domain.travel(ph, speed, sum(ph.values()))
     gap = length - (x_end + outer)
     where = (f"its rim's front {gap:.3g} m from the far wall ({gap / outer:.2g} outer radii)"
              if gap > 0 else f"past the far wall: its rim's front would be {-gap:.3g} m beyond it")
