@@ -3,7 +3,7 @@
 values: the DEM-beside-SCM row (SCM's difference in % of DEM for F_T and sinkage, in kN for DP;
 an unhealthy SCM point marked † and its code named under the table), the split of SCM − DEM into
 traction force and motion resistance (ΔDP = ΔF_T − ΔR), a point under another setting (the sinkage
-allowance's and the wheel friction's and the speed's sections), and a missing column (exit 2, one
+allowance's, the wheel friction's, the speed's and the time step's sections), and a missing column (exit 2, one
 line naming the file).
 
     test_study_wheels_compare.py --work DIR
@@ -76,6 +76,11 @@ def main():
     text = md.read_text() if r.returncode == 0 and md.is_file() else ""
     check("## The wheel's speed: 1.05 rad/s (sweep.toml) against 0.525 rad/s" in text,
           f"the speed section (exit {r.returncode})")
+    r = run_script(SCRIPT, dem, "--dt", allowance, "--md", md)
+    text = md.read_text() if r.returncode == 0 and md.is_file() else ""
+    check("## The time step: 4.4e-5 s (sweep.toml) against 2.2e-5 s" in text
+          and "| wheel1 s 0.2 | drawbar pull [kN] | -1 ± 0.05 | -0.9 ± 0.05 | -11.11 % |" in text,
+          f"the time step's section and row (exit {r.returncode})")
     bad = work / "bad.csv"
     bad.write_text("slip,target_slip,drawbar_pull_N\n0.1,0.1,1.0\n")
     r = run_script(SCRIPT, dem, "--scm", bad, "--md", work / "x.md")

@@ -4,13 +4,13 @@ traction force T/R_eff, drawbar pull, sinkage and tractive efficiency, and the a
 effect (the full-domain run of the same point), its run-to-run scatter (the same point on another
 ranks' grid), the grain-size sensitivity, issue 12's goal point (21-52 mm grains) and the active
 domain's sinkage allowance and the wheel-sand friction (the same point with each raised), the
-wheel's speed (the same point at half of it); and where SCM and DEM part, split into traction
+wheel's speed and the time step (the same point at half of each); and where SCM and DEM part, split into traction
 force and motion resistance.
 
     compare.py RESULTS.csv [--scm RESULTS_SCM.csv ...] [--full-domain RESULTS_FULL.csv]
                [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--goal RESULTS_GOAL.csv]
                [--goal-wide RESULTS_GOAL_WIDE.csv] [--allowance RESULTS_ALLOWANCE.csv]
-               [--wheel-mu RESULTS_WHEEL_MU.csv] [--speed RESULTS_SPEED.csv]
+               [--wheel-mu RESULTS_WHEEL_MU.csv] [--speed RESULTS_SPEED.csv] [--dt RESULTS_DT.csv]
                [--label CONFIG]
                [--md OUT.md] [--png OUT.png]
 
@@ -239,6 +239,7 @@ def main():
                     "the grains' (sweep_wheel_mu.toml)")
     ap.add_argument("--speed", help="a point at half the wheel speed over the same travel "
                     "(sweep_speed.toml)")
+    ap.add_argument("--dt", help="a point at half the time step (sweep_dt.toml)")
     ap.add_argument("--wide", help="the active domain's point with a larger distance (its sinkage "
                     "allowance raised), compared with --full-domain's")
     ap.add_argument("--repeat", help="the repeat of the active domain's point on another ranks' "
@@ -297,7 +298,9 @@ def main():
             (a.wheel_mu, "The wheel-sand friction: 0.5 ({}) against the grains' 0.7869 "
              "(sweep_wheel_mu.toml: same bed, grains and ranks)", "wheel_mu 0.7869"),
             (a.speed, "The wheel's speed: 1.05 rad/s ({}) against 0.525 rad/s (sweep_speed.toml: "
-             "same bed, grains, ranks and travel; window 4-12 s)", "0.525 rad/s")):
+             "same bed, grains, ranks and travel; window 4-12 s)", "0.525 rad/s"),
+            (a.dt, "The time step: 4.4e-5 s ({}) against 2.2e-5 s (sweep_dt.toml: same bed, "
+             "grains and ranks)", "dt 2.2e-5 s")):
         if table:
             lines += ["## " + heading.format(a.label), ""]
             lines += point_table(dem, read(table), name, ref=a.label)[0] + [""]
