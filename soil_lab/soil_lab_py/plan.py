@@ -96,8 +96,7 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
               plate_hold_stages=None):
     """The beds and runs for `tests` on `soil`. Raises LabInputError for an unknown test or preset,
     plates that are not two different widths or do not fit their bin with a plate width of soil
-    on every side, a normal stress outside what the box can hold, a repose test on a multisphere
-    soil, a shear travel (a fraction of the box side) outside (0, 0.5], or a plate or shear speed
+    on every side, a normal stress outside what the box can hold, a shear travel (a fraction of the box side) outside (0, 0.5], or a plate or shear speed
     [m/s] (default PLATE_SPEED, SHEAR_SPEED) outside (0, MAX_TOOL_SPEED], or a plate depth [m]
     (the sinkage at the end of the reload; default 3 d_max, quick 1.5) under one grain (d_max):
     a deeper one loads to 2/3 of it and unloads by 1/6, on a bed as much deeper, so that the soil
@@ -229,10 +228,6 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
                 meta={"normal_stress_Pa": s, "box_m": L, "speed_m_s": speed}))
 
     if "repose" in tests:
-        if soil.multisphere:
-            raise LabInputError(
-                f"the repose test does not support multisphere soils yet ('{soil.name}': its frozen "
-                f"rough base needs single spheres); run the other tests with --tests")
         # Lifted frame on a fixed rough base of side B, column 0.5 B high. The heap left on the
         # base is a pyramid of height B tan(theta) / 2: B = 20 d_max makes it 5.5 grains high at
         # 29 deg, 8.4 at 40 deg (10 d_max left ~3 grains, too few surface points for a fit; 30
@@ -246,9 +241,13 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         frame_h = Hc * 1.4 + 2 * d
         runs.append(Run(
             name="repose", test="repose", deck="in.lab_repose", bed="repose",
-            meshes={"frame_mesh": ["frame", _f(B), _f(B), _f(wall), _f(frame_h)]},
+            meshes={"frame_mesh": ["frame", _f(B), _f(B), _f(wall), _f(frame_h)],
+                    # multisphere: the plate the base's free clumps rest on (in.lab_repose)
+                    **({"base_mesh": ["plate-rect", _f(B), _f(B), _f(wall)]}
+                       if soil.multisphere else {})},
             variables={"frame_h": _f(frame_h), "lift_speed": "0.05" if quick else "0.02",
-                       "settle": "0.5" if quick else "1.0", "clearance": _f(d)},
+                       "settle": "0.5" if quick else "1.0", "clearance": _f(d),
+                       **({"base_plate_t": _f(wall)} if soil.multisphere else {})},
             meta={"base_m": B}))
     if speed_check:
         # The quick heap (~3400 spheres, 5 grains high) scatters by more than the check's 1.5 deg

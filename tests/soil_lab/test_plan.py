@@ -137,12 +137,22 @@ class Plan(unittest.TestCase):
                 self.assertGreaterEqual(float(r.variables["shear_xhi"]), L + distance + 2 * d)
                 self.assertLess(float(r.meshes["frame_up_mesh"][3]), d)  # the upper frame: thin
 
-    def test_repose_rejects_multisphere_soils(self):
+    def test_repose_on_multisphere_soils_gets_a_base_plate(self):
+        # in.lab_repose freezes only the single spheres of a clump soil's base layer; its free
+        # clumps rest on a plate of the base's footprint, as thick as the frame's wall
         clumps = SoilInfo(**{**SAND.__dict__, "multisphere": True})
-        with self.assertRaisesRegex(LabInputError, "multisphere"):
-            make_plan(clumps, ("repose",))
-        make_plan(clumps, ("plate", "shear"))  # the other tests are fine
-
+        r = make_plan(clumps, ("repose",)).runs[0]
+        B, wall = 20 * SAND.dmax_m, max(0.5 * SAND.dmax_m, 0.005)
+        kind, lx, ly, t = r.meshes["base_mesh"]
+        self.assertEqual(kind, "plate-rect")
+        self.assertAlmostEqual(float(lx), B)
+        self.assertAlmostEqual(float(ly), B)
+        self.assertAlmostEqual(float(t), wall)
+        self.assertEqual(r.variables["base_plate_t"], t)
+        # a soil of spheres keeps its runs' inputs as they were: no plate
+        r = make_plan(SAND, ("repose",)).runs[0]
+        self.assertNotIn("base_mesh", r.meshes)
+        self.assertNotIn("base_plate_t", r.variables)
 
     def test_speed_check_halves_one_run_per_test(self):
         p = make_plan(SAND, ("plate", "shear", "repose"), speed_check=True)
