@@ -204,7 +204,9 @@ def resolve_window(run, window, lug_count=None, lug_source="unknown"):
         passes = abs(float(a[1] - a[0])) / pass_angle
         if window.kind == "passes" and not notes:
             passes = round(passes, 6)  # a whole number up to the interpolation's rounding
-    if not passes >= MIN_PASSES and not notes:
+    # a smooth wheel (lug count 0, known) has no angular period for the window's start to fall
+    # on: its short windows get no note; an unknown lug count keeps it
+    if not passes >= MIN_PASSES and not notes and lug_count != 0:
         notes.append(
             f"the window holds {passes:.3g} {pass_name} (< {MIN_PASSES}): the mean may "
             "depend on where the window starts relative to the lugs"

@@ -99,11 +99,12 @@ class LugPassWindowTest(TempDirTestCase):
 
     def test_short_window_note_in_output_and_csv(self):
         short = self.path("short.h5")
-        write_lugged(short, lugs_parameter=0, n_test=4001)  # smooth: 10 rad in the half
+        # lug count unknown: the window counts revolutions, 10 rad in the second half
+        write_lugged(short, lugs_parameter=None, n_test=4001)
         out, png = self.path("short.csv"), self.path("short.png")
         result = run_cli("curves", short, "--csv", out, "--png", png)
         self.assertEqual(result.returncode, 0, result.stderr)
-        self.assertIn("1 revolutions (lug count 0", result.stdout)
+        self.assertIn("1 revolutions (lug count unknown", result.stdout)
         self.assertIn("note: the window holds 1 revolutions (< 3)", result.stdout)
         row = read_rows(out)[0]
         self.assertIn("(< 3)", row["window_notes"])
@@ -114,6 +115,18 @@ class LugPassWindowTest(TempDirTestCase):
         self.assertTrue(
             any("short.h5: the window holds 1 revolutions (< 3)" in x for x in footer)
         )
+
+
+    def test_no_short_window_note_for_a_smooth_wheel(self):
+        # lug count 0 (a smooth wheel): no angular period, so no note on the window's length
+        smooth = self.path("smooth.h5")
+        write_lugged(smooth, lugs_parameter=0, n_test=4001)
+        out = self.path("smooth.csv")
+        result = run_cli("curves", smooth, "--csv", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("1 revolutions (lug count 0", result.stdout)
+        self.assertNotIn("(< 3)", result.stdout)
+        self.assertEqual(read_rows(out)[0]["window_notes"], "")
 
 
 class LugCountSourceTest(TempDirTestCase):
