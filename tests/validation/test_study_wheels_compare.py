@@ -81,6 +81,17 @@ def main():
     check("## The time step: 4.4e-5 s (sweep.toml) against 2.2e-5 s" in text
           and "| wheel1 s 0.2 | drawbar pull [kN] | -1 ± 0.05 | -0.9 ± 0.05 | -11.11 % |" in text,
           f"the time step's section and row (exit {r.returncode})")
+    # a skid point: TE = (DP / F_T)(1 - s) needs the driving convention, the table's
+    # slip_driving (-1 at skid slip -0.5: v = 2 omega R_eff), not its signed slip (-0.5)
+    skid = work / "skid.csv"
+    skid.write_text("# synthetic\n" + COLUMNS + ",slip_driving\n"
+                    "-0.5,-0.5,1000,50,1000,20,2000,40,0.25,0.001,60,1000,2,ok,,"
+                    "dem/wheel1/sand/s-0.500/run.h5,-1\n")
+    r = run_script(SCRIPT, skid, "--md", md)
+    text = md.read_text() if r.returncode == 0 and md.is_file() else ""
+    row = [l for l in text.splitlines() if l.startswith("| -0.500 |")]
+    check(len(row) == 1 and row[0].rstrip(" |").endswith("| 1"),
+          f"a skid point's TE from slip_driving: 0.5 x 2 = 1 (got {row})")
     bad = work / "bad.csv"
     bad.write_text("slip,target_slip,drawbar_pull_N\n0.1,0.1,1.0\n")
     r = run_script(SCRIPT, dem, "--scm", bad, "--md", work / "x.md")

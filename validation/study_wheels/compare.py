@@ -16,7 +16,8 @@ force and motion resistance.
 
 Inputs are tables of `wheelsim-post curves --results` (docs/postprocess.md); the wheel and the soil
 of each row are the run file's folders (<out>/<wheel>/<soil>/s<slip>/run.h5, as wheel-sweep lays
-them out). Tractive efficiency TE = DP v / (T omega) = (DP / F_T) (1 - s). Exit 0, or 2 with one
+them out). Tractive efficiency TE = DP v / (T omega) = (DP / F_T) (1 - s), s in the driving
+convention (the table's slip_driving; its signed slip only where s >= 0). Exit 0, or 2 with one
 line naming the bad file or column.
 """
 import argparse
@@ -55,9 +56,11 @@ def read(path):
             fail(f"{path}: row {i + 1}: run_file '{r['run_file']}' is not <out>/<wheel>/<soil>/"
                  "s<slip>/run.h5")
         r["wheel"], r["soil"] = parts[-4], parts[-3]
-        s = num(r["slip"])
+        # TE = (DP / F_T) v / (omega R_eff) = (DP / F_T)(1 - s) holds in the driving convention
+        # at every sign; the table's signed 'slip' is the skid convention below 0
+        s = num(r["slip_driving"]) if r.get("slip_driving") else num(r["slip"])
         r["te"] = num(r["drawbar_pull_N"]) / num(r["traction_force_N"]) * (1.0 - s) \
-            if num(r["traction_force_N"]) else math.nan
+            if num(r["traction_force_N"]) and (s >= 0 or r.get("slip_driving")) else math.nan
     return rows
 
 
