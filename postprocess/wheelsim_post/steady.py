@@ -16,7 +16,8 @@ samples are cut into N_BATCHES consecutive batches of equal length m = N // N_BA
 earliest N mod N_BATCHES samples are left out of the SEM only), and SEM = std(batch means,
 ddof = 1) / sqrt(N_BATCHES). This accounts for the correlation of successive samples as long
 as a batch is much longer than the correlation time (a note says when the drawbar pull's batch
-means are themselves correlated, lag-1 > MAX_BATCH_CORRELATION); functions of several means
+means are themselves correlated, lag-1 > MAX_BATCH_CORRELATION, and adds their lag-1 about a
+fitted line when that is at most MAX_BATCH_CORRELATION: a drift may be the cause); functions of several means
 (slip and efficiency of the means, DP/W) get their SEM from the function of each batch's means.
 """
 
@@ -387,6 +388,21 @@ def vertical_load(run, steps):
     return math.nan, "unknown"
 
 
+def detrended_batch_correlation(time, values, n_batches=N_BATCHES):
+    """Lag-1 autocorrelation of the batch means of ``values`` about the straight line fitted to
+    them against the batches' mean times (NaN if undefined): whether correlated batch means
+    come from a trend over the window rather than from a long correlation time."""
+    finite = np.isfinite(values)
+    t_b, v_b = batch_means(time[finite], n_batches), batch_means(values[finite], n_batches)
+    if t_b is None or len(t_b) < 4:
+        return math.nan
+    residual = v_b - np.polyval(np.polyfit(t_b, v_b, 1), t_b)
+    denominator = float(np.sum(residual**2))
+    if denominator == 0.0:
+        return math.nan
+    return float(np.sum(residual[1:] * residual[:-1]) / denominator)
+
+
 def linear_trend(time, values, n_batches=N_BATCHES):
     """(change over the window, its standard error) of a straight line fitted to the batch
     means of ``values`` against the batches' mean times; NaN with fewer than 3 batches."""
@@ -464,11 +480,19 @@ def steady_state(run, window, lug_count=None, lug_source="unknown"):
     result["dp_trend"] = linear_trend(dp_time, dp[1])
     correlation = batch_correlation(dp[1])
     if correlation > MAX_BATCH_CORRELATION:
-        span.notes.append(
-            f"successive batch means of the drawbar pull are correlated ({correlation:.2f} "
-            f"> {MAX_BATCH_CORRELATION:g}): the batches are not much longer than the "
-            "correlation time, so the SEMs are probably too small (use a longer window)"
-        )
+        note = (f"successive batch means of the drawbar pull are correlated ({correlation:.2f} "
+                f"> {MAX_BATCH_CORRELATION:g}): the batches are not much longer than the "
+                "correlation time, so the SEMs are probably too small (use a longer window)")
+        # a drift over the window correlates the batches too; one window cannot tell it from a
+        # slow fluctuation (an AR(1) with a correlation time near the window's is detrended below
+        # the limit about half the time), so the note gives the number and keeps its warning
+        detrended = detrended_batch_correlation(dp_time, dp[1])
+        if detrended <= MAX_BATCH_CORRELATION:
+            note += (f"; about a straight line fitted to them they correlate {detrended:.2f}: if "
+                     f"the window drifts ({result['dp_trend'][0]:+.3g} N over it) rather than "
+                     "fluctuates slowly, the SEM is the noise's about the drift and the mean's "
+                     "error is the drift's (steady_state_trend)")
+        span.notes.append(note)
     result["dp_batch_correlation"] = correlation
     origin, _ = box_frame.origin_x(run)  # the recorded x is from the wheel's start
     result["wheel_x_max"] = (_window_max_x(run, "wheel/position", span.steps) + origin

@@ -8,6 +8,7 @@ the squared estimate over 32 fixed seeds (their root mean square must be within 
 """
 
 import math
+import re
 import unittest
 
 import numpy as np
@@ -108,6 +109,29 @@ class RunFileSemTest(TempDirTestCase):
         self.assertEqual(len(notes[0.999]), 1, notes)
         self.assertIn("SEMs are probably too small", notes[0.999][0])
         self.assertEqual(notes[0.0], [])
+
+    def test_note_names_a_drift_when_it_correlates_the_batches(self):
+        # white noise (sd 1 N) on a drift of -4 N over the window: the batch means follow the
+        # drift (lag-1 ~0.8), but about a fitted line they are independent: the note keeps its
+        # warning and adds that number and the drift
+        rng = np.random.default_rng(5)
+        n = 4000
+        drift = np.linspace(0.0, -8.0, n)  # -4 N over the second half, the window
+        time, phase, series = syn.steady_run_series(n, 1e-3, 2.0, 0.2,
+                                                    100 + drift + rng.normal(0, 1.0, n), 60)
+        path = self.path("drift.h5")
+        syn.write_run(path, time, phase, series)
+        with RunFile(path) as run:
+            s = steady_state(run, make_window(None, None, (0.5, 1.0)))
+        notes = [x for x in s["span"].notes if "batch means" in x]
+        self.assertEqual(len(notes), 1, s["span"].notes)
+        self.assertIn("probably too small", notes[0])
+        m = re.search(r"fitted to them they correlate ([-0-9.]+): if the window drifts "
+                      r"\(([-+0-9.e]+) N over it\)", notes[0])
+        self.assertIsNotNone(m, notes[0])
+        self.assertLess(float(m.group(1)), 0.5)
+        self.assertAlmostEqual(float(m.group(2)), -4.0, delta=0.3)
+        self.assertGreater(s["dp_batch_correlation"], 0.5)
 
     def test_load_from_the_rig_config_without_the_observable(self):
         time, phase, series = syn.steady_run_series(2000, 1e-3, 2.0, 0.2, 100.0, 60.0)
