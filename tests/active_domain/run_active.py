@@ -28,7 +28,7 @@ DECK = os.path.join(HERE, "in.active_domain")
 def run(a, name, variables):
     work = os.path.join(a.work, name)
     os.makedirs(work, exist_ok=True)
-    for f in ("final.dump", "initial.dump"):
+    for f in ("final.dump", "initial.dump", "frozen.dump"):   # none left from an earlier run
         if os.path.exists(os.path.join(work, f)):
             os.remove(os.path.join(work, f))
     cmd = a.launch.split(";") + ["-in", DECK, "-log", "none", "-echo", "none",

@@ -2,8 +2,8 @@
 """The command lines in the documentation against the tools' own --help: every `--option` written
 after a wheelsim tool's name in a code span or a code block of README.md, docs/*.md and the
 validation cases' READMEs must be one the tool (or its subcommand) lists in --help. Catches an
-option renamed or removed in a tool while a page still shows it (an audit on 2026-12-02 found
-five such in ~200 documented options).
+option renamed or removed in a tool while a page still shows it. Fails too if fewer than
+MIN_CHECKED options are found (a broken parser would otherwise check nothing).
 
 What counts as a command line: a `code span`, or a line of a fenced block (lines ending in a
 backslash joined), from the tool's name (wheel-rig, wheel-mesh [tool KIND], wheel-sweep,
@@ -26,6 +26,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 OPTION = re.compile(r"(?<![\w-])--[a-z][a-z0-9-]*")
 SEPARATOR = re.compile(r";|&&|\|\||\s\|\s|\s#")
+MIN_CHECKED = 300   # 365 on 2026-12-02
 SKIP_LINE = re.compile(r"did you mean|unknown option|unrecognized|not an option", re.I)
 
 
@@ -104,27 +105,31 @@ def main():
         for n, text in command_texts(page):
             if SKIP_LINE.search(text):
                 continue
-            for rx, cmd in patterns:
-                m = rx.search(text)
-                if m is None:
-                    continue
-                help_cmd = cmd(m.group("sub")) if callable(cmd) else cmd
-                rest = text[m.end():]
-                cut = SEPARATOR.search(rest)
-                rest = rest[:cut.start()] if cut else rest
-                options = known_options(help_cmd)
-                if options is None:
-                    bad.append(f"{rel}:{n}: `{text.strip()}`: {' '.join(map(str, help_cmd[-3:]))} "
-                               "fails (an unknown subcommand?)")
-                    break
-                for opt in OPTION.findall(rest):
-                    checked += 1
-                    if opt not in options:
-                        bad.append(f"{rel}:{n}: {opt} is not an option of "
-                                   f"{Path(str(help_cmd[0])).name}"
-                                   + (f" {m.group('sub')}" if callable(cmd) else "")
-                                   + f" (in `{text.strip()[:100]}`)")
-                break  # the first (most specific) tool on the text
+            # the tool named first on the text (at one position the most specific pattern)
+            found = sorted(((m.start(), i, m, cmd) for i, (rx, cmd) in enumerate(patterns)
+                            for m in [rx.search(text)] if m is not None), key=lambda f: f[:2])
+            if not found:
+                continue
+            _, _, m, cmd = found[0]
+            help_cmd = cmd(m.group("sub")) if callable(cmd) else cmd
+            rest = text[m.end():]
+            cut = SEPARATOR.search(rest)
+            rest = rest[:cut.start()] if cut else rest
+            options = known_options(help_cmd)
+            if options is None:
+                bad.append(f"{rel}:{n}: `{text.strip()}`: {' '.join(map(str, help_cmd[-3:]))} "
+                           "fails (an unknown subcommand?)")
+                continue
+            for opt in OPTION.findall(rest):
+                checked += 1
+                if opt not in options:
+                    bad.append(f"{rel}:{n}: {opt} is not an option of "
+                               f"{Path(str(help_cmd[0])).name}"
+                               + (f" {m.group('sub')}" if callable(cmd) else "")
+                               + f" (in `{text.strip()[:100]}`)")
+    if checked < MIN_CHECKED:   # a broken page parser or tool pattern checks nothing
+        bad.append(f"only {checked} documented options found (expected at least {MIN_CHECKED}): "
+                   "the command-line parsing of this check is broken")
     for b in bad:
         print("FAIL  " + b)
     print(f"{checked} documented options checked against {len(_help_cache)} --help texts: "

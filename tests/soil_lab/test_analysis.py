@@ -86,6 +86,7 @@ class Analysis(unittest.TestCase):
         for noisy in (False, True):
             r = self.lab(noisy)
             self.assertEqual(r.unload_errors, {})
+            self.assertEqual(sorted(r.unload), [0.02, 0.032])   # both plates fitted
             for b, fit in r.unload.items():
                 # a spike in the loading before the turning point must not enter the fit
                 self.assertAlmostEqual(fit.Ke_Pa_m / KE_Pa_m, 1.0, delta=0.02, msg=f"b {b}")
@@ -191,6 +192,7 @@ class Analysis(unittest.TestCase):
         # exponential may fit it as done, but the pressure still falls by > 2 % of the moving
         # pressure over the hold's second half.
         r = self.held_lab(0.02, creep=0.15)
+        self.assertTrue(any(r.holds.values()), "no hold analysed")
         for h in (h for hs in r.holds.values() for h in hs):
             self.assertGreater(h["late_drop"], analysis.HOLD_LATE_DROP_TOLERANCE)
             self.assertFalse(h["converged"])

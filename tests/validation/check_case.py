@@ -23,8 +23,8 @@ import subprocess
 import sys
 from pathlib import Path
 
-COLUMNS = ["slip", "drawbar_pull_N", "drawbar_pull_sem_N", "driving_torque_Nm", "sinkage_m",
-           "normal_load_N", "wall_s", "particles", "np"]
+COLUMNS = ["slip", "drawbar_pull_N", "drawbar_pull_sem_N", "driving_torque_Nm", "traction_force_N",
+           "sinkage_m", "normal_load_N", "wall_s", "particles", "np"]
 
 
 def main():
@@ -76,6 +76,19 @@ def main():
         for c in ("normal_load_N", "wall_s", "particles"):
             if not float(row[c]) > 0:
                 failures.append(f"results.csv: {c} = {row[c]} must be > 0")
+        # physical bounds a short run still meets: the soil cannot pull or hold the wheel back
+        # by more than the load (|DP| <= W: friction below 1), the traction force T/R_eff stays
+        # within 2 W, and the wheel ends in the soil, not above it
+        w = float(row["normal_load_N"])
+        if not abs(float(row["drawbar_pull_N"])) <= w:
+            failures.append(f"results.csv: |drawbar pull| {row['drawbar_pull_N']} N exceeds the "
+                            f"load {w} N")
+        if not abs(float(row["traction_force_N"])) <= 2.0 * w:
+            failures.append(f"results.csv: |T/R_eff| {row['traction_force_N']} N exceeds 2 x the "
+                            f"load {w} N")
+        if not float(row["sinkage_m"]) > -0.005:
+            failures.append(f"results.csv: sinkage {row['sinkage_m']} m: the wheel is above the "
+                            "surface")
         print(f"slip {s:.4f}: DP {float(row['drawbar_pull_N']):.3f} ± "
               f"{float(row['drawbar_pull_sem_N']):.3f} N, T {float(row['driving_torque_Nm']):.4f}"
               f" N m, sinkage {1000 * float(row['sinkage_m']):.2f} mm, W "

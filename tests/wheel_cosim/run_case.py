@@ -14,7 +14,6 @@ Runs liggghts-wheel on tests/wheel_cosim/in.wheel_roll, then compare_wrench.py. 
 """
 import argparse
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -86,6 +85,9 @@ def main():
 
     if a.mode == "bed":
         # A bin just longer than the contact patch's path; ~3800 particles of the ci soil.
+        for f in ("soilbin_ci.restart", "soilbin_ci.restart.vars"):   # this run's, not a stale one
+            if os.path.exists(os.path.join(a.work, f)):
+                os.remove(os.path.join(a.work, f))
         cmd = launch + ["-in", os.path.join(a.inputs, "in.soilbin"), "-log", "none",
                         "-var", "inputs_dir", a.inputs, "-var", "soil", "ci",
                         "-var", "bin_length", "0.2", "-var", "bin_width", "0.1",
@@ -144,6 +146,9 @@ def main():
     if a.mode == "vtk":
         steps, every = 400, 100
         vx, vz, wy = 0.1125, -0.2, 1.5
+        for f in os.listdir(a.work):   # no VTK file of an earlier run may pass for this one's
+            if (f.startswith("wheel_") and f.endswith(".vtk")) or f == "wheel.pvd":
+                os.remove(os.path.join(a.work, f))
         text = run(launch, a.work, "out.vtk",
                    dict(common, impl="cosim", steps=steps, vz=vz, vx=vx, wy=wy,
                         neigh_every_step=0, thermo_every=100,
