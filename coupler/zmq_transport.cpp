@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <limits>
 #include <sys/stat.h>
 #include <sys/un.h>
 
@@ -223,7 +224,10 @@ Bytes ZmqTransport::receive(std::chrono::milliseconds timeout, const std::string
   // a millisecond before ours: an early timeout, like an EINTR, waits for the rest of the time
   // (rounded up to a whole millisecond), so the wait is never shorter than `timeout`.
   for (auto remaining = timeout;;) {
-    const int timeout_ms = static_cast<int>(std::max<std::int64_t>(remaining.count(), 0));
+    // ZMQ_RCVTIMEO is an int of ms: a longer wait (over ~24.8 days) is waited in pieces, since
+    // a value past INT_MAX would wrap to a negative one (EINVAL, or -1: wait forever)
+    const int timeout_ms = static_cast<int>(std::min<std::int64_t>(
+        std::max<std::int64_t>(remaining.count(), 0), std::numeric_limits<int>::max()));
     if (timeout_ms != impl_->receive_timeout_ms) {
       impl_->socket.set(zmq::sockopt::rcvtimeo, timeout_ms);
       impl_->receive_timeout_ms = timeout_ms;

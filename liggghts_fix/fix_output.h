@@ -31,6 +31,19 @@ inline bool parse_finite(const char *text, double &value) {
   std::abort(); // not reached: fix_error ends the run
 }
 
+/// The same message for a condition one rank may meet alone (its own atoms, a file only it
+/// reads): LIGGGHTS' fix_error and Error::all wait in a barrier for every rank first, so called
+/// on some ranks they hang the run silently; Error::one prints "ERROR on proc N: Fix <style> (id
+/// <ID>): <message>" and aborts every rank (MPI_Abort).
+[[noreturn]] inline void fix_local_error(LAMMPS_NS::Error *error, LAMMPS_NS::Fix *fix,
+                                         const char *fmt, va_list args) {
+  char body[1024], msg[1200];
+  vsnprintf(body, sizeof(body), fmt, args);
+  snprintf(msg, sizeof(msg), "Fix %s (id %s): %s", fix->style, fix->id, body);
+  error->one(FLERR, msg);
+  std::abort(); // not reached: Error::one aborts
+}
+
 /// Prints `line` (with its newline) to the screen and the log file, on rank 0 only.
 inline void print_line(LAMMPS_NS::LAMMPS *lmp, int rank, const char *line) {
   if (rank != 0)

@@ -153,8 +153,8 @@ void FixTileHistory::carry(int i, bool save) {
   double *v = &carried_values_[static_cast<std::size_t>(i) * carried_width_];
   for (const Carried &c : carried_) {
     const int f = modify->find_fix(c.id.c_str());
-    if (f < 0)
-      error->all(FLERR, ("fix wheelsim/tile_history: fix " + c.id +
+    if (f < 0) // per atom: error->one, since a rank without atoms never gets here
+      error->one(FLERR, ("fix wheelsim/tile_history: fix " + c.id +
                          " (property/atom) was deleted between the record and the remap")
                             .c_str());
     Fix *fix = modify->fix[f];

@@ -183,13 +183,28 @@ FixWheelCosim::FixWheelCosim(LAMMPS *lmp, int narg, char **arg)
   parse_arguments(narg, arg);
   history_columns_ = nslots_ * wheelsim::kSlotDoubles;
 
+  // Every rank reads the mesh; the ranks agree before any error, since one that cannot (a node
+  // without the file system) must not leave the others waiting in fix_error's barrier.
+  std::string mesh_error;
   try {
     wheelsim::geometry::LoadOptions options;
     options.scale = s_->scale;
     s_->index = std::make_unique<wheelsim::geometry::SphereContactIndex>(
         wheelsim::geometry::load_mesh(s_->mesh_path, options));
   } catch (const std::exception &e) {
-    bad_argument("keyword 'mesh': %s", e.what());
+    mesh_error = e.what();
+  }
+  int loaded_here = mesh_error.empty() ? 1 : 0, loaded_all = 0, loaded_any = 0;
+  MPI_Allreduce(&loaded_here, &loaded_all, 1, MPI_INT, MPI_MIN, world);
+  MPI_Allreduce(&loaded_here, &loaded_any, 1, MPI_INT, MPI_MAX, world);
+  if (!loaded_any)
+    bad_argument("keyword 'mesh': %s", mesh_error.c_str());
+  if (!loaded_all) {
+    if (!loaded_here)
+      bad_local_argument("keyword 'mesh': %s (other ranks read it: a file system this rank does "
+                         "not see?)",
+                         mesh_error.c_str());
+    MPI_Barrier(world); // until the rank that failed aborts the run
   }
   const auto &mesh = s_->index->mesh();
   for (const auto &t : mesh.triangles)
@@ -276,6 +291,12 @@ void FixWheelCosim::bad_argument(const char *fmt, ...) {
   va_list args;
   va_start(args, fmt);
   wheelsim::fix_argument_error(error, this, fmt, args);
+}
+
+void FixWheelCosim::bad_local_argument(const char *fmt, ...) {
+  va_list args;
+  va_start(args, fmt);
+  wheelsim::fix_local_error(error, this, fmt, args);
 }
 
 void FixWheelCosim::parse_arguments(int narg, char **arg) {
@@ -1064,10 +1085,11 @@ void FixWheelCosim::unpack_restart(int nlocal, int nth) {
   for (int k = 0; k < nth; ++k)
     m += static_cast<int>(extra[nlocal][m]);
   const int stored = static_cast<int>(extra[nlocal][m]) - 1;
-  if (stored != history_columns_)
-    bad_argument("the restart file holds %d history values per particle, this fix expects %d: "
-                 "use the same 'slots' value as the run that wrote it",
-                 stored, history_columns_);
+  if (stored != history_columns_) // per atom: a rank without atoms never gets here
+    bad_local_argument(
+        "the restart file holds %d history values per particle, this fix expects %d: "
+        "use the same 'slots' value as the run that wrote it",
+        stored, history_columns_);
   std::copy(&extra[nlocal][m + 1], &extra[nlocal][m + 1] + history_columns_, history_[nlocal]);
   std::fill(contact_force_[nlocal], contact_force_[nlocal] + 3, 0.0);
 }
@@ -1170,13 +1192,14 @@ void FixWheelCosim::write_wheel_state(const std::string &path) {
 }
 
 void FixWheelCosim::read_wheel_state(const std::string &path) {
-  // Every rank reads the (small) file and keeps the rows of its own atoms.
+  // Every rank reads the (small) file and keeps the rows of its own atoms. A rank may fail to
+  // read it alone (a node without the file system), so the file's errors are bad_local_argument.
   if (atom->map_style == 0)
     bad_argument("keyword 'resume' needs an atom map ('atom_modify map array' before read_restart, "
                  "as inputs/soilbin/resume.in has it)");
   FILE *fp = fopen(path.c_str(), "rb");
   if (!fp)
-    bad_argument("keyword 'resume': cannot open the wheel state file '%s'", path.c_str());
+    bad_local_argument("keyword 'resume': cannot open the wheel state file '%s'", path.c_str());
   char magic[sizeof kWheelStateMagic] = {};
   double head[22], n = 0.0;
   bool ok = fread(magic, 1, sizeof magic, fp) == sizeof magic &&
@@ -1190,16 +1213,19 @@ void FixWheelCosim::read_wheel_state(const std::string &path) {
   }
   fclose(fp);
   if (!ok)
-    bad_argument("keyword 'resume': '%s' is not a complete wheel state file of fix wheel/cosim",
-                 path.c_str());
+    bad_local_argument(
+        "keyword 'resume': '%s' is not a complete wheel state file of fix wheel/cosim",
+        path.c_str());
   if (columns != history_columns_)
-    bad_argument("keyword 'resume': '%s' holds %d history values per particle, this fix expects "
-                 "%d: use the same 'slots' value as the run that wrote it",
-                 path.c_str(), columns, history_columns_);
+    bad_local_argument(
+        "keyword 'resume': '%s' holds %d history values per particle, this fix expects "
+        "%d: use the same 'slots' value as the run that wrote it",
+        path.c_str(), columns, history_columns_);
   if (static_cast<long>(head[0]) != static_cast<long>(update->ntimestep))
-    bad_argument("keyword 'resume': the wheel state '%s' is of step %ld, the restart file read "
-                 "is of step %ld: use the restart and the wheel state of one checkpoint",
-                 path.c_str(), static_cast<long>(head[0]), static_cast<long>(update->ntimestep));
+    bad_local_argument(
+        "keyword 'resume': the wheel state '%s' is of step %ld, the restart file read "
+        "is of step %ld: use the restart and the wheel state of one checkpoint",
+        path.c_str(), static_cast<long>(head[0]), static_cast<long>(update->ntimestep));
   int restored = 0;
   for (std::size_t r = 0; r < static_cast<std::size_t>(n); ++r) {
     const double *row = &rows[r * (columns + 1)];

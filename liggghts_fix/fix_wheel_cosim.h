@@ -103,6 +103,9 @@ private:
   void report_wrench();                                       // to the motion source
   [[noreturn]] void coupling_failed(const std::exception &e); // error->one on rank 0
   [[noreturn]] void bad_argument(const char *fmt, ...);
+  // The same for a condition this rank may meet alone (wheelsim::fix_local_error): never a
+  // barrier the other ranks do not reach.
+  [[noreturn]] void bad_local_argument(const char *fmt, ...);
 
   std::unique_ptr<wheelsim::WheelCosimState> s_;
   int wheel_type_;

@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -102,6 +103,19 @@ TEST(CouplerZmq, RoundTripTcpDefaultsToLoopback) {
   EXPECT_THAT(t->endpoint(), HasSubstr("tcp://127.0.0.1:"));
   auto l = ZmqTransport::bind("tcp://localhost:*");
   EXPECT_THAT(l->endpoint(), HasSubstr("tcp://127.0.0.1:"));
+}
+
+TEST(CouplerZmq, TimeoutLongerThanAnIntOfMillisecondsStillReceives) {
+  // ZMQ_RCVTIMEO is an int of ms: 30 days (2.6e9 ms) used to wrap to a negative value, which
+  // ZeroMQ refuses (EINVAL, thrown without the peer's name); now it is waited in pieces.
+  IpcDir dir;
+  auto server = ZmqTransport::bind(dir.endpoint("long.sock"));
+  auto client = ZmqTransport::connect(server->endpoint());
+  const std::vector<std::uint8_t> sent{1, 2, 3};
+  client->send(sent);
+  const auto thirty_days = std::chrono::milliseconds(30LL * 24 * 3600 * 1000);
+  ASSERT_GT(thirty_days.count(), std::numeric_limits<int>::max());
+  EXPECT_EQ(server->receive(thirty_days, "a message"), sent);
 }
 
 TEST(CouplerZmq, SilentServerTimesOutNamingEndpoint) {

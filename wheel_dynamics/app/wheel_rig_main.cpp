@@ -50,8 +50,9 @@ namespace {
 
 using namespace wheelsim;
 
+// Rounded up: a timeout under a millisecond must not become 0 ms (a receive that fails at once).
 std::chrono::milliseconds millis(double seconds) {
-  return std::chrono::milliseconds(static_cast<long long>(seconds * 1000.0));
+  return std::chrono::ceil<std::chrono::milliseconds>(std::chrono::duration<double>(seconds));
 }
 
 /// Advances the rig one step at a time with the run's health checks (docs/run-health.md) and
