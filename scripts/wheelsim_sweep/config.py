@@ -233,6 +233,11 @@ def _load_toml(path, ctx_for_errors=None):
                else ConfigError(f"{path}: not found"))
     except tomllib.TOMLDecodeError as e:
         raise ConfigError(f"{path}: TOML syntax error: {e}")
+    except UnicodeDecodeError as e:
+        raise ConfigError(f"{path}: not a TOML file: byte {e.object[e.start]:#04x} at offset "
+                          f"{e.start} is not UTF-8 text (TOML files are UTF-8)")
+    except IsADirectoryError:
+        raise ConfigError(f"{path}: is a directory, not a TOML file")
 
 
 def _wheels(ctx, entries, terrain, build_dir):
@@ -434,6 +439,7 @@ def _soils(ctx, entries, terrain, repo):
                 for k, v in recipe.items():
                     if isinstance(v, bool) or not isinstance(v, (int, float, str)):
                         raise ctx.err(f"{key}.{k} must be a number or a string, got {v!r}")
+                _check_recipe_values(ctx, recipe, key)
                 _check_tile_keys(ctx, recipe, key)
                 restart = ctx.path_of(e["restart"], f"{key}.restart") if "restart" in e else None
                 if "soil" in e or "soil_file" in e:
@@ -461,6 +467,70 @@ def _soils(ctx, entries, terrain, repo):
             else:
                 raise ctx.err(f"{key} must be a bed restart path or a bin recipe table, got {e!r}")
     return out
+
+
+# Ranges of the bin recipe's in.soilbin variables, checked before anything runs (the deck would
+# stop on some of them only after mpirun started; others it would take): name -> (lower bound,
+# bound excluded, upper bound or None, integer, unit, what it is).
+RECIPE_RANGES = {
+    "bin_length": (0.0, True, None, False, "m", "the bin's inner length"),
+    "bin_width": (0.0, True, None, False, "m", "the bin's inner width"),
+    "fill_height": (0.0, True, None, False, "m", "the intended settled bed depth"),
+    "fill_solid_fraction": (0.0, True, 1.0, False, "", "the solid fraction assumed for fill_height"),
+    "insert_fraction": (0.0, True, 1.0, False, "", "the insertion cloud's solid fraction"),
+    "ke_threshold": (0.0, True, None, False, "", "the settling criterion KE / (M g d_ref)"),
+    "check_time": (0.0, True, None, False, "s", "how often the criterion is checked"),
+    "max_settle_time": (0.0, True, None, False, "s", "the bound of the settling"),
+    "plate_pressure": (0.0, True, None, False, "Pa", "the compaction plate's pressure"),
+    "plate_speed": (0.0, True, None, False, "m/s", "the compaction plate's speed"),
+    "plate_time": (0.0, True, None, False, "s", "the time under the compaction plate"),
+    "drop_height": (0.0, True, None, False, "m", "the drop's free-fall height"),
+    "drop_stroke": (0.0, True, None, False, "d_ref", "the penetration per blow"),
+    "drop_count": (1, False, None, True, "", "the number of blows"),
+    "drop_rest": (0.0, False, None, False, "s", "the pause after each blow"),
+    "thermo_every": (1, False, None, True, "steps", "the thermo interval"),
+    "steel_E": (0.0, True, None, False, "Pa", "the walls' Young's modulus"),
+    "steel_nu": (0.0, False, 0.5, False, "", "the walls' Poisson ratio"),
+    "wall_mu": (0.0, False, None, False, "", "the wall friction"),
+    "wheel_mu": (0.0, False, None, False, "", "the wheel friction"),
+    "wall_kcoh": (0.0, False, None, False, "", "the wall cohesion"),
+    "wheel_kcoh_ratio": (0.0, False, None, False, "", "the wheel's share of the soil's cohesion"),
+}
+COMPACTIONS = ("none", "plate", "drop")
+
+
+def _is_prime(n):
+    return n > 1 and all(n % k for k in range(2, math.isqrt(n) + 1))
+
+
+def _check_recipe_values(ctx, recipe, key):
+    """The values of a bin recipe's in.soilbin variables (RECIPE_RANGES, compaction, seed,
+    pour_mu), each named with what it is when out of range."""
+    for k, (lo, strict, hi, integer, unit, what) in RECIPE_RANGES.items():
+        if k not in recipe:
+            continue
+        v = recipe[k]
+        number = isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+        ok = number and (v > lo if strict else v >= lo) and (hi is None or v < hi) and \
+            (not integer or float(v).is_integer())
+        if not ok:
+            kind = "an integer" if integer else "a number"
+            rng = f"{'>' if strict else '>='} {lo:g}" + (f" and < {hi:g}" if hi is not None else "")
+            raise ctx.err(f"{key}.{k} must be {kind} {rng}{' ' + unit if unit else ''} ({what}), "
+                          f"got {v!r}")
+    if "compaction" in recipe and recipe["compaction"] not in COMPACTIONS:
+        raise ctx.err(f"{key}.compaction must be one of {', '.join(COMPACTIONS)}, got "
+                      f"{recipe['compaction']!r}")
+    if "seed" in recipe:
+        v = recipe["seed"]
+        if not (isinstance(v, int) and not isinstance(v, bool) and v > 10000 and _is_prime(v)):
+            raise ctx.err(f"{key}.seed must be a prime integer > 10000 (LIGGGHTS' insertion "
+                          f"seed), got {v!r}")
+    if "pour_mu" in recipe:
+        v = recipe["pour_mu"]
+        if not (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                and (v >= 0 or v == -1)):
+            raise ctx.err(f"{key}.pour_mu must be a friction >= 0, or -1 (off), got {v!r}")
 
 
 def _check_tile_keys(ctx, recipe, key):
@@ -653,6 +723,11 @@ def load(path, repo, build_dir):
                           "slip_control = \"wheel_speed\": the slip set by the wheel speed)")
     if "soil" in doc.get("override", {}).get("terrain", {}):
         raise ctx.err("override.terrain.soil: the soil is set per point from 'soils'")
+    # the same for what the slip control sets per point: an override of it would be replaced
+    per_point = ("carriage", "slip") if slip_control == "imposed_slip" else ("motor", "omega")
+    if per_point[1] in doc.get("override", {}).get(per_point[0], {}):
+        raise ctx.err(f"override.{'.'.join(per_point)}: set per point from 'slips' "
+                      f"(slip_control = \"{slip_control}\")")
     rig.get("terrain", {}).pop("soil", None)  # a base's soil is replaced per point
 
     sweep = Sweep(path=path, terrain=terrain, description=description,

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """scripts/wheel-cosim's command line (docs/coupled-runs.md, "Exit codes"): --help and --version
 exit 0, bad usage exits 2 with one line naming the bad flag (and the nearest valid one), before
-anything is started.
+anything is started; a missing mesh and a rig config that fails wheel-rig --check too.
 
   check_wheel_cosim_cli.py --cosim scripts/wheel-cosim --build BUILD_DIR
 Exit 0 pass, 1 fail.
@@ -11,6 +11,8 @@ import os
 import re
 import subprocess
 import sys
+import tempfile
+from pathlib import Path
 
 
 def main():
@@ -46,6 +48,23 @@ def main():
     expect(["--np", "--rig", "r.toml"], 2, r"--np: expects a value")
     expect(["--parameter", "novalue"], 2, r"--parameter: expected KEY=VALUE")
     expect([], 2, r"--rig: rig config '' not found")
+    # Before anything starts: the mesh must exist, and the rig config passes wheel-rig --check
+    # (a misspelt key is named with its line, not found once LIGGGHTS has read the bed).
+    with tempfile.TemporaryDirectory() as tmp:
+        t = Path(tmp)
+        for f in ("bed.restart", "bed.restart.vars", "deck.in", "wheel.stl"):
+            (t / f).write_text("")
+        (t / "rig.toml").write_text("[wheel]\nmas = 2.0\n")
+        files = ["--bed", str(t / "bed.restart"), "--deck", str(t / "deck.in"), "--work",
+                 str(t / "work")]
+        expect(["--rig", str(t / "rig.toml"), *files, "--mesh", str(t / "none.stl")], 2,
+               r"--mesh: wheel mesh '.*none\.stl' not found")
+        expect(["--rig", str(t / "rig.toml"), *files, "--mesh", str(t / "wheel.stl")], 2,
+               r"--rig: wheel-rig: .*rig\.toml:2: unknown key 'wheel\.mas'; did you mean "
+               r"'wheel\.mass'\?")
+        if (t / "work").exists():
+            print("FAIL the rejected runs made their work directory")
+            failures.append(["work directory"])
     if failures:
         print(f"{len(failures)} failed")
         return 1

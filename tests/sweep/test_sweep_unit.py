@@ -617,6 +617,58 @@ def _budget_setup(work):
     return build, cfg, env
 
 
+def case_recipe_values(a, work):
+    """A bin recipe's in.soilbin variables are checked before anything runs: lengths > 0 m,
+    fractions in (0, 1), compaction one of none/plate/drop, seed a prime > 10000, pour_mu >= 0 or
+    -1, integers where the deck counts; each error names the key and what is expected. An
+    override of what the slip control sets per point (carriage.slip) is refused, and a config that
+    is not UTF-8 text is a one-line error, not a traceback."""
+    from wheelsim_sweep import config
+    repo = Path(a.sweep).resolve().parents[1]
+    (work / "w.stl").write_text("solid w\nendsolid w\n")
+    (work / "base.toml").write_text("[run]\ndt = 1e-4\n")
+    _stand_in_rig(work, keys=[("carriage", "slip"), ("carriage", "mode")])
+
+    def load(entry, extra=""):
+        (work / "sweep.toml").write_text(f'terrain = "dem"\nbase = "base.toml"\n'
+                                         f'wheels = ["w.stl"]\nslips = [0.1]\nsoils = [{entry}]\n'
+                                         + extra)
+        return config.load(work / "sweep.toml", repo, work)
+
+    sw = load('{ soil = "ci", bin_length = 0.36, fill_height = 0.035, seed = 49979687, '
+              'compaction = "plate", pour_mu = -1, drop_count = 3 }')
+    check(sw.soils[0].recipe["seed"] == 49979687, f"recipe {sw.soils[0].recipe}")
+    for entry, msg in (
+            ('{ soil = "ci", bin_length = -0.36 }', "soils[0].bin_length must be a number > 0 m"),
+            ('{ soil = "ci", fill_height = 0 }', "soils[0].fill_height must be a number > 0 m"),
+            ('{ soil = "ci", fill_height = nan }', "soils[0].fill_height must be a number > 0 m"),
+            ('{ soil = "ci", fill_solid_fraction = 1.2 }',
+             "soils[0].fill_solid_fraction must be a number > 0 and < 1"),
+            ('{ soil = "ci", compaction = "vibrate" }',
+             "soils[0].compaction must be one of none, plate, drop, got 'vibrate'"),
+            ('{ soil = "ci", seed = 1.5 }', "soils[0].seed must be a prime integer > 10000"),
+            ('{ soil = "ci", seed = 49979688 }', "soils[0].seed must be a prime integer > 10000"),
+            ('{ soil = "ci", drop_count = 2.5 }', "soils[0].drop_count must be an integer >= 1"),
+            ('{ soil = "ci", pour_mu = -0.5 }', "soils[0].pour_mu must be a friction >= 0, or -1")):
+        try:
+            load(entry)
+            raise Fail(f"accepted: {entry}")
+        except config.ConfigError as e:
+            check(msg in str(e), f"{entry}: {e}")
+    try:
+        load('{ soil = "ci" }', "[override.carriage]\nslip = 0.3\n")
+        raise Fail("accepted override.carriage.slip")
+    except config.ConfigError as e:
+        check("override.carriage.slip: set per point from 'slips'" in str(e), str(e))
+    bad = work / "latin1.toml"
+    bad.write_bytes(b'description = "caf\xe9"\n')
+    try:
+        config.load(bad, repo, work)
+        raise Fail("accepted a Latin-1 config")
+    except config.ConfigError as e:
+        check("not a TOML file: byte 0xe9 at offset 18 is not UTF-8 text" in str(e), str(e))
+
+
 def case_budget(a, work):
     """dem.budget_h and --budget: a DEM sweep estimated over the budget exits 2 naming the
     estimate and the budget, before anything is written; --budget overrides the key; --estimate
