@@ -141,6 +141,19 @@ TEST_F(WheelRigCli, CheckRejectsWhatARunWouldRejectNamingTheKey) {
   const CommandResult r = rig("--config " + dem + " --check --out " + run_file());
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_FALSE(fs::exists(run_file()));
+  // The options get the checks their keys get: each bad value named, by --check too.
+  const std::vector<std::pair<std::string, std::string>> options{
+      {"--endpoint foo://bar", "--endpoint must start with ipc:// or tcp://, got 'foo://bar'"},
+      {"--out ''", "--out expects a run file path, got ''"},
+      {"--surface-height nan", "--surface-height must be a finite height [m]"},
+      {"--kinematic nan 0 0 0 0 0", "--kinematic expects six finite numbers"},
+      {"--resume " + (dir_ / "none.ckpt").string(), "--resume: checkpoint '"},
+  };
+  for (const auto &[args, message] : options) {
+    const CommandResult o = rig("--config " + dem + " --check " + args);
+    EXPECT_EQ(o.status, 2) << args << ": " << o.output;
+    EXPECT_NE(o.output.find(message), std::string::npos) << args << ": " << o.output;
+  }
 }
 
 } // namespace

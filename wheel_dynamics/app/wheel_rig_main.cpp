@@ -515,12 +515,27 @@ int main(int argc, char **argv) {
   rig::RigConfig config;
   try {
     config = rig::load_rig_config(config_path);
+    // The options get the checks their config keys get (a bad value is named, also by --check).
+    if (app.count("--out") && out_path.empty())
+      throw cli::UsageError("--out expects a run file path, got ''");
     if (!out_path.empty())
       config.output.file = out_path;
+    if (app.count("--endpoint") && endpoint.rfind("ipc://", 0) != 0 &&
+        endpoint.rfind("tcp://", 0) != 0)
+      throw cli::UsageError("--endpoint must start with ipc:// or tcp://, got '" + endpoint + "'");
     if (!endpoint.empty())
       config.terrain.endpoint = endpoint;
+    if (surface_height && !std::isfinite(*surface_height))
+      throw cli::UsageError("--surface-height must be a finite height [m], got " +
+                            std::to_string(*surface_height));
     if (surface_height)
       config.terrain.surface_height_m = *surface_height;
+    for (double v : kinematic)
+      if (!std::isfinite(v))
+        throw cli::UsageError("--kinematic expects six finite numbers (vx vy vz [m/s] wx wy wz "
+                              "[rad/s]), got a non-finite one");
+    if (!resume_path.empty() && !std::filesystem::is_regular_file(resume_path))
+      throw cli::UsageError("--resume: checkpoint '" + resume_path + "' not found");
     if (dt && !(*dt > 0.0 && std::isfinite(*dt)))
       throw cli::UsageError("--dt must be a time step > 0 s, got " + std::to_string(*dt));
     if (dt)
