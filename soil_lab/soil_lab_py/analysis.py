@@ -11,13 +11,14 @@ import csv
 import json
 import re
 import tomllib
-from dataclasses import asdict, dataclass, field, replace
+import warnings
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Dict, List, Optional
 
 import numpy as np
 
-from . import fits, repose, report, scm_file
+from . import fits, plan, repose, report, scm_file
 from ._inputs import FitInputError
 
 
@@ -57,16 +58,182 @@ class Results:
         return float(np.mean([f.angle_deg for f in self.repose_fits])) if self.repose_fits else None
 
 
-def _table(path, names):
-    data = np.loadtxt(path, comments="#", ndmin=2)
-    if data.shape[0] == 0 or data.shape[1] != len(names):
-        raise LabResultError(f"{path}: expected rows of {len(names)} columns ({' '.join(names)})")
+# --- reading a lab directory's files: what is not what soil-lab run writes is a LabResultError
+# naming the file (and its line and column, or its field) and what was expected.
+
+def _read_text(path):
+    """The text of the file `path`; a LabResultError if it cannot be read or is not UTF-8 text
+    (a binary or damaged file: the line of its first bad byte)."""
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except OSError as e:
+        raise LabResultError(f"{path}: cannot read it: {e.strerror}") from None
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as e:
+        line = raw.count(b"\n", 0, e.start) + 1
+        raise LabResultError(f"{path}, line {line}: byte 0x{raw[e.start]:02x} is not UTF-8 "
+                             f"text: expected a text file (a binary or damaged file?)") from None
+
+
+def _read_toml(path):
+    """The TOML file `path` as a dict; a LabResultError naming its line and column if it is not
+    TOML."""
+    try:
+        return tomllib.loads(_read_text(path))
+    except tomllib.TOMLDecodeError as e:
+        raise LabResultError(f"{path}: not valid TOML: {e}") from None
+
+
+def _read_json_object(path):
+    """The JSON object in the file `path`; a LabResultError naming its line and column if it is
+    not JSON, or if it is not an object."""
+    try:
+        data = json.loads(_read_text(path))
+    except json.JSONDecodeError as e:
+        raise LabResultError(f"{path}: not valid JSON: {e.msg} (line {e.lineno}, column "
+                             f"{e.colno})") from None
+    if not isinstance(data, dict):
+        raise LabResultError(f"{path}: expected a JSON object {{...}}, got "
+                             f"{type(data).__name__} {str(data)[:40]}")
+    return data
+
+
+def _is_number(v):
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and np.isfinite(v)
+
+
+def _number(where, table, key, expected, ok=lambda v: True, text=False, required=True,
+            prefix=""):
+    """table[key] of the file `where` as a float (None if it is absent and not `required`): a
+    finite number for which ok(value) holds, also written as a string if `text` (in.soilbin's
+    printed results); else a LabResultError naming the file, the key (after `prefix`, e.g.
+    "meta.") and `expected`."""
+    if key not in table:
+        if not required:
+            return None
+        raise LabResultError(f"{where}: {prefix}{key} is missing: expected {expected}")
+    v = table[key]
+    if text and isinstance(v, str):
+        try:
+            v = float(v)
+        except ValueError:
+            pass
+    if not (_is_number(v) and ok(float(v))):
+        raise LabResultError(f"{where}: {prefix}{key} = {table[key]!r}: expected {expected}")
+    return float(v)
+
+
+def _table(path, names, skip_lines=0):
+    """The whitespace-separated table in the file `path` (after `skip_lines` lines; '#' starts a
+    comment) as {name: column array}. A LabResultError names the file, and the line and column,
+    if it cannot be read, has no rows, or a row has another number of columns than `names` or
+    holds anything but finite numbers (a damaged or truncated file)."""
+    lines = _read_text(path).splitlines()[skip_lines:]
+    what = f"rows of {len(names)} numbers ({' '.join(names)})"
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # loadtxt's "input contained no data"
+            data = np.loadtxt(lines, comments="#", ndmin=2)
+    except ValueError:
+        data = None
+    if data is not None and data.shape[0] == 0:
+        raise LabResultError(f"{path}: no data rows: expected {what}")
+    if data is None or data.shape[1] != len(names) or not np.isfinite(data).all():
+        for i, line in enumerate(lines):
+            fields = line.split("#", 1)[0].split()
+            if not fields:
+                continue
+            at = f"{path}, line {skip_lines + i + 1}"
+            if len(fields) != len(names):
+                raise LabResultError(f"{at}: {len(fields)} columns, expected {what}")
+            for k, (value, name) in enumerate(zip(fields, names)):
+                try:
+                    ok = np.isfinite(float(value))
+                except ValueError:
+                    ok = False
+                if not ok:
+                    raise LabResultError(f"{at}, column {k + 1} ({name}): '{value}' is not a "
+                                         f"finite number: expected {what}")
+        raise LabResultError(f"{path}: expected {what}")
     return {n: data[:, i] for i, n in enumerate(names)}
 
 
 def _done(directory):
+    """A step's done.json (written last, when it finished), or None if it has none."""
     f = Path(directory) / "done.json"
-    return json.loads(f.read_text()) if f.is_file() else None
+    return _read_json_object(f) if f.is_file() else None
+
+
+def _meta(run, done, key, expected, required=True):
+    """done.json's meta[key] of the run `run`, a size or a stress (a finite number > 0; None if
+    absent and not `required`)."""
+    where = Path(run) / "done.json"
+    meta = done.get("meta")
+    if not isinstance(meta, dict):
+        raise LabResultError(f"{where}: meta = {meta!r}: expected a table of the run's sizes "
+                             f"(with {key})")
+    return _number(where, meta, key, expected, lambda v: v > 0, required=required,
+                   prefix="meta.")
+
+
+#: A bed-hold check's result (bed_hold.parse) as the report uses it (bed_hold.describe, failure).
+HOLD_RESULT_KEYS = ("hold_s", "zcm_start_m", "zcm_end_m", "settlement",
+                    "settlement_last_quarter")
+
+
+def _hold_result(where, hold):
+    """The result of a bed-hold record (beds/<bed>/hold/done.json), its numbers checked."""
+    res = hold.get("result")
+    if not isinstance(res, dict):
+        raise LabResultError(f"{where}: result = {res!r}: expected the table of the bed-hold "
+                             "check's result")
+    for key in HOLD_RESULT_KEYS + ("sink_rate_m_s",):
+        _number(where, res, key, "a number", required=key != "sink_rate_m_s", prefix="result.")
+    return res
+
+
+#: soil.toml's fields (soil-lab run writes them from in.lab_soilinfo), each checked when present:
+#: (what is expected, test). SOIL_REQUIRED are needed by every report.
+SOIL_FIELDS = {
+    "name": ("the soil's name, a non-empty string", lambda v: isinstance(v, str) and v.strip()),
+    "file": ("the soil file's path, a string", lambda v: isinstance(v, str)),
+    "preset": (f"one of {', '.join(plan.PRESETS)}", lambda v: isinstance(v, str)
+               and v in plan.PRESETS),
+    "tests": (f"a list of tests from {', '.join(plan.TEST_NAMES)}",
+              lambda v: isinstance(v, list) and all(isinstance(t, str) and t in plan.TEST_NAMES
+                                                    for t in v)),
+    "dmin_m": ("the smallest grain diameter, a number > 0 [m]", lambda v: _is_number(v) and v > 0),
+    "dmax_m": ("the largest grain diameter, a number > 0 [m]", lambda v: _is_number(v) and v > 0),
+    "dref_m": ("the reference grain diameter, a number > 0 [m]",
+               lambda v: _is_number(v) and v > 0),
+    "density_kg_m3": ("the particle density, a number > 0 [kg/m^3]",
+                      lambda v: _is_number(v) and v > 0),
+    "multisphere": ("true or false", lambda v: isinstance(v, bool)),
+    "dt_s": ("the time step, a number > 0 [s]", lambda v: _is_number(v) and v > 0),
+    "youngs_Pa": ("the particles' Young's modulus, a number > 0 [Pa] (-1: not named)",
+                  lambda v: _is_number(v) and (v > 0 or v == -1)),
+    "invocations": ("an array of tables ([[invocations]])",
+                    lambda v: isinstance(v, list) and all(isinstance(i, dict) for i in v)),
+}
+SOIL_REQUIRED = ("name", "dmax_m")
+
+
+def read_soil(path):
+    """A lab's soil.toml as a dict, its fields checked (SOIL_FIELDS): a LabResultError names the
+    file and the field."""
+    soil = _read_toml(path)
+    for key in SOIL_REQUIRED:
+        if key not in soil:
+            raise LabResultError(f"{path}: {key} is missing: expected {SOIL_FIELDS[key][0]}")
+    for key, (expected, ok) in SOIL_FIELDS.items():
+        if key in soil and not ok(soil[key]):
+            raise LabResultError(f"{path}: {key} = {soil[key]!r}: expected {expected}")
+    if "dmin_m" in soil and soil["dmin_m"] > soil["dmax_m"]:
+        raise LabResultError(f"{path}: dmin_m = {soil['dmin_m']!r} is larger than dmax_m = "
+                             f"{soil['dmax_m']!r}: expected dmin_m <= dmax_m")
+    return soil
 
 
 COST_KEYS = ("wall_s", "steps", "particles", "np", "dt_s")
@@ -76,15 +243,20 @@ QUASI_STATIC_TOLERANCE = {"plate": 0.05, "shear": 0.05, "repose": 1.5}  # relati
 
 def _runs(d, pattern):
     """The finished runs matching `pattern`, without the half-speed ones."""
-    return [(run, _done(run)) for run in sorted(d.glob(pattern))
-            if not run.name.endswith("_half") and _done(run) is not None]
+    runs = [(run, _done(run)) for run in sorted(d.glob(pattern)) if not run.name.endswith("_half")]
+    return [(run, done) for run, done in runs if done is not None]
 
 
 def read_plate(run, done):
-    t = _table(run / "plate.csv", ("time_s", "sinkage_m", "force_N", "pressure_Pa", "contacts",
-                                   "phase"))
-    return {"b_m": done["meta"]["b_m"], "t": t["time_s"], "z": t["sinkage_m"],
-            "p": t["pressure_Pa"], "phase": t["phase"], "done": done}
+    path = Path(run) / "plate.csv"
+    t = _table(path, ("time_s", "sinkage_m", "force_N", "pressure_Pa", "contacts", "phase"))
+    if np.count_nonzero((t["phase"] == PLATE_LOAD) & (t["sinkage_m"] > 0)) < 2:
+        raise LabResultError(f"{path}: fewer than 2 rows of the loading (phase {PLATE_LOAD}) "
+                             f"below the surface (sinkage_m > 0) in its {len(t['phase'])} rows: "
+                             "expected a finished run's record (a truncated file?)")
+    return {"b_m": _meta(run, done, "b_m", "the plate's width, a number > 0 [m]"),
+            "t": t["time_s"], "z": t["sinkage_m"], "p": t["pressure_Pa"], "phase": t["phase"],
+            "done": done}
 
 
 #: in.lab_plate's phase codes
@@ -246,17 +418,29 @@ def shear_consolidation(time_s, sigma_Pa, lid_z_m, phase, log_text=""):
 
 
 def read_shear(run, done):
-    t = _table(run / "shear.csv", ("time_s", "displacement_m", "shear_force_N", "tau_Pa",
-                                   "sigma_Pa", "lid_z_m", "phase"))
+    run = Path(run)
+    path = run / "shear.csv"
+    t = _table(path, ("time_s", "displacement_m", "shear_force_N", "tau_Pa", "sigma_Pa",
+                      "lid_z_m", "phase"))
+    sigma_target = _meta(run, done, "normal_stress_Pa", "the normal stress, a number > 0 [Pa]")
+    _meta(run, done, "box_m", "the box's side, a number > 0 [m]", required=False)
     s = t["phase"] == 2
+    if not s.any():
+        raise LabResultError(f"{path}: no rows of the shear (phase 2) in its {len(s)} rows: "
+                             "expected a finished run's record (a truncated file?)")
     j, tau, sigma = t["displacement_m"][s], t["tau_Pa"][s], t["sigma_Pa"][s]
-    peak = shear_peak_and_residual(j, tau)
+    try:
+        peak = shear_peak_and_residual(j, tau)
+        janosi = fits.fit_janosi(j, tau)
+    except FitInputError as e:
+        raise LabResultError(f"{path}: its shear rows (phase 2) cannot be fitted: {e} (a "
+                             "truncated or damaged file?)") from None
     log = run / "liggghts.log"
     text = log.read_text(errors="replace") if log.is_file() else ""
     counts = shear_particle_counts(text) if text else None
-    return {"sigma_Pa": float(np.mean(sigma)), "sigma_target_Pa": done["meta"]["normal_stress_Pa"],
+    return {"sigma_Pa": float(np.mean(sigma)), "sigma_target_Pa": sigma_target,
             "j": j, "tau": tau, "lid_dz": t["lid_z_m"][s] - t["lid_z_m"][s][0], "peak": peak,
-            "janosi": fits.fit_janosi(j, tau), "loss": shear_particle_loss(counts, peak.j_peak_m),
+            "janosi": janosi, "loss": shear_particle_loss(counts, peak.j_peak_m),
             "consolidation": shear_consolidation(t["time_s"], t["sigma_Pa"], t["lid_z_m"],
                                                  t["phase"], text),
             "done": done}
@@ -394,9 +578,10 @@ def shear_loss_warnings(shears):
 
 def read_repose(run, done, dmax):
     """(fits, profiles, error) of a repose run: profiles along x and y through the heap's top."""
-    rows = np.loadtxt(run / "repose.dump", skiprows=9, ndmin=2)  # id x y z radius
-    x, y, z, rad = rows[:, 1], rows[:, 2], rows[:, 3], rows[:, 4]
-    B = done["meta"]["base_m"]
+    # LIGGGHTS' write_dump custom: 9 header lines, then "id x y z radius" per particle
+    t = _table(Path(run) / "repose.dump", ("id", "x", "y", "z", "radius"), skip_lines=9)
+    x, y, z, rad = t["x"], t["y"], t["z"], t["radius"]
+    B = _meta(run, done, "base_m", "the base's side, a number > 0 [m]")
     found, profiles = [], []
     # bands |y| < B/4 and |x - B/2| < B/4, bins of d_max / 2 over the base
     for u, v in ((x - 0.5 * B, y), (y, x - 0.5 * B)):
@@ -406,7 +591,7 @@ def read_repose(run, done, dmax):
         try:  # the heap's axis: the profile's highest point
             found.append(repose.repose_angle(px, ph, axis_m=float(px[np.argmax(ph)])))
         except FitInputError as e:
-            return [], [], (f"no angle of repose: {e} ({len(rows)} particles left on a "
+            return [], [], (f"no angle of repose: {e} ({len(x)} particles left on a "
                             f"{B:.3g} m base)")
         profiles.append((px, ph))
     return found, profiles, None
@@ -418,16 +603,26 @@ def analyse(directory):
     soil_file = d / "soil.toml"
     if not soil_file.is_file():
         raise LabResultError(f"{d} is not a soil-lab directory (no soil.toml): run `soil-lab run`")
-    r = Results(soil=tomllib.loads(soil_file.read_text()), directory=d)
+    r = Results(soil=read_soil(soil_file), directory=d)
     dmax = float(r.soil["dmax_m"])
 
     bed = _done(d / "beds" / "plate")
     if bed is not None:
-        res = bed["result"]
-        r.bulk = {k: float(res[k]) for k in ("bulk_density", "porosity", "core_bulk_density",
-                                             "core_porosity", "bed_depth") if k in res}
-        r.bulk["particles"] = int(res.get("spheres", 0))
-        r.bulk["compaction"] = res.get("compaction", "none")
+        where = d / "beds" / "plate" / "done.json"
+        res = bed.get("result")
+        if not isinstance(res, dict):
+            raise LabResultError(f"{where}: result = {res!r}: expected the table of "
+                                 "in.soilbin's printed results")
+        # the summary's bulk density, porosity and bed depth; the core cell's when measured
+        r.bulk = {k: _number(where, res, k, "a number", text=True, prefix="result.",
+                             required=not k.startswith("core_"))
+                  for k in ("bulk_density", "porosity", "core_bulk_density", "core_porosity",
+                            "bed_depth")}
+        r.bulk = {k: v for k, v in r.bulk.items() if v is not None}
+        r.bulk["particles"] = int(_number(where, res, "spheres", "a count >= 0",
+                                          lambda v: v >= 0 and v == int(v), text=True,
+                                          required=False, prefix="result.") or 0)
+        r.bulk["compaction"] = str(res.get("compaction", "none"))
 
     for run, done in _runs(d, "plate_b*"):
         r.plates.append(read_plate(run, done))
@@ -479,7 +674,8 @@ def analyse(directory):
         extra = {}
         if test == "plate":
             # the full-speed run is one of the lab's plates, read above
-            plate = next((p for p in r.plates if p["b_m"] == full["meta"]["b_m"]), None) or \
+            b_full = _meta(full_dir, full, "b_m", "the plate's width, a number > 0 [m]")
+            plate = next((p for p in r.plates if p["b_m"] == b_full), None) or \
                 read_plate(full_dir, full)
             za, ma = plate_pressure_profile(plate)
             zb, mb = plate_pressure_profile(read_plate(run, half))
@@ -508,16 +704,22 @@ def analyse(directory):
 
     for run, done in [(q, _done(q)) for q in sorted(d.iterdir()) if q.is_dir()]:
         if done is not None and "steps" in done:
+            for k in COST_KEYS:  # written as they are (steps, particles, np: integers)
+                _number(run / "done.json", done, k, "a number >= 0", lambda v: v >= 0)
             r.costs.append({"run": run.name, **{k: done[k] for k in COST_KEYS}})
     beds = d / "beds"
     for bed, done in [(q, _done(q)) for q in sorted(beds.iterdir())] if beds.is_dir() else []:
         if done is not None and "wall_s" in done:
-            r.bed_costs[bed.name] = float(done["wall_s"])
+            r.bed_costs[bed.name] = _number(bed / "done.json", done, "wall_s",
+                                            "a wall time >= 0 [s]", lambda v: v >= 0)
         hold = _done(bed / "hold")  # the bed-hold check (runner.Lab.bed_hold) of this bed only
         if (hold is not None and "result" in hold and done is not None
                 and hold.get("bed_inputs") == done.get("inputs")):
-            r.bed_holds[bed.name] = hold["result"]
-            r.bed_costs[f"{bed.name}/hold"] = float(hold.get("wall_s", 0.0))
+            where = bed / "hold" / "done.json"
+            r.bed_holds[bed.name] = _hold_result(where, hold)
+            r.bed_costs[f"{bed.name}/hold"] = _number(where, hold, "wall_s",
+                                                      "a wall time >= 0 [s]", lambda v: v >= 0,
+                                                      required=False) or 0.0
     return r
 
 
@@ -706,22 +908,29 @@ def shear_strength_from(path, soil_name):
         if not f.is_file():
             raise LabResultError(f"--shear-from {p}: neither shear box runs nor a results.toml "
                                  "(written by `soil-lab report`)")
-        data = tomllib.loads(f.read_text())
-        boxes = data.get("shear", {}).get("stresses", [])
+        data = _read_toml(f)
+        shear_table = data.get("shear", {})
+        boxes = shear_table.get("stresses", []) if isinstance(shear_table, dict) else None
+        if not isinstance(boxes, list) or not all(isinstance(b, dict) for b in boxes):
+            raise LabResultError(f"--shear-from {f}: shear.stresses = {boxes!r}: expected an "
+                                 "array of tables ([[shear.stresses]])")
         if len(boxes) < 3:
             raise LabResultError(f"--shear-from {f}: {len(boxes)} shear box(es) in [shear], "
                                  "need 3 normal stresses")
-        name = data.get("soil", {}).get("name")
-        try:
-            shear = ShearStrength(tuple(float(b["sigma_n_Pa"]) for b in boxes),
-                                  tuple(float(b["tau_peak_Pa"]) for b in boxes),
-                                  tuple(float(b["janosi_K_m"]) for b in boxes))
-        except KeyError as e:
-            raise LabResultError(f"--shear-from {f}: a [[shear.stresses]] entry lacks {e}") from None
+        soil_table = data.get("soil", {})
+        name = soil_table.get("name") if isinstance(soil_table, dict) else None
+
+        def column(key, expected, required=True):
+            return tuple(_number(f"--shear-from {f}", b, key, expected, required=required,
+                                 prefix=f"shear.stresses[{i}].") for i, b in enumerate(boxes))
+        shear = ShearStrength(column("sigma_n_Pa", "a normal stress [Pa]"),
+                              column("tau_peak_Pa", "a shear stress [Pa]"),
+                              column("janosi_K_m", "Janosi's K [m]"))
+        tau_max = column("janosi_tau_max_Pa", "a shear stress [Pa]", required=False)
         # The curves are not in the summary: its per-box verdict ("stable", written since
         # 2026-11-29), else the one check a summary allows (Janosi tau_max > 0).
-        unstable = [f"{float(b['sigma_n_Pa']) / 1e3:.3g} kPa" for b in boxes
-                    if b.get("stable") is False or float(b.get("janosi_tau_max_Pa", 1.0)) <= 0]
+        unstable = [f"{sigma / 1e3:.3g} kPa" for b, sigma, t in zip(boxes, shear.sigmas_Pa, tau_max)
+                    if b.get("stable") is False or (t is not None and t <= 0)]
         if unstable:
             raise LabResultError(f"--shear-from {f}: unstable shear box(es) at "
                                  f"{', '.join(unstable)} (see its [shear] warnings): no SCM file "

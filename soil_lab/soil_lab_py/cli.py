@@ -17,7 +17,7 @@ from pathlib import Path
 from wheelsim_post import bed_hold
 from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 
-from . import analysis, plan, runner
+from . import analysis, plan, runner, scm_file
 from ._inputs import FitInputError
 
 REPO = Path(__file__).resolve().parents[2]  # the source tree, or <prefix>/share/wheelsim
@@ -64,7 +64,7 @@ def _provenance(np_ranks):
 
 def _numbers(text, option, expected):
     """The comma-separated numbers of `option` (None if not given), or a LabInputError."""
-    if not text:
+    if text is None:
         return None
     try:
         return [float(x) for x in _list(text, option)]
@@ -72,13 +72,19 @@ def _numbers(text, option, expected):
         raise plan.LabInputError(f"{option}: expected {expected}, got '{text}'") from None
 
 
-def _run(a):
-    import tomli_w
-
-    build = Path(a.build_dir or os.environ.get("WHEELSIM_BUILD_DIR") or REPO / "build").resolve()
+def run_options(a):
+    """The options of `soil-lab run` (parsed arguments `a`) as make_plan's keyword arguments
+    (without speed_check), after every check that needs no soil (plan.check_options, and the
+    command line's own): bad input is refused before anything is created or started. Returns
+    (tests, options, bed_vars)."""
     tests = _list(a.tests, "--tests")
-    stresses = _numbers(a.normal_stresses, "--normal-stresses", "numbers in Pa")
-    widths = _numbers(a.plate_widths, "--plate-widths", "two widths in m")
+    options = dict(normal_stresses_Pa=_numbers(a.normal_stresses, "--normal-stresses",
+                                               "numbers in Pa"),
+                   plate_widths_m=_numbers(a.plate_widths, "--plate-widths", "two widths in m"),
+                   plate_bin_m=a.plate_bin, shear_travel=a.shear_travel,
+                   plate_speed=a.plate_speed, shear_speed=a.shear_speed,
+                   plate_depth=a.plate_depth, plate_hold=a.plate_hold,
+                   plate_hold_stages=a.plate_hold_stages)
     bed_vars = {}
     for item in a.bed_var or []:
         if "=" not in item or item.startswith("="):
@@ -86,29 +92,35 @@ def _run(a):
                                      f"got '{item}'")
         k, v = item.split("=", 1)
         bed_vars[k] = v
-    for t in tests:  # before anything runs
-        if t not in plan.TEST_NAMES:
-            from wheelsim_post.usage import nearest
-
-            near = nearest(t, plan.TEST_NAMES)
-            raise plan.LabInputError(f"--tests: unknown test '{t}'"
-                                     + (f" (did you mean '{near}'?)" if near else "")
-                                     + f"; tests: {', '.join(plan.TEST_NAMES)}")
     if a.checkpoints < 0:
         raise plan.LabInputError(f"--checkpoints: expected a number >= 0 (0: none), got "
                                  f"{a.checkpoints}")
     if not a.bed_hold >= 0:  # also NaN
         raise plan.LabInputError(f"--bed-hold: expected a time >= 0 s (0: no check), got "
                                  f"{a.bed_hold}")
+    tests = plan.check_options(tests, a.preset, **options)
+    return tests, options, bed_vars
+
+
+def _run(a):
+    import tomli_w
+
+    build = Path(a.build_dir or os.environ.get("WHEELSIM_BUILD_DIR") or REPO / "build").resolve()
+    # Everything that does not need the soil is checked before anything is created or started;
+    # make_plan then checks what needs the soil's sizes (in.lab_soilinfo, a LIGGGHTS run).
+    tests, options, bed_vars = run_options(a)
     soil_file = runner.resolve_soil_file(a.soil, REPO / "inputs")
     out = Path(a.out or RUNS / "soil_lab" / Path(soil_file).stem).resolve()
-    out.mkdir(parents=True, exist_ok=True)
     lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet, archive=a.archive,
-                     checkpoints=a.checkpoints, bed_hold_s=a.bed_hold)
+                     checkpoints=a.checkpoints, bed_hold_s=a.bed_hold)  # checks the build
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise plan.LabInputError(f"--out {out}: cannot create the directory: {e.strerror}") \
+            from None
     soil = lab.soil_info(soil_file)
-    p = plan.make_plan(soil, tests, a.preset, stresses, bed_vars, widths, a.plate_bin,
-                       a.speed_check, a.shear_travel, a.plate_speed, a.shear_speed,
-                       a.plate_depth, a.plate_hold, a.plate_hold_stages)
+    p = plan.make_plan(soil, tests, a.preset, bed_vars=bed_vars, speed_check=a.speed_check,
+                       **options)
     # The soil file as the checkout names it (inputs/soils/x.in), so results do not carry the
     # path of the machine that ran them; a file outside the checkout keeps its absolute path.
     soil_path = Path(soil.file).resolve()
@@ -129,7 +141,12 @@ def _run(a):
 
 def _report(directory, quiet=False):
     r = analysis.analyse(directory)
-    for path in analysis.write_report(r):
+    try:
+        written = analysis.write_report(r)
+    except OSError as e:
+        raise analysis.LabResultError(f"{e.filename or directory}: cannot write the report: "
+                                      f"{e.strerror}") from None
+    for path in written:
         if not quiet:
             print(f"soil-lab: wrote {path}")
     if not quiet:
@@ -184,6 +201,20 @@ def _report(directory, quiet=False):
                                   zip(q["profile_depth_m"], q["profile_difference"]))
                 print(f"soil-lab: quasi-static: {q['run']}: pressure at half speed by depth: {bands}")
     return 0
+
+
+def _scm_out(path):
+    """A LabInputError unless `soil-lab scm --out` names a file in an existing directory."""
+    p = Path(path)
+    if p.is_dir():
+        raise plan.LabInputError(f"--out {path}: is a directory; expected the path of the SCM "
+                                 f"soil file to write (FILE.toml)")
+    parent = p.parent
+    if not parent.exists():
+        raise plan.LabInputError(f"--out {path}: its directory {parent} does not exist (create "
+                                 f"it first)")
+    if not parent.is_dir():
+        raise plan.LabInputError(f"--out {path}: {parent} is not a directory")
 
 
 def main(argv=None):
@@ -266,15 +297,20 @@ def main(argv=None):
             return _run(a)
         if a.command == "report":
             return _report(a.dir, a.quiet)
+        _scm_out(a.out)  # before the analysis
         r = analysis.analyse(a.dir)
         shear = (analysis.shear_strength_from(a.shear_from, r.soil.get("name"))
                  if a.shear_from else None)
-        path = analysis.write_scm(r, a.out, a.name, shear, a.relaxed)
+        try:
+            path = analysis.write_scm(r, a.out, a.name, shear, a.relaxed)
+        except OSError as e:
+            raise plan.LabInputError(f"--out {a.out}: cannot write it: {e.strerror}") from None
         print(f"soil-lab: wrote {path}")
         return 0
     except (plan.LabInputError, analysis.LabResultError) as e:
         print(f"soil-lab: error: {e}", file=sys.stderr)
         return EXIT_USAGE
-    except (runner.LabRunError, FitInputError) as e:
+    # SoilValueError: a fitted value outside what the SCM loader accepts (scm_file)
+    except (runner.LabRunError, FitInputError, scm_file.SoilValueError) as e:
         print(f"soil-lab: error: {e}", file=sys.stderr)
         return 1

@@ -90,28 +90,94 @@ def _speed(value, default, option):
     return value
 
 
+def _nearest_test(name):
+    """" (did you mean 'X'?)" for a misspelt test name, or "" (as wheelsim_post.usage.nearest,
+    which this module, imported by the tests alone, does without)."""
+    import difflib
+
+    near = difflib.get_close_matches(name, TEST_NAMES, n=1, cutoff=0.6)
+    return f" (did you mean '{near[0]}'?)" if near else ""
+
+
+def _finite_positive(x):
+    return isinstance(x, (int, float)) and math.isfinite(x) and x > 0
+
+
+def check_options(tests, preset="standard", normal_stresses_Pa=None, plate_widths_m=None,
+                  plate_bin_m=None, shear_travel=None, plate_speed=None, shear_speed=None,
+                  plate_depth=None, plate_hold=None, plate_hold_stages=None):
+    """The checks of make_plan's options that need no soil (the same arguments, None: the
+    default): `soil-lab run` makes them before it creates or starts anything, make_plan again
+    before the checks that need the soil's grain sizes and stiffness (a plate wider than its bin,
+    a plate depth under one grain, a normal stress the box cannot hold for these particles).
+    Raises LabInputError naming the option and what was expected: no test, an unknown test or
+    preset, a tool speed outside (0, MAX_TOOL_SPEED] m/s; with the plates (tests plate or bulk)
+    plate widths that are not two different finite widths > 0, a plate bin or plate depth that is
+    not a finite length > 0, a hold outside (0, MAX_PLATE_HOLD] s or stages outside
+    1..MAX_HOLD_STAGES or without a hold; with the shear box fewer than 3 normal stresses, one not
+    a finite stress > 0, a travel outside (0, 0.5]. Returns the tests as a tuple."""
+    tests = tuple(tests)
+    if not tests:
+        raise LabInputError(f"--tests: expected at least one test of {', '.join(TEST_NAMES)}")
+    for t in tests:
+        if t not in TEST_NAMES:
+            raise LabInputError(f"--tests: unknown test '{t}'{_nearest_test(t)}; tests: "
+                                f"{', '.join(TEST_NAMES)}")
+    if preset not in PRESETS:
+        raise LabInputError(f"--preset: unknown preset '{preset}' (expected one of "
+                            f"{', '.join(PRESETS)})")
+    _speed(plate_speed, PLATE_SPEED[preset], "--plate-speed")
+    _speed(shear_speed, SHEAR_SPEED[preset], "--shear-speed")
+    if "plate" in tests or "bulk" in tests:
+        if plate_widths_m is not None:
+            widths = list(plate_widths_m)
+            if len(widths) != 2 or not all(_finite_positive(b) for b in widths) or \
+                    widths[0] == widths[1]:
+                raise LabInputError(f"--plate-widths: expected two different widths > 0 m (the "
+                                    f"Bekker fit separates kc from kphi by b), got {widths}")
+        if plate_bin_m is not None and not _finite_positive(plate_bin_m):
+            raise LabInputError(f"--plate-bin {plate_bin_m:g} m: expected a finite side > 0 m (at "
+                                f"least 8 grains, d_max; default 3 x the larger plate)")
+        if plate_depth is not None and not _finite_positive(plate_depth):
+            raise LabInputError(f"--plate-depth {plate_depth:g} m: expected a finite depth > 0 m "
+                                f"(at least one grain, d_max; default 3 d_max, quick 1.5)")
+        _plate_hold(plate_hold, plate_hold_stages)
+    if "shear" in tests:
+        if normal_stresses_Pa is not None:
+            stresses = list(normal_stresses_Pa)
+            if len(stresses) < 3:
+                raise LabInputError(f"--normal-stresses: the shear test needs >= 3 normal "
+                                    f"stresses for the Mohr-Coulomb fit, got {len(stresses)}")
+            for s in stresses:
+                if not _finite_positive(s):
+                    raise LabInputError(f"--normal-stresses: normal stress {s:g} Pa is outside "
+                                        f"what the shear box can hold: expected a finite stress "
+                                        f"> 0 Pa (at most 1 % of the particles' Young's modulus)")
+        if shear_travel is not None and not 0 < shear_travel <= 0.5:  # also NaN
+            raise LabInputError(f"--shear-travel {shear_travel:g} is outside (0, 0.5] (a fraction "
+                                f"of the box side: the upper frame must stay over the lower one)")
+    return tests
+
+
 def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None, bed_vars=None,
               plate_widths_m=None, plate_bin_m=None, speed_check=False, shear_travel=None,
               plate_speed=None, shear_speed=None, plate_depth=None, plate_hold=None,
               plate_hold_stages=None):
-    """The beds and runs for `tests` on `soil`. Raises LabInputError for an unknown test or preset,
-    plates that are not two different widths or do not fit their bin with a plate width of soil
-    on every side, a normal stress outside what the box can hold, a shear travel (a fraction of the box side) outside (0, 0.5], or a plate or shear speed
-    [m/s] (default PLATE_SPEED, SHEAR_SPEED) outside (0, MAX_TOOL_SPEED], or a plate depth [m]
-    (the sinkage at the end of the reload; default 3 d_max, quick 1.5) under one grain (d_max):
-    a deeper one loads to 2/3 of it and unloads by 1/6, on a bed as much deeper, so that the soil
-    under the plate's deepest point is the default's. plate_hold [s] in (0, MAX_PLATE_HOLD]: the
-    plates stand still that long at plate_hold_stages (1 .. MAX_HOLD_STAGES, default 1) equally
-    spaced depths of the loading, the last at its end (stress relaxation; stages without a hold
-    are an error). speed_check: also the
-    larger plate, the middle normal stress and (standard preset) the repose test at half speed
-    (runs named <run>_half), for the quasi-static check."""
-    tests = tuple(tests)
-    for t in tests:
-        if t not in TEST_NAMES:
-            raise LabInputError(f"unknown test '{t}' (expected one of {', '.join(TEST_NAMES)})")
-    if preset not in PRESETS:
-        raise LabInputError(f"unknown preset '{preset}' (expected one of {', '.join(PRESETS)})")
+    """The beds and runs for `tests` on `soil`. Raises LabInputError for what check_options
+    refuses (it needs no soil), and for plates narrower than 2 grains (d_max) or that do not fit
+    their bin with 3/4 of a plate width of soil on every side, a plate bin narrower than 8 grains,
+    a plate depth [m] under one grain, or a normal stress the box cannot hold for this soil (above
+    1 % of the particles' Young's modulus). Speeds [m/s] default to PLATE_SPEED, SHEAR_SPEED; the
+    shear travel is a fraction of the box side (default 0.12). The plate depth (the sinkage at the
+    end of the reload; default 3 d_max, quick 1.5): a deeper one loads to 2/3 of it and unloads by
+    1/6, on a bed as much deeper, so that the soil under the plate's deepest point is the
+    default's. plate_hold [s]: the plates stand still that long at plate_hold_stages (default 1)
+    equally spaced depths of the loading, the last at its end (stress relaxation). speed_check:
+    also the larger plate, the middle normal stress and (standard preset) the repose test at half
+    speed (runs named <run>_half), for the quasi-static check."""
+    tests = check_options(tests, preset, normal_stresses_Pa, plate_widths_m, plate_bin_m,
+                          shear_travel, plate_speed, shear_speed, plate_depth, plate_hold,
+                          plate_hold_stages)
     quick = preset == "quick"
     plate_speed = _speed(plate_speed, PLATE_SPEED[preset], "--plate-speed")
     shear_speed = _speed(shear_speed, SHEAR_SPEED[preset], "--shear-speed")
@@ -124,12 +190,7 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         # Two square plates of side b1 < b2; the bin leaves >= b2 of soil on each side of the
         # larger plate and a bed >= 1.5 b2 deep (quick: less).
         b1, b2 = (2.5 * d, 4.0 * d) if quick else (5.0 * d, 8.0 * d)
-        if plate_widths_m is not None:
-            if len(plate_widths_m) != 2 or plate_widths_m[0] == plate_widths_m[1] or \
-                    min(plate_widths_m) <= 0:
-                raise LabInputError(f"--plate-widths: expected two different widths > 0 m (the "
-                                    f"Bekker fit separates kc from kphi by b), got "
-                                    f"{plate_widths_m}")
+        if plate_widths_m is not None:   # two different widths > 0 (check_options)
             b1, b2 = sorted(plate_widths_m)
             if b1 < 2 * d:
                 raise LabInputError(f"plate width {b1:g} m is less than 2 grains (d_max "
@@ -150,12 +211,9 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         # deeper (fill height), so the soil under its deepest point is the default's.
         default_depth2 = (1.5 if quick else 3.0) * d
         depth2 = default_depth2 if plate_depth is None else plate_depth
-        if not depth2 >= d:   # also NaN
+        if depth2 < d:   # a finite depth > 0 (check_options)
             raise LabInputError(f"--plate-depth {depth2:g} m is under one grain (d_max {d:g} m): "
                                 f"a plate must sink at least a grain (default {default_depth2:g})")
-        if not math.isfinite(depth2):
-            raise LabInputError(f"--plate-depth {depth2:g} m: expected a finite depth in m "
-                                f"(default {default_depth2:g})")
         hold_vars = _plate_hold(plate_hold, plate_hold_stages)
         depth = (1.25 if quick else 1.5) * b2 + max(0.0, depth2 - default_depth2)
         beds["plate"] = Bed("plate", side, side, depth, bed_vars)
@@ -180,29 +238,26 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         L = (8.0 if quick else 12.0) * d
         H = (5.0 if quick else 8.0) * d
         beds["shear"] = Bed("shear", L, L, H, bed_vars)
-        stresses = list(normal_stresses_Pa or ((3e3, 6e3, 9e3) if quick else (5e3, 1e4, 2e4)))
-        if len(stresses) < 3:
-            raise LabInputError(f"the shear test needs >= 3 normal stresses for the Mohr-Coulomb "
-                                f"fit, got {len(stresses)}")
+        # >= 3 finite stresses > 0 (check_options)
+        stresses = list(((3e3, 6e3, 9e3) if quick else (5e3, 1e4, 2e4))
+                        if normal_stresses_Pa is None else normal_stresses_Pa)
         # Largest stress: the contact overlap stays small, sigma < 1 % of the particles' E
         # (Hertz: overlap/R ~ (sigma/E)^(2/3), 4.6 % at 1 %).
         s_max = 0.01 * soil.youngs_Pa if soil.youngs_Pa > 0 else float("inf")
         for s in stresses:
-            if not 0 < s <= s_max:
+            if s > s_max:
                 raise LabInputError(
-                    f"normal stress {s:g} Pa is outside what the shear box can hold for this soil: "
-                    f"expected 0 < sigma <= {s_max:g} Pa (1 % of the particles' Young's modulus "
-                    f"{soil.youngs_Pa:g} Pa; above it the contact overlaps exceed ~5 % of R)")
+                    f"--normal-stresses: normal stress {s:g} Pa is outside what the shear box "
+                    f"can hold for this soil: expected 0 < sigma <= {s_max:g} Pa (1 % of the "
+                    f"particles' Young's modulus {soil.youngs_Pa:g} Pa; above it the contact "
+                    f"overlaps exceed ~5 % of R)")
         wall = max(0.5 * d, 0.005)
         low_h = 0.5 * H
         up_h = 0.5 * H + 3.0 * d  # room for the lid above the soil
         lid_t = max(0.5 * d, 0.005)
         clear = 0.25 * soil.dmin_m
         speed = shear_speed
-        travel = 0.12 if shear_travel is None else shear_travel
-        if not 0 < travel <= 0.5:
-            raise LabInputError(f"shear travel {travel:g} is outside (0, 0.5] (a fraction of the "
-                                f"box side: the upper frame must stay over the lower one)")
+        travel = 0.12 if shear_travel is None else shear_travel   # in (0, 0.5] (check_options)
         distance = travel * L
         # The upper frame's leading part moves out over the lower frame by up to `distance`: the
         # lower frame's wall is a rim at least that wide (plus d), so the soil carried out there
@@ -259,7 +314,7 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
 
 def _plate_hold(hold, stages):
     """in.lab_plate's hold variables ({} without a hold, so the runs of labs without one keep
-    their inputs), or a LabInputError."""
+    their inputs), or a LabInputError (check_options and make_plan)."""
     if hold is None:
         if stages is not None:
             raise LabInputError(f"--plate-hold-stages {stages} without --plate-hold: give the "

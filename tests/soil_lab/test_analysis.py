@@ -423,8 +423,8 @@ class Analysis(unittest.TestCase):
         (bed / "done.json").write_text(json.dumps(
             {"inputs": "bed-A", "wall_s": 10.0,
              "result": {"bulk_density": "1000", "porosity": "0.5", "bed_depth": "0.1"}}))
-        hold = {"hold_s": 0.2, "settlement": 0.0004, "settlement_last_quarter": 1e-4,
-                "sink_rate_m_s": 1e-4}
+        hold = {"hold_s": 0.2, "zcm_start_m": 0.05, "zcm_end_m": 0.04998, "settlement": 0.0004,
+                "settlement_last_quarter": 1e-4, "sink_rate_m_s": 1e-4}
 
         def record(bed_inputs):
             (bed / "hold" / "done.json").write_text(json.dumps(

@@ -2,6 +2,7 @@
 
 import unittest
 
+from soil_lab_py import plan
 from soil_lab_py.plan import LabInputError, SoilInfo, make_plan
 
 SAND = SoilInfo(name="sand", file="/x/sand.in", dmin_m=0.004, dmax_m=0.008, dref_m=0.006,
@@ -42,13 +43,13 @@ class Plan(unittest.TestCase):
             "narrower than 8 grains": dict(tests=("bulk",), plate_bin_m=0.06),
             "two different widths": dict(tests=("plate",), plate_widths_m=(0.05, 0.05)),
             "less than 2 grains": dict(tests=("plate",), plate_widths_m=(0.01, 0.05)),
-            "shear travel 0.6 is outside (0, 0.5]": dict(tests=("shear",), shear_travel=0.6),
-            "shear travel 0 is outside (0, 0.5]": dict(tests=("shear",), shear_travel=0.0),
+            "--shear-travel 0.6 is outside (0, 0.5]": dict(tests=("shear",), shear_travel=0.6),
+            "--shear-travel 0 is outside (0, 0.5]": dict(tests=("shear",), shear_travel=0.0),
             "--plate-speed 0 m/s is outside (0, 0.1] m/s": dict(tests=("plate",), plate_speed=0.0),
             "--shear-speed 5 m/s is outside (0, 0.1] m/s": dict(tests=("shear",), shear_speed=5.0),
             "--plate-depth 0.004 m is under one grain": dict(tests=("plate",), plate_depth=0.004),
-            "--plate-depth nan m is under one grain": dict(tests=("plate",),
-                                                           plate_depth=float("nan")),
+            "--plate-depth nan m: expected a finite depth > 0 m": dict(
+                tests=("plate",), plate_depth=float("nan")),
             "--plate-depth inf m: expected a finite depth": dict(tests=("plate",),
                                                                  plate_depth=float("inf")),
             "--plate-hold 0 s is outside (0, 60] s": dict(tests=("plate",), plate_hold=0.0),
@@ -64,6 +65,60 @@ class Plan(unittest.TestCase):
                 with self.assertRaises(LabInputError) as cm:
                     make_plan(SAND, **kwargs)
                 self.assertIn(message, str(cm.exception))
+
+    def test_options_that_need_no_soil_are_checked_without_one(self):
+        # soil-lab run makes these checks before it creates or starts anything (in.lab_soilinfo,
+        # a LIGGGHTS run, measures the soil): check_options takes no soil. make_plan refuses the
+        # same options with the same message.
+        cases = {
+            "--plate-speed 0 m/s is outside (0, 0.1] m/s": dict(plate_speed=0.0),
+            "--shear-speed 0 m/s is outside (0, 0.1] m/s": dict(shear_speed=0.0),
+            "--shear-travel 0.9 is outside (0, 0.5]": dict(shear_travel=0.9),
+            "--plate-widths: expected two different widths > 0 m": dict(
+                plate_widths_m=(0.1, 0.1)),
+            "--plate-widths: expected two different widths > 0 m (the Bekker fit separates kc "
+            "from kphi by b), got [nan, 0.1]": dict(plate_widths_m=(float("nan"), 0.1)),
+            "--plate-hold 100 s is outside (0, 60] s": dict(plate_hold=100.0),
+            "--plate-hold-stages 2 without --plate-hold": dict(plate_hold_stages=2),
+            "--plate-depth 0 m: expected a finite depth > 0 m": dict(plate_depth=0.0),
+            "--plate-depth -0.01 m: expected a finite depth > 0 m": dict(plate_depth=-0.01),
+            "--plate-bin nan m: expected a finite side > 0 m": dict(plate_bin_m=float("nan")),
+            "--normal-stresses: the shear test needs >= 3 normal stresses for the Mohr-Coulomb "
+            "fit, got 2": dict(normal_stresses_Pa=(5e3, 1e4)),
+            "--normal-stresses: normal stress inf Pa is outside what the shear box can hold": dict(
+                normal_stresses_Pa=(5e3, 1e4, float("inf"))),
+            "--tests: expected at least one test of bulk, plate, shear, repose": dict(tests=()),
+            "--tests: unknown test 'sheer' (did you mean 'shear'?)": dict(tests=("sheer",)),
+        }
+        for message, kwargs in cases.items():
+            kwargs = {"tests": plan.TEST_NAMES, **kwargs}
+            with self.subTest(message):
+                with self.assertRaises(LabInputError) as cm:
+                    plan.check_options(**kwargs)
+                self.assertIn(message, str(cm.exception))
+                with self.assertRaises(LabInputError) as again:
+                    make_plan(SAND, **kwargs)
+                self.assertEqual(str(again.exception), str(cm.exception))
+        # Options only the soil can judge pass check_options and are refused by make_plan.
+        d = SAND.dmax_m
+        for message, kwargs in {
+                "too wide for the plate bin": dict(tests=("plate",), plate_widths_m=(0.04, 0.1),
+                                                   plate_bin_m=0.2),
+                "--plate-depth 0.004 m is under one grain": dict(tests=("plate",),
+                                                                 plate_depth=0.5 * d),
+                "less than 2 grains": dict(tests=("plate",), plate_widths_m=(0.01, 0.05)),
+                "narrower than 8 grains": dict(tests=("bulk",), plate_bin_m=0.06),
+                "--normal-stresses: normal stress 1e+06 Pa is outside what the shear box can "
+                "hold for this soil": dict(tests=("shear",), normal_stresses_Pa=(1e3, 2e3, 1e6)),
+        }.items():
+            with self.subTest(message):
+                self.assertEqual(plan.check_options(**kwargs), kwargs["tests"])
+                with self.assertRaises(LabInputError) as cm:
+                    make_plan(SAND, **kwargs)
+                self.assertIn(message, str(cm.exception))
+        # Options of a test that does not run are not looked at, as make_plan never did.
+        self.assertEqual(plan.check_options(("shear",), plate_hold=100.0), ("shear",))
+        self.assertEqual(plan.check_options(("plate",), normal_stresses_Pa=(1.0,)), ("plate",))
 
     def test_bulk_alone_may_use_a_narrow_bin(self):
         # no plates: the bin only has to hold the core cell (>= 8 d_max), the depth stays the
