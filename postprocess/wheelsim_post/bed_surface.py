@@ -44,6 +44,9 @@ def read_dump(path):
             lines = f.read().splitlines()
     except OSError as exc:
         raise PostError(f"cannot read the particle dump '{path}': {exc.strerror}") from None
+    except UnicodeDecodeError as exc:
+        raise PostError(f"'{path}' is not a LIGGGHTS text dump (byte 0x{exc.object[exc.start]:02x} "
+                        f"at offset {exc.start} is not UTF-8)") from None
     try:
         step = int(lines[lines.index("ITEM: TIMESTEP") + 1])
         count = int(lines[lines.index("ITEM: NUMBER OF ATOMS") + 1])

@@ -48,7 +48,7 @@ def add_parser(subparsers):
 
 def travel_series(run):
     """(step, travel [m]) over the test phase: the x of the carriage (else of the wheel centre)
-    from its first test-phase sample. PostError naming what is missing."""
+    from its first finite test-phase sample. PostError naming what is missing."""
     phase = run.observable("phase")
     test_steps = phase.step[np.rint(np.ravel(phase.value)) == TEST_PHASE]
     if len(test_steps) == 0:
@@ -58,57 +58,75 @@ def travel_series(run):
             series = run.observable(name)
             keep = np.isin(series.step, test_steps)
             x = series.value.reshape(len(series), -1)[keep, 0]
-            if len(x):
-                return series.step[keep], np.abs(x - x[0])
+            finite = np.isfinite(x)
+            if np.any(finite):
+                return series.step[keep][finite], np.abs(x[finite] - x[finite][0])
     raise PostError(
         f"run file '{run.path}' has none of the observables {', '.join(TRAVEL_OBSERVABLES)} "
-        "in its test phase: no travel to segment"
+        "with a finite x in its test phase: no travel to segment"
     )
 
 
-def segment_means(travel_step, travel, series_step, values, segment_m):
-    """[(from_m, to_m, n, mean)] of ``values`` (at ``series_step``) over successive segments
-    [k L, (k + 1) L) of ``travel`` (at ``travel_step``); the last segment ends at the largest
-    travel and is kept only if at least half a segment long."""
+def segment_bounds(travel, segment_m):
+    """[(from_m, to_m)]: successive segments [k L, (k + 1) L) of ``travel`` [m]; the last ends
+    at the largest travel and is kept only if at least half a segment long."""
+    total = float(np.max(travel)) if len(travel) else 0.0
+    count = int(math.floor(total / segment_m + 1e-9))
+    if total - count * segment_m >= 0.5 * segment_m:
+        count += 1
+    return [(k * segment_m, min((k + 1) * segment_m, total)) for k in range(count)]
+
+
+def segment_means(travel_step, travel, series_step, values, bounds):
+    """[(n, mean)] of the finite ``values`` (at ``series_step``) per segment of ``bounds``
+    (segment_bounds) of ``travel`` (at ``travel_step``, sorted); (0, NaN) where a segment holds
+    none, so that the segments of every observable line up."""
     keep = np.isin(series_step, travel_step)
     where = np.searchsorted(travel_step, series_step[keep])
     x, v = travel[where], np.asarray(values)[keep]
     finite = np.isfinite(v)
     x, v = x[finite], v[finite]
-    if len(x) == 0:
-        return []
-    total = float(np.max(x))
-    count = int(math.floor(total / segment_m + 1e-9))
-    if total - count * segment_m >= 0.5 * segment_m:
-        count += 1
     out = []
-    for k in range(count):
-        lo = k * segment_m
-        hi = min((k + 1) * segment_m, total)
-        inside = (x >= lo) & ((x < hi) if k < count - 1 else (x <= hi))
-        if np.any(inside):
-            out.append((lo, hi, int(np.sum(inside)), float(np.mean(v[inside]))))
+    for k, (lo, hi) in enumerate(bounds):
+        inside = (x >= lo) & ((x < hi) if k < len(bounds) - 1 else (x <= hi))
+        n = int(np.sum(inside))
+        out.append((n, float(np.mean(v[inside])) if n else math.nan))
     return out
 
 
 def run(args):
     """Prints (and optionally writes) the segment table of every run; returns 0."""
-    if not args.segment > 0:
-        raise PostError(f"--segment: expected a length > 0 m, got {args.segment:g}")
+    if not (args.segment > 0 and math.isfinite(args.segment)):
+        raise PostError(f"--segment: expected a finite length > 0 m, got {args.segment:g}")
     names = split_list(args.observables) if args.observables else list(DEFAULT_OBSERVABLES)
+    if not names:
+        raise PostError("--observables: expected a comma-separated list of names")
     rows = []
     for path in args.runs:
         with RunFile(path) as run_file:
             travel_step, travel = travel_series(run_file)
             order = np.argsort(travel_step)
             travel_step, travel = travel_step[order], travel[order]
+            segments = segment_bounds(travel, args.segment)
+            if not segments:
+                hint = "; choose a shorter --segment" if np.max(travel) > 0 else ""
+                raise PostError(
+                    f"run file '{path}': the test phase travels {np.max(travel):.4g} m, less "
+                    f"than half a segment of {args.segment:g} m (--segment): no segment to "
+                    f"average over{hint}"
+                )
             table = {}
             for name in names:
                 series = require_scalar(run_file, run_file.observable(name))
-                table[name] = (series.unit, segment_means(travel_step, travel, series.step,
-                                                          series.value, args.segment))
+                means = segment_means(travel_step, travel, series.step, series.value, segments)
+                if not any(n for n, _ in means):
+                    raise PostError(
+                        f"run file '{path}': observable '{name}' has no finite sample in the "
+                        f"test phase's {np.max(travel):.4g} m of travel; expected numbers: the "
+                        "run went wrong or did not record it"
+                    )
+                table[name] = (series.unit, means)
         units = {name: unit for name, (unit, _) in table.items()}
-        segments = [(lo, hi) for lo, hi, _, _ in next(iter(table.values()))[1]]
         print(f"{path}: means over {args.segment * 1e3:g} mm of test-phase travel "
               f"(change from the segment before)")
         header = "  travel [mm]   " + "".join(f"{n} [{units[n]}]".rjust(28) for n in names)
@@ -118,8 +136,7 @@ def run(args):
             cells = []
             row = {"run": path, "from_m": lo, "to_m": hi}
             for name in names:
-                entries = table[name][1]
-                mean = entries[i][3] if i < len(entries) else math.nan
+                mean = table[name][1][i][1]
                 change = mean - previous[name] if name in previous else math.nan
                 previous[name] = mean
                 row[name] = mean

@@ -219,8 +219,27 @@ def read_curve(path, quantity, group=None, mapping=None, option="REFERENCE.csv")
                      for n, r in enumerate(rows, 1)])
     value = np.array([to_float(r[y_column], option, path, y_column, n)
                       for n, r in enumerate(rows, 1)])
+    check_slips(slip, path, slip_column, option)
     order = np.argsort(slip, kind="stable")
     return Curve(stem, slip[order], value[order], None)
+
+
+def check_slips(slip, path, column, option):
+    """PostError naming the file, the row and the column if a slip of a table of points is not
+    finite or appears twice (one point per slip: the interpolation and the comparison need it)."""
+    first = {}
+    for number, s in enumerate(slip, 1):
+        if not math.isfinite(s):
+            raise PostError(
+                f"{option}: file '{path}', row {number}, column '{column}': slip {s:g}, "
+                "expected a finite number"
+            )
+        if s in first:
+            raise PostError(
+                f"{option}: file '{path}', rows {first[s]} and {number}, column '{column}': "
+                f"slip {s:g} appears twice, expected one point per slip"
+            )
+        first[s] = number
 
 
 def interpolate(sim_slip, sim_value, slip):
@@ -325,12 +344,26 @@ def run(args):
 
     slip = ref.slip
     simulated, in_range = interpolate(sim.slip, sim.value, slip)
+    if not np.any(in_range):
+        raise PostError(
+            f"REFERENCE.csv: no slip of '{args.reference}' ({slip[0]:g} .. {slip[-1]:g}) lies in "
+            f"the simulated slip range {sim.slip[0]:g} .. {sim.slip[-1]:g} of "
+            f"'{args.simulated}': nothing to compare (no extrapolation)"
+        )
     difference = simulated - ref.value
     normalised = difference / scale if math.isfinite(scale) else np.full(len(slip), np.nan)
     threshold = RELATIVE_MIN_FRACTION * scale if math.isfinite(scale) else 0.0
     errors = percent_errors(simulated, ref.value, threshold)
     mean_norm, mean_pct = mean_absolute(normalised), mean_absolute(errors)
     n_norm, n_pct = int(np.sum(np.isfinite(normalised))), int(np.sum(np.isfinite(errors)))
+    if n_norm == 0 and n_pct == 0:
+        why = f"the simulated or reference {quantity} there is not finite"
+        if not math.isfinite(scale):
+            why += f", or the reference is 0 and there is no scale ({scale_name})"
+        raise PostError(
+            f"REFERENCE.csv: no point of '{args.reference}' in the simulated slip range has an "
+            f"error ({why}): nothing to compare"
+        )
 
     print(
         f"simulated: {sim.label} ({args.simulated}); reference: {ref.label} "

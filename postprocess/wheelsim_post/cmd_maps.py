@@ -252,6 +252,8 @@ def run(args):
         raise PostError(
             "--field/--step/--time/--all apply to RUN.h5 snapshots, not --vtk"
         )
+    if args.time is not None and not (math.isfinite(args.time) and args.time >= 0.0):
+        raise PostError(f"--time: expected a time >= 0 s, got {args.time:g}")
     out_dir = _output_dir(args.png_dir)
     written = run_vtk(args, out_dir) if args.vtk else run_snapshots(args, out_dir)
     for path in written:

@@ -35,19 +35,29 @@ def write_csv(path, comments, header, rows, footer=()):
 
 def read_csv(path, option):
     """(comments, header, rows as dicts of str) of a CSV file; PostError naming ``option``."""
+    if os.path.isdir(path):
+        raise PostError(f"{option}: '{path}' is a directory, expected a CSV file")
     if not os.path.isfile(path):
         raise PostError(f"{option}: file '{path}' does not exist")
     comments, lines = [], []
-    with open(path, newline="", encoding="utf-8") as src:
-        for line in src:
-            stripped = line.strip()
-            if not stripped:
-                continue
-            if stripped.startswith("#"):
-                comments.append(stripped.lstrip("#").strip())
-            else:
-                lines.append(line)
-    rows = list(csv.reader(lines))
+    try:
+        with open(path, newline="", encoding="utf-8") as src:
+            for line in src:
+                stripped = line.strip()
+                if not stripped:
+                    continue
+                if stripped.startswith("#"):
+                    comments.append(stripped.lstrip("#").strip())
+                else:
+                    lines.append(line)
+        rows = list(csv.reader(lines))
+    except UnicodeDecodeError as exc:
+        raise PostError(
+            f"{option}: file '{path}' is not a UTF-8 text file (byte 0x{exc.object[exc.start]:02x} "
+            f"at offset {exc.start}), expected a CSV table"
+        ) from None
+    except csv.Error as exc:
+        raise PostError(f"{option}: file '{path}' is not a CSV table ({exc})") from None
     if not rows:
         raise PostError(f"{option}: file '{path}' has no header row")
     header = [h.strip() for h in rows[0]]

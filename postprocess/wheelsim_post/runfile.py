@@ -1,10 +1,13 @@
 """Reading wheelsim run files (docs/hdf5-layout.md) with h5py.
 
-Tolerant to crashed files: rows with ``step < 0`` (never written) are dropped, and series of
-one observable whose datasets differ in length are cut to the shortest.
+Rows with ``step < 0`` (the fill value of rows a crash never wrote) are dropped. The writer
+commits ``step``, ``time`` and ``value`` of an observable together (docs/hdf5-layout.md, "Crash
+guarantees"), so datasets of one observable that differ in length, or that do not hold numbers,
+make a malformed file: PostError naming the observable and what was found.
 """
 
 import dataclasses
+import math
 import os
 
 import h5py
@@ -64,6 +67,17 @@ class Snapshot:
         )
 
 
+def _numbers(dataset, dtype, what):
+    """The data of an HDF5 dataset as a ``dtype`` array; PostError starting with ``what`` if it
+    holds no numbers (strings, compound records)."""
+    if dataset.dtype.kind not in "biuf":
+        found = "strings" if dataset.dtype.kind in "OSU" else f"{dataset.dtype} data"
+        raise PostError(f"{what} holds {found}, expected numbers")
+    if dataset.ndim == 0:
+        raise PostError(f"{what} is a scalar, expected one row per sample")
+    return np.asarray(dataset[()], dtype=dtype)
+
+
 def _text(value):
     """An HDF5 string (bytes or str, scalar) as str."""
     if isinstance(value, bytes):
@@ -76,6 +90,8 @@ class RunFile:
 
     def __init__(self, path):
         self.path = str(path)
+        if os.path.isdir(self.path):
+            raise PostError(f"run file '{self.path}' is a directory, expected an HDF5 file")
         if not os.path.isfile(self.path):
             raise PostError(f"run file '{self.path}' does not exist")
         try:
@@ -179,19 +195,22 @@ class RunFile:
                 f"(available: {available})"
             )
         group = self._file[f"observables/{name}"]
+        where = f"run file '{self.path}': observable '{name}'"
         try:
-            step = np.asarray(group["step"][()], dtype=np.int64)
-            time = np.asarray(group["time"][()], dtype=np.float64)
-            value = np.asarray(group["value"][()], dtype=np.float64)
+            step = _numbers(group["step"], np.int64, f"{where}: dataset 'step'")
+            time = _numbers(group["time"], np.float64, f"{where}: dataset 'time'")
+            value = _numbers(group["value"], np.float64, f"{where}: dataset 'value'")
         except (
             OSError,
             KeyError,
         ) as exc:  # a dataset damaged by a crash inside a flush
+            raise PostError(f"{where} cannot be read ({exc})") from None
+        if not len(step) == len(time) == len(value):
             raise PostError(
-                f"run file '{self.path}': observable '{name}' cannot be read ({exc})"
-            ) from None
-        n = min(len(step), len(time), len(value))
-        step, time, value = step[:n], time[:n], value[:n]
+                f"{where} has datasets of different lengths: step {len(step)}, time "
+                f"{len(time)}, value {len(value)} rows (expected equal lengths: a malformed "
+                "run file)"
+            )
         written = step >= 0
         unit = _text(group["value"].attrs.get("unit", "1"))
         return Series(name, step[written], time[written], value[written], unit)
@@ -248,9 +267,25 @@ class RunFile:
                 f"run file '{self.path}': snapshot '/{key}' lacks {exc} "
                 "(expected step, time, value, x0, y0, spacing)"
             ) from None
-        if value.ndim != 2:
+        except (TypeError, ValueError, IndexError):
+            raise PostError(
+                f"run file '{self.path}': snapshot '/{key}' holds a dataset that is not "
+                "numbers (expected numeric step, time, value, x0, y0, spacing)"
+            ) from None
+        if value.ndim != 2 or value.size == 0:
             raise PostError(
                 f"run file '{self.path}': snapshot '/{key}/value' has shape "
-                f"{value.shape}, expected [rows][cols]"
+                f"{value.shape}, expected [rows][cols] with rows, cols >= 1"
             )
+        if not (math.isfinite(snap.spacing) and snap.spacing > 0.0):
+            raise PostError(
+                f"run file '{self.path}': snapshot '/{key}' has spacing {snap.spacing:g} m, "
+                "expected a finite grid spacing > 0 m"
+            )
+        for name in ("x0", "y0"):
+            if not math.isfinite(getattr(snap, name)):
+                raise PostError(
+                    f"run file '{self.path}': snapshot '/{key}' has {name} "
+                    f"{getattr(snap, name):g} m, expected a finite grid origin"
+                )
         return snap

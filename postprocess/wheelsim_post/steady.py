@@ -10,6 +10,9 @@ with a note. User windows (``--window-fraction A B``, ``--window-start S --windo
 are kept as given; their number of passes is reported. Windows with fewer than MIN_PASSES
 passes get a note. Both ends are included (relative tolerance WINDOW_TOLERANCE).
 
+A window in which v, ω, DP, T or sinkage has no finite sample is an error naming the run, the
+observable and the window (REQUIRED_FINITE), not a row of NaN.
+
 Statistics per quantity (class Stat): the mean and population standard deviation (ddof = 0)
 of the finite samples, and the standard error of the mean (SEM) by **batch means**: the
 samples are cut into N_BATCHES consecutive batches of equal length m = N // N_BATCHES (the
@@ -331,6 +334,26 @@ def _scalar_series(run, name, steps):
     return series.step[keep], series.value[keep]
 
 
+#: Observables of steady_state that must have a finite sample in the window (the slip's v and
+#: ω, and the curves' quantities): without one the run gives no point, only NaN.
+REQUIRED_FINITE = ("carriage/velocity", "wheel/omega", "drawbar_pull", "driving_torque", "sinkage")
+
+
+def require_finite(run, name, values, span):
+    """PostError naming the run, the observable and the window if ``values`` (of ``name`` in
+    the window ``span``) hold no finite sample: a run that went wrong (NaN or inf) or whose
+    observable has no row there must not become a row of NaN."""
+    finite = int(np.sum(np.isfinite(values)))
+    if finite == 0:
+        found = (f"its {len(values)} samples there are all NaN or inf" if len(values)
+                 else "it has no sample there")
+        raise PostError(
+            f"run file '{run.path}': observable '{name}' has no finite sample in the window "
+            f"{span.start:.6g} s .. {span.end:.6g} s ({found}); expected numbers: the run "
+            "went wrong or did not record it"
+        )
+
+
 def _window_max_x(run, name, steps):
     """The largest x [m] of a 3-component position observable over ``steps`` (NaN without it)."""
     if not run.has_observable(name):
@@ -438,6 +461,8 @@ def steady_state(run, window, lug_count=None, lug_source="unknown"):
     dp = _scalar_series(run, "drawbar_pull", span.steps)
     torque = _scalar_series(run, "driving_torque", span.steps)
     sinkage = _scalar_series(run, "sinkage", span.steps)
+    for name, (_, values) in zip(REQUIRED_FINITE, (v, omega, dp, torque, sinkage)):
+        require_finite(run, name, values, span)
 
     v_a, omega_a, dp_a, torque_a = _aligned(v, omega, dp, torque)
     eta_series = _ratio(dp_a * v_a, torque_a * omega_a)

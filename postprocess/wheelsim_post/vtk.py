@@ -55,6 +55,9 @@ def read_wheel_surface(path):
             lines = src.read().splitlines()
     except OSError as exc:
         raise PostError(f"--vtk: cannot read '{path}': {exc.strerror}") from None
+    except UnicodeDecodeError as exc:
+        _fail(path, f"not a text file (byte 0x{exc.object[exc.start]:02x} at offset "
+              f"{exc.start} is not UTF-8), expected a legacy ASCII VTK file")
     if len(lines) < 4 or not lines[0].startswith("# vtk DataFile"):
         _fail(path, "not a legacy VTK file (first line '# vtk DataFile Version ...')")
     title = lines[1].strip()

@@ -29,6 +29,17 @@ class TempDirTestCase(unittest.TestCase):
         """A path inside the temporary directory."""
         return os.path.join(self.dir, name)
 
+    def assertOneLineError(self, result, *fragments):
+        """``result`` (run_cli's) failed as the tool's input errors do: exit status 2 and one
+        line on stderr, 'wheelsim-post ...: error: ...', holding every one of ``fragments``."""
+        self.assertEqual(result.returncode, 2, (result.stdout, result.stderr))
+        lines = result.stderr.strip().splitlines()
+        self.assertEqual(len(lines), 1, result.stderr)
+        self.assertTrue(lines[0].startswith("wheelsim-post"), lines[0])
+        self.assertIn("error:", lines[0])
+        for fragment in fragments:
+            self.assertIn(fragment, lines[0])
+
 
 def run_cli(*args):
     """Runs wheelsim-post with this interpreter; returns the CompletedProcess (text)."""

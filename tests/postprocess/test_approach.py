@@ -17,7 +17,9 @@ N_BEFORE = 100   # samples in each of release, settle and ramp
 LAMBDA = 0.03    # [m] sinkage approach length
 
 
-def write(path, travel_m=0.12, carriage=True, wheel=True):
+def write(path, travel_m=0.12, carriage=True, wheel=True, nan_before_m=0.0):
+    """A run whose drawbar pull is NaN over the first ``nan_before_m`` of travel (all of it
+    if larger than the travel)."""
     n_test = int(round(travel_m / V / DT)) + 1
     n = 3 * N_BEFORE + n_test
     time = np.arange(n) * DT
@@ -30,6 +32,7 @@ def write(path, travel_m=0.12, carriage=True, wheel=True):
         "sinkage": (0.04 - 0.01 * np.exp(-travel / LAMBDA), "m"),             # exponential
         "driving_torque": (np.full(n, 0.2), "N m"),
     }
+    series["drawbar_pull"][0][(3 * N_BEFORE <= np.arange(n)) & (travel < nan_before_m)] = np.nan
     position = np.stack([x, np.zeros(n), np.full(n, 0.1)], axis=1)
     if carriage:
         series["carriage/position"] = (position, "m")
@@ -86,10 +89,37 @@ class ApproachTest(TempDirTestCase):
         write(self.path("ok.h5"))
         result = run_cli("approach", self.path("ok.h5"), "--segment", "0")
         self.assertEqual(result.returncode, 2)
-        self.assertIn("--segment: expected a length > 0 m", result.stderr)
+        self.assertIn("--segment: expected a finite length > 0 m", result.stderr)
         result = run_cli("approach", self.path("ok.h5"), "--observables", "carriage/position")
         self.assertEqual(result.returncode, 2)
         self.assertIn("has 3 components, expected 1", result.stderr)
+
+    def test_segments_of_every_observable_line_up_when_one_has_none_in_a_segment(self):
+        # the pull is NaN over the first 30 mm: segment 0 has no mean of it, segment 1 (25-50 mm)
+        # the mean of 30-50 mm; the sinkage and torque rows are those of a complete run
+        write(self.path("run.h5"), nan_before_m=0.03)
+        _, rows = self.rows(self.path("run.h5"))
+        self.assertEqual(len(rows), 5)
+        self.assertTrue(math.isnan(float(rows[0]["drawbar_pull"])))
+        self.assertAlmostEqual(float(rows[1]["drawbar_pull"]), -3.0 - 50.0 * 0.04, delta=1e-3)
+        self.assertAlmostEqual(float(rows[2]["drawbar_pull"]), -3.0 - 50.0 * 0.0625, delta=1e-3)
+        write(self.path("full.h5"))
+        _, full = self.rows(self.path("full.h5"))
+        self.assertEqual([r["sinkage"] for r in rows], [r["sinkage"] for r in full])
+
+    def test_no_row_is_an_error_that_says_why(self):
+        write(self.path("run.h5"))
+        result = run_cli("approach", self.path("run.h5"), "--segment", "1000")
+        self.assertOneLineError(result, "run.h5': the test phase travels 0.12 m",
+                                "less than half a segment of 1000 m (--segment)")
+        write(self.path("nan.h5"), nan_before_m=1.0)
+        result = run_cli("approach", self.path("nan.h5"))
+        self.assertOneLineError(result, "nan.h5': observable 'drawbar_pull' has no finite "
+                                "sample in the test phase's 0.12 m of travel")
+        result = run_cli("approach", self.path("run.h5"), "--segment", "inf")
+        self.assertOneLineError(result, "--segment: expected a finite length > 0 m, got inf")
+        result = run_cli("approach", self.path("run.h5"), "--observables", ",")
+        self.assertOneLineError(result, "--observables: expected a comma-separated list")
 
 
 if __name__ == "__main__":

@@ -134,6 +134,11 @@ class Readers(unittest.TestCase):
             bed_surface.read_dump(self.write("hello\n"))
         with self.assertRaisesRegex(PostError, r"non-finite"):
             bed_surface.read_dump(self.write(DUMP.replace("0.6 0.02", "nan 0.02")))
+        binary = self.write("")
+        with open(binary, "wb") as f:
+            f.write(b"\x89HDF\r\n\x1a\n" + bytes(range(256)))
+        with self.assertRaisesRegex(PostError, r"is not a LIGGGHTS text dump \(byte 0x89"):
+            bed_surface.read_dump(binary)
 
     def test_the_deck_line_is_parsed_and_its_absence_is_an_error(self):
         text = ("x\nbedsurface: step=7 soil_dmax=0.008 bed_depth=0.0457 bin_length=0.12 "

@@ -1,6 +1,7 @@
 """The command line: one error line naming the option or file, exit status 2; option help."""
 
 import argparse
+import os
 import unittest
 
 import synthetic
@@ -25,7 +26,15 @@ class CliErrorTest(TempDirTestCase):
 
     def test_errors(self):
         run, out = self.run_path, self.path("out")
+        folder = self.path("adir.h5")
+        os.mkdir(folder)
         cases = [
+            (["curves", folder], "run file", "adir.h5' is a directory, expected an HDF5 file"),
+            (
+                ["compare", folder, "m.csv", "--quantity", "sinkage"],
+                "SIM.csv: ",
+                "adir.h5' is a directory, expected a CSV file",
+            ),
             (["bogus"], "invalid choice: 'bogus'"),
             (["curves"], "required: RUN.h5"),
             (

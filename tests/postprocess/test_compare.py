@@ -102,6 +102,48 @@ class CompareTest(TempDirTestCase):
         self.assertEqual(result.returncode, 2)
         self.assertIn("has no column 'driving_torque_mean_Nm'", result.stderr)
 
+    def compare(self, reference_text, *extra):
+        reference = self.path("ref.csv")
+        with open(reference, "w") as f:
+            f.write(reference_text)
+        return run_cli("compare", self.curves, reference, "--quantity", "drawbar_pull",
+                       "--group", "A", *extra)
+
+    def test_a_binary_reference_names_the_file(self):
+        reference = self.path("run.h5")  # an HDF5 file given as the CSV
+        with open(reference, "wb") as f:
+            f.write(b"\x89HDF\r\n\x1a\n" + bytes(range(256)))
+        result = run_cli("compare", self.curves, reference, "--quantity", "drawbar_pull",
+                         "--group", "A")
+        self.assertOneLineError(result, "REFERENCE.csv: file", "run.h5' is not a UTF-8 text file")
+
+    def test_nan_and_duplicate_reference_slips_name_the_row(self):
+        result = self.compare("slip,drawbar_pull\n0.2,120\nnan,50\n")
+        self.assertOneLineError(
+            result, "REFERENCE.csv: file", "ref.csv', row 2, column 'slip': slip nan"
+        )
+        result = self.compare("# measured\nslip,drawbar_pull\n0.2,50\n0.4,60\n0.2,120\n")
+        self.assertOneLineError(
+            result, "ref.csv', rows 1 and 3, column 'slip': slip 0.2 appears twice"
+        )
+        # the same with a column mapping
+        result = self.compare("S,DP\n0.2,50\n0.2,120\n", "--columns", "slip=S,drawbar_pull=DP")
+        self.assertOneLineError(result, "rows 1 and 2, column 'S': slip 0.2 appears twice")
+
+    def test_nothing_to_compare_is_an_error(self):
+        result = self.compare("slip,drawbar_pull\n0.6,50\n0.7,60\n")
+        self.assertOneLineError(
+            result, "no slip of", "(0.6 .. 0.7) lies in the simulated slip range 0.1 .. 0.5"
+        )
+        self.assertNotIn("over 0 points", result.stdout)
+        result = self.compare("slip,drawbar_pull\n0.2,nan\n0.3,0\n")
+        self.assertOneLineError(result, "no point of", "has an error",
+                                "or the reference is 0 and there is no scale")
+        # with W every point in range has a normalised difference: no error
+        result = self.compare("slip,drawbar_pull\n0.2,0\n0.6,60\n", "--load", "1000")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("mean |sim − ref|/W: 0.15 over 1 points", result.stdout)
+
     def test_interpolate_and_percent_errors(self):
         sim_slip, sim = np.array([0.0, 1.0]), np.array([0.0, 10.0])
         values, inside = interpolate(

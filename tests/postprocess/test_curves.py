@@ -1,8 +1,12 @@
-"""``wheelsim-post curves``: the CSV (header comment, columns, groups) and the PNG."""
+"""``wheelsim-post curves``: the CSV (header comment, columns, groups) and the PNG; windows without
+a finite sample."""
 
 import csv
 import math
 import unittest
+
+import h5py
+import numpy as np
 
 import synthetic as syn
 from helpers import TempDirTestCase, is_png, run_cli
@@ -98,6 +102,53 @@ class CurvesTest(TempDirTestCase):
         self.assertTrue(any("t0 + 0.55 s to t0 + 0.65 s" in c for c in comments))
         self.assertEqual(rows[0]["n_samples"], "101")
         self.assertAlmostEqual(float(rows[0]["window_start_s"]), 0.85, places=9)
+
+
+class NonFiniteWindowTest(TempDirTestCase):
+    """A window in which an observable has no finite sample is an error, not a row of NaN."""
+
+    def write(self, name, value):
+        path = self.path("run.h5")
+        syn.write_rig_run(path)
+        with h5py.File(path, "a") as f:
+            f[f"observables/{name}/value"][...] = value
+        return path
+
+    def test_drawbar_pull_all_nan_names_the_run_the_observable_and_the_window(self):
+        result = run_cli("curves", self.write("drawbar_pull", np.nan))
+        self.assertOneLineError(
+            result,
+            "run.h5': observable 'drawbar_pull' has no finite sample in the window "
+            "0.8 s .. 1.3 s",
+            "501 samples there are all NaN or inf",
+        )
+        self.assertNotIn("DP nan", result.stdout)
+
+    def test_torque_all_inf_and_sinkage_all_nan(self):
+        for name, value in (("driving_torque", np.inf), ("sinkage", np.nan)):
+            with self.subTest(name=name):
+                result = run_cli("curves", self.write(name, value))
+                self.assertOneLineError(result, f"observable '{name}' has no finite sample")
+
+    def test_an_observable_without_rows_in_the_window(self):
+        path = self.path("run.h5")
+        syn.write_rig_run(path, omit=("sinkage",))
+        with h5py.File(path, "a") as f:
+            syn.write_observable(f, "sinkage", [0, 1], [0.0, 0.001], [0.01, 0.01], "m")
+        result = run_cli("curves", path)
+        self.assertOneLineError(result, "observable 'sinkage' has no finite sample",
+                                "it has no sample there")
+
+    def test_a_value_shorter_than_time_is_a_malformed_file_without_a_numpy_warning(self):
+        path = self.path("run.h5")
+        syn.write_rig_run(path)
+        with h5py.File(path, "a") as f:
+            del f["observables/drawbar_pull/value"]
+            f["observables/drawbar_pull"].create_dataset("value", data=np.ones(500))
+        result = run_cli("curves", path)
+        self.assertOneLineError(  # one line: no RuntimeWarning either
+            result, "observable 'drawbar_pull' has datasets of different lengths",
+            "time 1301, value 500 rows")
 
 
 if __name__ == "__main__":

@@ -72,6 +72,23 @@ class SnapshotMapsTest(TempDirTestCase):
         self.assertIn("--field: run file", result.stderr)
         self.assertIn("no snapshots of 'height'", result.stderr)
 
+    def test_time_must_be_finite_and_not_negative(self):
+        for value in ("nan", "-1", "inf"):
+            with self.subTest(time=value):
+                result, _ = self.maps("--time", value)
+                self.assertOneLineError(result, f"--time: expected a time >= 0 s, got {value}")
+
+    def test_a_grid_spacing_of_0_names_the_snapshot_and_the_value(self):
+        with h5py.File(self.run_path, "a") as f:
+            f["terrain/sinkage/000000200/spacing"][()] = 0.0
+        result, files = self.maps("--field", "sinkage")
+        self.assertOneLineError(
+            result,
+            "scm.h5': snapshot '/terrain/sinkage/000000200' has spacing 0 m",
+            "expected a finite grid spacing > 0 m",
+        )
+        self.assertEqual(files, [])
+
 
 class VtkMapsTest(TempDirTestCase):
     def setUp(self):
@@ -167,6 +184,16 @@ class VtkMapsTest(TempDirTestCase):
         result = run_cli("maps", "--vtk", bad, "--png-dir", self.path("png"))
         self.assertEqual(result.returncode, 2)
         self.assertEqual(len(result.stderr.strip().splitlines()), 1)
+
+    def test_a_binary_file_names_the_file(self):
+        garbage = self.path("garbage.h5")
+        with open(garbage, "wb") as f:
+            f.write(b"\x89HDF\r\n\x1a\n" + bytes(range(256)))
+        with self.assertRaisesRegex(PostError, "garbage.h5'.*not a text file"):
+            read_wheel_surface(garbage)
+        result = run_cli("maps", "--vtk", garbage, "--png-dir", self.path("png"))
+        self.assertOneLineError(result, "VTK file", "garbage.h5': not a text file",
+                                "expected a legacy ASCII VTK file")
 
 
 if __name__ == "__main__":

@@ -158,6 +158,16 @@ class TerrainVtkTest(TempDirTestCase):
         self.assertEqual(result.returncode, 2)
         self.assertIn("has no /terrain snapshots", result.stderr)
 
+    def test_a_grid_spacing_of_0_is_an_error_and_writes_nothing(self):
+        with h5py.File(self.run_path, "a") as f:
+            f["terrain/height/000004000/spacing"][()] = 0.0
+        result = run_cli("vtk", self.run_path, "--out", self.out)
+        self.assertOneLineError(
+            result, "snapshot '/terrain/height/000004000' has spacing 0 m",
+            "expected a finite grid spacing > 0 m",
+        )
+        self.assertEqual(os.listdir(self.out), [])
+
 
 if __name__ == "__main__":
     unittest.main()

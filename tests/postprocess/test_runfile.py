@@ -1,5 +1,7 @@
-"""wheelsim_post.runfile: written rows only, missing observables, snapshots."""
+"""wheelsim_post.runfile: written rows only, malformed observables, missing observables,
+snapshots."""
 
+import os
 import unittest
 
 import h5py
@@ -23,7 +25,9 @@ class ObservableTest(TempDirTestCase):
         self.assertTrue(np.all(dp.step >= 0))
         self.assertEqual(dp.unit, "N")
 
-    def test_datasets_of_unequal_length_are_cut_to_the_shortest(self):
+    def test_datasets_of_unequal_length_are_a_malformed_file(self):
+        # the writer commits step, time and value together (hdf5-layout.md, "Crash
+        # guarantees"): a value shorter than time is not a crash but a broken file
         path = self.path("torn.h5")
         with h5py.File(path, "w") as f:
             synthetic.write_header(f)
@@ -32,10 +36,27 @@ class ObservableTest(TempDirTestCase):
             )
             del f["observables/sinkage/value"]
             f["observables/sinkage"].create_dataset("value", data=[1.0, 2.0])
-        with RunFile(path) as run:
-            s = run.observable("sinkage")
-        np.testing.assert_array_equal(s.step, [0, 1])
-        np.testing.assert_array_equal(s.value, [1.0, 2.0])
+        with RunFile(path) as run, self.assertRaisesRegex(
+            PostError,
+            r"torn.h5': observable 'sinkage' has datasets of different lengths: "
+            r"step 3, time 3, value 2 rows",
+        ):
+            run.observable("sinkage")
+
+    def test_values_that_are_not_numbers_name_the_observable(self):
+        path = self.path("text.h5")
+        synthetic.write_rig_run(path)
+        with h5py.File(path, "a") as f:
+            group = f["observables/drawbar_pull"]
+            rows = len(group["step"])
+            del group["value"]
+            group.create_dataset("value", data=["12.5"] * rows, dtype=synthetic.STRING)
+        with RunFile(path) as run, self.assertRaisesRegex(
+            PostError,
+            r"text.h5': observable 'drawbar_pull': dataset 'value' holds strings, "
+            r"expected numbers",
+        ):
+            run.observable("drawbar_pull")
 
     def test_nested_and_multi_component_observables(self):
         path = self.path("run.h5")
@@ -61,6 +82,9 @@ class ObservableTest(TempDirTestCase):
             f.write("not hdf5")
         with self.assertRaisesRegex(PostError, "cannot open run file .*text.h5"):
             RunFile(bad)
+        os.mkdir(self.path("dir.h5"))
+        with self.assertRaisesRegex(PostError, "run file .*dir.h5' is a directory"):
+            RunFile(self.path("dir.h5"))
 
 
 class SnapshotTest(TempDirTestCase):
@@ -85,6 +109,22 @@ class SnapshotTest(TempDirTestCase):
         self.assertAlmostEqual(snap.time, 0.2)
         # columns x = 1.0 .. 1.3, rows y = -0.5 .. -0.3, cells centred on the grid points
         np.testing.assert_allclose(snap.extent(), (0.95, 1.35, -0.55, -0.25))
+
+    def test_a_grid_spacing_not_above_0_or_a_nan_origin_names_the_snapshot(self):
+        path = self.path("scm.h5")
+        with h5py.File(path, "w") as f:
+            synthetic.write_header(f)
+            for step, x0, spacing in ((100, 0.0, 0.0), (200, 0.0, -0.1),
+                                      (300, 0.0, float("nan")), (400, float("nan"), 0.1)):
+                synthetic.write_snapshot(f, "height", step, 0.1, np.ones((2, 3)), "m",
+                                         x0, 0.0, spacing)
+        with RunFile(path) as run:
+            for step, text in ((100, "spacing 0 m"), (200, "spacing -0.1 m"),
+                               (300, "spacing nan m"), (400, "x0 nan m")):
+                with self.subTest(step=step), self.assertRaisesRegex(
+                    PostError, f"scm.h5': snapshot '/terrain/height/{step:09d}' has {text}"
+                ):
+                    run.snapshot("height", step)
 
 
 if __name__ == "__main__":

@@ -84,6 +84,16 @@ class SeriesTest(TempDirTestCase):
         self.assertIn("has no observable 'torque'", result.stderr)
         self.assertIn("drawbar_pull", result.stderr)  # lists what is available
 
+    def test_an_observable_of_strings_is_a_one_line_error(self):
+        with h5py.File(self.run_path, "a") as f:
+            group = f["observables/drawbar_pull"]
+            del group["value"]
+            group.create_dataset("value", data=["a", "b", "c", "d"], dtype=synthetic.STRING)
+        result = run_cli("series", self.run_path, "--csv", self.path("x.csv"))
+        self.assertOneLineError(
+            result, "run.h5': observable 'drawbar_pull'", "holds strings, expected numbers"
+        )
+
 
 if __name__ == "__main__":
     unittest.main()
