@@ -11,6 +11,7 @@
 #      CSV and one PNG (postprocess/wheelsim-post curves, one series per terrain and soil), SCM
 #      maps and wheel-pressure maps.
 # About 5 minutes on 2 cores after the build. Output: runs/demo/ (or $WHEELSIM_DEMO_DIR).
+# WHEELSIM_DEMO_SKIP_BUILD=1: do not run scripts/build.sh first (the build is up to date).
 #   scripts/demo.sh [--quick]     --quick: short test phases and 2 DEM slips (CI's end-to-end
 #                                 check, ~2 min)
 # Re-running resumes: finished sweep points are skipped (wheel-sweep --force to redo them).
