@@ -13,8 +13,8 @@ MODE
                  and the awaited Wrench (or the Pose it could not send) within its timeout
                  (+ margin), and its run file must read
                  back (h5py) with the rows of its last flush.
-  launcher_fail  scripts/wheel-cosim with a rig config that the rig rejects exits non-zero and
-                 shows the rig's message.
+  launcher_fail  scripts/wheel-cosim with a rig config that the rig rejects exits 2 with the
+                 rig's message before starting either side (wheel-rig --check; no LIGGGHTS log).
   dt_from_bed    a rig config without run.dt: wheel-cosim takes the bed's time step (bed_dt of
                  its .vars) for both sides; the run file records it and its source. Its work
                  dir is too deep for <work>/rig.sock (over 107 bytes): the socket goes to a
@@ -232,7 +232,11 @@ def launcher_fail(a):
          os.path.join(a.root, "inputs", "examples", "in.wheel_coupled"), "--work",
          os.path.join(a.work, "run")], capture_output=True, text=True, timeout=300)
     text = r.stdout + r.stderr
-    ok = r.returncode != 0 and "spring_k must be > 0 N/m, got -3" in text and "FAILED" in text
+    # the launcher checks the rig config (wheel-rig --check) before it starts either side: exit 2
+    # with the rig's message, and no LIGGGHTS run (no log of it in the work dir)
+    ok = (r.returncode == 2 and "--rig: wheel-rig: " in text
+          and "spring_k must be > 0 N/m, got -3" in text
+          and not os.path.exists(os.path.join(a.work, "run", "log.liggghts")))
     print(text[-1500:])
     print(f"run_cosim_case: launcher exit {r.returncode} {'PASS' if ok else 'FAIL'}")
     return 0 if ok else 1
