@@ -1,4 +1,8 @@
-"""``maps``: SCM terrain snapshots of a run, or unrolled contact pressure of VTK wheel surfaces."""
+"""``maps``: SCM terrain snapshots of a run, or unrolled contact pressure of VTK wheel surfaces.
+
+Every input is checked (the options, the run file and each snapshot to draw, or every VTK file)
+before the PNG directory is created: bad input leaves nothing behind.
+"""
 
 import math
 import os
@@ -145,34 +149,44 @@ def plot_snapshot(snap, path):
     save(fig, path)
 
 
-def run_snapshots(args, out_dir):
-    """Maps of the SCM snapshots of args.run; returns the PNG paths."""
-    written = []
-    with RunFile(args.run) as run_file:
-        present = run_file.snapshot_fields()
-        if not present:
-            raise PostError(f"run file '{args.run}' has no /terrain snapshots")
-        fields = split_list(args.field) if args.field is not None else present
-        for field in fields:
-            if field not in present:
-                raise PostError(
-                    f"--field: run file '{args.run}' has no snapshots of '{field}' "
-                    f"(it has: {', '.join(present)})"
-                )
-        for field in fields:
-            steps = run_file.snapshot_steps(field)
-            chosen = select_steps(
-                steps,
-                args.step,
-                args.time,
-                args.all,
-                lambda s, f=field: run_file.snapshot_time(f, s),
+def snapshot_plan(args, run_file):
+    """The (field, step) of each SCM snapshot of ``run_file`` to draw for --field and
+    --step/--time/--all, every one checked (RunFile.snapshot_grid) before anything is written."""
+    present = run_file.snapshot_fields()
+    if not present:
+        raise PostError(f"run file '{args.run}' has no /terrain snapshots")
+    fields = split_list(args.field) if args.field is not None else present
+    for field in fields:
+        if field not in present:
+            raise PostError(
+                f"--field: run file '{args.run}' has no snapshots of '{field}' "
+                f"(it has: {', '.join(present)})"
             )
-            for step in chosen:
-                snap = run_file.snapshot(field, step)
-                path = os.path.join(out_dir, f"{field}_{step:09d}.png")
-                plot_snapshot(snap, path)
-                written.append(path)
+    plan = []
+    for field in fields:
+        steps = run_file.snapshot_steps(field)
+        chosen = select_steps(
+            steps,
+            args.step,
+            args.time,
+            args.all,
+            lambda s, f=field: run_file.snapshot_time(f, s),
+        )
+        plan += [(field, step) for step in chosen]
+    for field, step in plan:
+        run_file.snapshot_grid(field, step)
+    return plan
+
+
+def run_snapshots(run_file, plan, out_dir):
+    """Maps of the SCM snapshots ``plan`` (snapshot_plan) of ``run_file``; returns the PNG
+    paths."""
+    written = []
+    for field, step in plan:
+        snap = run_file.snapshot(field, step)
+        path = os.path.join(out_dir, f"{field}_{step:09d}.png")
+        plot_snapshot(snap, path)
+        written.append(path)
     return written
 
 
@@ -222,8 +236,8 @@ def plot_wheel_surface(surface, centre, args, path):
     save(fig, path)
 
 
-def run_vtk(args, out_dir):
-    """Unrolled pressure maps of args.vtk; returns the PNG paths."""
+def check_vtk_inputs(args):
+    """PostError naming the first bad wheel-surface option or --vtk file (each file read)."""
     lo, hi = args.angle_range
     if not (-360.0 <= lo < hi <= 360.0):
         raise PostError(f"--angle-range: expected MIN < MAX [deg], got {lo:g} {hi:g}")
@@ -231,6 +245,18 @@ def run_vtk(args, out_dir):
         raise PostError(f"--angle-bin: expected > 0 deg, got {args.angle_bin:g}")
     if args.axial_bins < 1:
         raise PostError(f"--axial-bins: expected >= 1, got {args.axial_bins}")
+    if args.centre is not None and not all(math.isfinite(c) for c in args.centre):
+        raise PostError(
+            "--centre: expected a finite point X Y Z [m], got "
+            + " ".join(f"{c:g}" for c in args.centre)
+        )
+    for vtk_path in args.vtk:
+        read_wheel_surface(vtk_path)  # parsed again when drawn: one surface in memory at a time
+
+
+def run_vtk(args, out_dir):
+    """Unrolled pressure maps of args.vtk (checked by check_vtk_inputs); returns the PNG
+    paths."""
     written = []
     for vtk_path in args.vtk:
         surface = read_wheel_surface(vtk_path)
@@ -254,8 +280,13 @@ def run(args):
         )
     if args.time is not None and not (math.isfinite(args.time) and args.time >= 0.0):
         raise PostError(f"--time: expected a time >= 0 s, got {args.time:g}")
-    out_dir = _output_dir(args.png_dir)
-    written = run_vtk(args, out_dir) if args.vtk else run_snapshots(args, out_dir)
+    if args.vtk is not None:
+        check_vtk_inputs(args)
+        written = run_vtk(args, _output_dir(args.png_dir))
+    else:
+        with RunFile(args.run) as run_file:
+            plan = snapshot_plan(args, run_file)
+            written = run_snapshots(run_file, plan, _output_dir(args.png_dir))
     for path in written:
         print(f"wrote {path}")
     return 0

@@ -4,7 +4,8 @@ One ``PREFIX_<step>.vti`` per snapshot step (ImageData, binary base64 Float64 po
 field the run file has at that step, e.g. height, sinkage, pressure, shear_stress; grid point
 (i, j) at x = x0 + j*spacing, y = y0 + i*spacing, z = 0) and ``PREFIX.pvd`` listing them with the
 snapshots' simulated times [s]. In ParaView, "Warp By Scalar" with ``height`` lifts the flat
-image to the soil surface (docs/paraview.md).
+image to the soil surface (docs/paraview.md). Every input is checked (the options, the run file,
+every snapshot's grid) before the output directory is created: bad input leaves nothing behind.
 """
 
 import os
@@ -42,19 +43,28 @@ def step_fields(run_file):
     return dict(sorted(by_step.items()))
 
 
+def check_grids(run_file, steps):
+    """Checks every snapshot of ``steps`` ({step: fields}) without reading its values: well
+    formed, and the fields of a step on one grid (one image per step); PostError naming the
+    first that is not."""
+    for step, fields in steps.items():
+        first = run_file.snapshot_grid(fields[0], step)
+        for field in fields[1:]:
+            grid = run_file.snapshot_grid(field, step)
+            if grid != first:
+                raise PostError(
+                    f"run file '{run_file.path}': at step {step} the snapshot of '{field}' "
+                    f"(shape {grid[0]}, x0 {grid[1]}, y0 {grid[2]}, spacing {grid[3]}) is not "
+                    f"on the grid of '{fields[0]}' (shape {first[0]}, x0 {first[1]}, y0 "
+                    f"{first[2]}, spacing {first[3]})"
+                )
+
+
 def write_step(run_file, step, fields, path):
-    """Writes the .vti of one snapshot step; returns its time [s]."""
+    """Writes the .vti of one snapshot step (its grids checked by check_grids); returns its
+    time [s]."""
     snaps = [run_file.snapshot(field, step) for field in fields]
     first = snaps[0]
-    for snap in snaps[1:]:
-        grid = (snap.value.shape, snap.x0, snap.y0, snap.spacing)
-        if grid != (first.value.shape, first.x0, first.y0, first.spacing):
-            raise PostError(
-                f"run file '{run_file.path}': at step {step} the snapshot of '{snap.field}' "
-                f"(shape {snap.value.shape}, x0 {snap.x0}, y0 {snap.y0}, spacing "
-                f"{snap.spacing}) is not on the grid of '{first.field}' (shape "
-                f"{first.value.shape}, x0 {first.x0}, y0 {first.y0}, spacing {first.spacing})"
-            )
     text = vti_text(
         first.value.shape,
         (first.x0, first.y0, 0.0),
@@ -69,14 +79,19 @@ def write_step(run_file, step, fields, path):
 
 def run(args):
     """Writes the series; prints the file count, the fields and the time range."""
-    try:
-        os.makedirs(args.out, exist_ok=True)
-    except OSError as exc:
-        raise PostError(f"--out: cannot create '{args.out}': {exc.strerror}") from None
+    if not args.prefix or os.sep in args.prefix:
+        raise PostError(
+            f"--prefix: expected a file name prefix (no '{os.sep}'), got '{args.prefix}'"
+        )
     with RunFile(args.run) as run_file:
         steps = step_fields(run_file)
         if not steps:
             raise PostError(f"run file '{args.run}' has no /terrain snapshots")
+        check_grids(run_file, steps)
+        try:
+            os.makedirs(args.out, exist_ok=True)
+        except OSError as exc:
+            raise PostError(f"--out: cannot create '{args.out}': {exc.strerror}") from None
         entries = []
         for step, fields in steps.items():
             path = os.path.join(args.out, f"{args.prefix}_{step:09d}.vti")

@@ -244,48 +244,69 @@ class RunFile:
             raise PostError(f"run file '{self.path}' has no dataset '/{key}'")
         return float(np.ravel(self._file[key][()])[0])
 
-    def snapshot(self, field, step):
-        """The snapshot of ``field`` at ``step`` (PostError if absent or malformed)."""
+    def snapshot_grid(self, field, step):
+        """The grid of the snapshot of ``field`` at ``step``: (shape of its value, x0, y0,
+        spacing), checked as ``snapshot`` checks it (PostError if absent or malformed) without
+        reading its values, so that a command can check every snapshot before it writes."""
         key = f"terrain/{field}/{step:09d}"
         group = self._file.get(key)
         if not isinstance(group, h5py.Group):
             raise PostError(f"run file '{self.path}' has no snapshot '/{key}'")
+        names = ("step", "time", "value", "x0", "y0", "spacing")
+        missing = [name for name in names if not isinstance(group.get(name), h5py.Dataset)]
+        if missing:
+            raise PostError(
+                f"run file '{self.path}': snapshot '/{key}' lacks the dataset '{missing[0]}' "
+                "(expected step, time, value, x0, y0, spacing)"
+            )
+        try:
+            shape, kind = tuple(group["value"].shape), group["value"].dtype.kind
+            x0, y0 = float(group["x0"][()]), float(group["y0"][()])
+            spacing = float(group["spacing"][()])
+        except (TypeError, ValueError, IndexError):
+            kind = None
+        if kind is None or kind not in "biuf":
+            raise PostError(
+                f"run file '{self.path}': snapshot '/{key}' holds a dataset that is not "
+                "numbers (expected numeric step, time, value, x0, y0, spacing)"
+            )
+        if len(shape) != 2 or 0 in shape:
+            raise PostError(
+                f"run file '{self.path}': snapshot '/{key}/value' has shape "
+                f"{shape}, expected [rows][cols] with rows, cols >= 1"
+            )
+        if not (math.isfinite(spacing) and spacing > 0.0):
+            raise PostError(
+                f"run file '{self.path}': snapshot '/{key}' has spacing {spacing:g} m, "
+                "expected a finite grid spacing > 0 m"
+            )
+        for name, origin in (("x0", x0), ("y0", y0)):
+            if not math.isfinite(origin):
+                raise PostError(
+                    f"run file '{self.path}': snapshot '/{key}' has {name} "
+                    f"{origin:g} m, expected a finite grid origin"
+                )
+        return shape, x0, y0, spacing
+
+    def snapshot(self, field, step):
+        """The snapshot of ``field`` at ``step`` (PostError if absent or malformed)."""
+        _, x0, y0, spacing = self.snapshot_grid(field, step)
+        key = f"terrain/{field}/{step:09d}"
+        group = self._file[key]
         try:
             value = np.asarray(group["value"][()], dtype=np.float64)
-            snap = Snapshot(
+            return Snapshot(
                 field=field,
                 step=int(np.ravel(group["step"][()])[0]),
                 time=float(np.ravel(group["time"][()])[0]),
                 value=value,
                 unit=_text(group["value"].attrs.get("unit", "1")),
-                x0=float(group["x0"][()]),
-                y0=float(group["y0"][()]),
-                spacing=float(group["spacing"][()]),
+                x0=x0,
+                y0=y0,
+                spacing=spacing,
             )
-        except KeyError as exc:
-            raise PostError(
-                f"run file '{self.path}': snapshot '/{key}' lacks {exc} "
-                "(expected step, time, value, x0, y0, spacing)"
-            ) from None
         except (TypeError, ValueError, IndexError):
             raise PostError(
                 f"run file '{self.path}': snapshot '/{key}' holds a dataset that is not "
                 "numbers (expected numeric step, time, value, x0, y0, spacing)"
             ) from None
-        if value.ndim != 2 or value.size == 0:
-            raise PostError(
-                f"run file '{self.path}': snapshot '/{key}/value' has shape "
-                f"{value.shape}, expected [rows][cols] with rows, cols >= 1"
-            )
-        if not (math.isfinite(snap.spacing) and snap.spacing > 0.0):
-            raise PostError(
-                f"run file '{self.path}': snapshot '/{key}' has spacing {snap.spacing:g} m, "
-                "expected a finite grid spacing > 0 m"
-            )
-        for name in ("x0", "y0"):
-            if not math.isfinite(getattr(snap, name)):
-                raise PostError(
-                    f"run file '{self.path}': snapshot '/{key}' has {name} "
-                    f"{getattr(snap, name):g} m, expected a finite grid origin"
-                )
-        return snap

@@ -10,7 +10,7 @@ import os
 import sys
 from pathlib import Path
 
-from wheelsim_post import bed_hold
+from wheelsim_post import bed_hold, mpi_launch
 from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 
 from . import accept, config, estimate, rate, runner
@@ -69,6 +69,12 @@ def main(argv=None):
                          "the soil's test settings, and the sweep stops if it settles by more "
                          f"than {100 * bed_hold.SETTLE_LIMIT:.0f} %% (default "
                          f"{bed_hold.DEFAULT_HOLD_S:g}; 0: no check; docs/soil-bins.md)")
+    ap.add_argument("--stall-timeout", type=float, default=mpi_launch.DEFAULT_STALL_MIN,
+                    metavar="MIN",
+                    help="DEM: a bed's in.soilbin or bed-hold check whose log has not grown for "
+                         "MIN minutes is taken for hung (an MPI rank stuck), killed, and the "
+                         f"sweep stops (exit 1) (default {mpi_launch.DEFAULT_STALL_MIN:g}; 0: no "
+                         "limit; the points have timeouts of their own)")
     ap.add_argument("--archive", metavar="DIR",
                     help="keep each finished point's done.json, run.h5, rig.toml and run.log in "
                          "DIR (e.g. a folder committed to git) and restore them from there into "
@@ -98,6 +104,10 @@ def main(argv=None):
         ap.error(f"--cores must be >= 1, got {a.cores}")
     if not a.bed_hold >= 0:  # also NaN
         ap.error(f"--bed-hold must be a time >= 0 s (0: no check), got {a.bed_hold:g}")
+    try:
+        stall_s = mpi_launch.stall_seconds(a.stall_timeout)
+    except ValueError as e:
+        ap.error(f"--stall-timeout: {e}")
     if a.budget is not None and not a.budget > 0:
         ap.error(f"--budget must be a number of hours > 0, got {a.budget:g}")
     if a.config is None and not a.measure_rate:
@@ -163,7 +173,7 @@ def main(argv=None):
             "budget_h": a.budget if a.budget is not None else sweep.budget_h}
     r = runner.Runner(sweep, out, REPO, build, jobs, force=a.force, dry_run=a.dry_run,
                       cost=cost, beds_only=a.beds_only, archive_dir=a.archive,
-                      bed_hold_s=a.bed_hold)
+                      bed_hold_s=a.bed_hold, stall_s=stall_s)
     if a.estimate:
         return print_estimate(r, sweep, cost)
     if a.accept_change:

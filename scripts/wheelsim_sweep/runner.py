@@ -115,9 +115,14 @@ class Interrupted(Exception):
 
 class Runner:
     def __init__(self, sweep, out_dir, repo, build_dir, jobs, force=False, dry_run=False,
-                 cost=None, beds_only=False, archive_dir=None, bed_hold_s=bed_hold.DEFAULT_HOLD_S):
+                 cost=None, beds_only=False, archive_dir=None, bed_hold_s=bed_hold.DEFAULT_HOLD_S,
+                 stall_s=60.0 * mpi_launch.DEFAULT_STALL_MIN):
         self.sweep = sweep
         self.bed_hold_s = bed_hold_s  # [s] the bed-hold check's length (cli --bed-hold; 0: none)
+        # [s] a bed's in.soilbin or bed-hold check whose log stays unchanged this long is killed
+        # (cli --stall-timeout; 0: never). Not the points: wheel-cosim and wheel-rig time out on
+        # their own (socket timeouts), and none of this enters a point's or a bed's inputs.
+        self.stall_s = stall_s
         # --archive DIR: finished points are kept there and restored from there (archive.py)
         self.archive = Path(archive_dir).resolve() if archive_dir is not None else None
         self.restored = []  # reldirs of the points restored from the archive by this run
@@ -174,9 +179,12 @@ class Runner:
                      "driver")
             self.watchdog = None
 
-    def _run_child(self, cmd, log, cwd=None):
+    def _run_child(self, cmd, log, cwd=None, stall=None):
         """Runs cmd in a session of its own that dies with this process (watchdog.py); returns
-        its exit status or raises Interrupted."""
+        its exit status or raises Interrupted. stall: what the child runs (e.g. "bed 'x':
+        in.soilbin"), for the stall guard: when its log has not grown for self.stall_s, its
+        session is killed and mpi_launch.Stalled (a RuntimeError) names it and the log; None: no
+        guard (the points)."""
         env = dict(os.environ, WHEELSIM_BUILD_DIR=str(self.build))
         with open(log, "w") as f:
             with self.lock:
@@ -187,8 +195,17 @@ class Runner:
                                         preexec_fn=self.preexec)
                 self.procs[proc] = False
                 self._tell_watchdog(f"+{proc.pid}")
+            stalled = None
             try:
-                rc = proc.wait()
+                if stall is None:
+                    rc = proc.wait()
+                else:
+                    rc = mpi_launch.wait_watching(
+                        proc, f, self.stall_s,
+                        lambda: watchdog.kill_sessions_until_empty([proc.pid]), stall,
+                        "--stall-timeout")
+            except mpi_launch.Stalled as e:
+                stalled = e
             finally:
                 # what the child left behind in its session (e.g. an MPI rank) goes with it
                 watchdog.kill_sessions_until_empty([proc.pid])
@@ -197,6 +214,8 @@ class Runner:
                     self._tell_watchdog(f"-{proc.pid}")
         if killed:
             raise Interrupted()
+        if stalled is not None:
+            raise stalled
         return rc
 
     def _signal_children(self, sig):
@@ -614,7 +633,8 @@ class Runner:
             self.say(f"bed {soil.label}: preparing {restart}{why} ({self.sweep.bed_np} rank(s); "
                      f"log {bdir / 'soilbin.log'})")
             t0 = time.monotonic()
-            rc = self._run_child(cmd, bdir / "soilbin.log", cwd=bdir)
+            rc = self._run_child(cmd, bdir / "soilbin.log", cwd=bdir,
+                                 stall=f"bed '{soil.label}': in.soilbin")
             if rc != 0 or not part.is_file() or not Path(f"{part}.vars").is_file():
                 log = bdir / "soilbin.log"
                 raise RuntimeError(f"bed '{soil.label}': in.soilbin failed (exit {rc}): "
@@ -671,7 +691,8 @@ class Runner:
                     "-var", "restart_file", str(restart), "-var", "hold_s", str(self.bed_hold_s),
                     "-log", "none"]
             t0 = time.monotonic()
-            rc = self._run_child(cmd, log, cwd=restart.parent)
+            rc = self._run_child(cmd, log, cwd=restart.parent,
+                                 stall=f"bed '{soil.label}': {bed_hold.DECK}")
             if rc != 0:
                 raise RuntimeError(f"bed '{soil.label}': {bed_hold.DECK} failed (exit {rc}): "
                                    f"{_last_error(log)} [log {log}]")

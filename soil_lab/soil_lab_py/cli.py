@@ -2,7 +2,7 @@
 
   soil-lab run SOIL [--tests bulk,plate,shear,repose] [--out DIR] [--np N] [--preset P]
                     [--normal-stresses S1,S2,S3] [--bed-var NAME=VALUE ...] [--archive DIR]
-                    [--build-dir D]
+                    [--stall-timeout MIN] [--build-dir D]
   soil-lab report DIR
   soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB] [--relaxed]
 
@@ -14,7 +14,7 @@ import os
 import sys
 from pathlib import Path
 
-from wheelsim_post import bed_hold
+from wheelsim_post import bed_hold, mpi_launch
 from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 
 from . import analysis, plan, runner, scm_file
@@ -98,6 +98,10 @@ def run_options(a):
     if not a.bed_hold >= 0:  # also NaN
         raise plan.LabInputError(f"--bed-hold: expected a time >= 0 s (0: no check), got "
                                  f"{a.bed_hold}")
+    try:
+        mpi_launch.stall_seconds(a.stall_timeout)
+    except ValueError as e:
+        raise plan.LabInputError(f"--stall-timeout: {e}") from None
     tests = plan.check_options(tests, a.preset, **options)
     return tests, options, bed_vars
 
@@ -112,7 +116,8 @@ def _run(a):
     soil_file = runner.resolve_soil_file(a.soil, REPO / "inputs")
     out = Path(a.out or RUNS / "soil_lab" / Path(soil_file).stem).resolve()
     lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet, archive=a.archive,
-                     checkpoints=a.checkpoints, bed_hold_s=a.bed_hold)  # checks the build
+                     checkpoints=a.checkpoints, bed_hold_s=a.bed_hold,
+                     stall_s=mpi_launch.stall_seconds(a.stall_timeout))  # checks the build
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as e:
@@ -274,6 +279,11 @@ def main(argv=None):
     r.add_argument("--checkpoints", type=int, default=runner.DEFAULT_CHECKPOINTS, metavar="N",
                    help="restart files written over each plate and shear run, from which a "
                         f"stopped lab goes on (default {runner.DEFAULT_CHECKPOINTS}; 0: none)")
+    r.add_argument("--stall-timeout", type=float, default=mpi_launch.DEFAULT_STALL_MIN,
+                   metavar="MIN",
+                   help="a LIGGGHTS run whose log has not grown for MIN minutes is taken for hung "
+                        "(an MPI rank stuck), killed, and the lab stops (exit 1) (default "
+                        f"{mpi_launch.DEFAULT_STALL_MIN:g}; 0: no limit)")
     r.add_argument("--build-dir", metavar="D", help="build directory (default: <repo>/build)")
     r.add_argument("--quiet", action="store_true", help="no progress lines")
     rep = sub.add_parser("report", help="fit and plot a lab directory's results")

@@ -82,7 +82,8 @@ def resolve_soil_file(soil, inputs_dir):
 
 class Lab:
     def __init__(self, repo, build_dir, out_dir, np=1, quiet=False, archive=None,
-                 checkpoints=DEFAULT_CHECKPOINTS, bed_hold_s=bed_hold.DEFAULT_HOLD_S):
+                 checkpoints=DEFAULT_CHECKPOINTS, bed_hold_s=bed_hold.DEFAULT_HOLD_S,
+                 stall_s=60.0 * mpi_launch.DEFAULT_STALL_MIN):
         self.repo = Path(repo)
         self.build = Path(build_dir)
         self.out = Path(out_dir)
@@ -92,6 +93,9 @@ class Lab:
         self.np = np
         self.checkpoints = checkpoints  # restart files per plate or shear run (0: none)
         self.bed_hold_s = bed_hold_s  # [s] the bed-hold check's length (0: no check)
+        # [s] a LIGGGHTS run whose log stays unchanged this long is killed (0: never); not part
+        # of any step's inputs
+        self.stall_s = stall_s
         self.quiet = quiet
         self.inputs = self.repo / "inputs"
         self.liggghts = self.build / "bin" / "liggghts-wheel"
@@ -109,9 +113,12 @@ class Lab:
         return mpi_launch.mpirun(self.np)
 
     def _liggghts(self, deck, variables, log, cwd, while_running=None):
-        """Runs `deck` with LIGGGHTS; `while_running()` is called every few seconds meanwhile."""
+        """Runs `deck` with LIGGGHTS; `while_running()` is called every few seconds meanwhile.
+        A run whose log has not grown for stall_s is killed: LabRunError naming the deck and the
+        log (the stall guard, mpi_launch.wait_watching)."""
         # mpirun dies with this process and each rank with mpirun (SIGKILL, also when the lab is
-        # killed: docs/soil-lab.md "Stopping and resuming"), so no run outlives the lab.
+        # killed: docs/soil-lab.md "Stopping and resuming"), so no run outlives the lab; a stalled
+        # run is ended the same way: mpirun SIGKILLed, its ranks die with it.
         cmd = self._mpirun() + list(mpi_launch.rank_death_prefix()) + [
             str(self.liggghts), "-in", str(deck), "-log", "none", "-var", "inputs_dir",
             str(self.inputs)]
@@ -120,13 +127,11 @@ class Lab:
         with open(log, "w") as f:
             p = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd,
                                  preexec_fn=mpi_launch.die_with_parent(os.getpid(), who="soil-lab"))
-            while True:
-                try:
-                    p.wait(timeout=5.0)
-                    break
-                except subprocess.TimeoutExpired:
-                    if while_running is not None:
-                        while_running()
+            try:
+                mpi_launch.wait_watching(p, f, self.stall_s, p.kill, Path(deck).name,
+                                         "--stall-timeout", while_running)
+            except mpi_launch.Stalled as e:
+                raise LabRunError(str(e)) from None
         text = Path(log).read_text(errors="replace")
         if p.returncode != 0:
             errors = [ln for ln in text.splitlines() if "ERROR" in ln]

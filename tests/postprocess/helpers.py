@@ -1,5 +1,7 @@
 """Shared test helpers: a temporary directory per test and running the wheelsim-post script."""
 
+import contextlib
+import io
 import os
 import subprocess
 import sys
@@ -51,6 +53,22 @@ def run_cli(*args):
         env=env,
         timeout=120,
     )
+
+
+def run_cli_here(*args):
+    """Runs wheelsim-post's main() in this process and returns what run_cli returns: for a test
+    of many short cases, where starting an interpreter (numpy, h5py, matplotlib) per case costs
+    more than the case."""
+    from wheelsim_post import cli
+
+    os.environ.setdefault("MPLBACKEND", "Agg")
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            rc = cli.main([str(a) for a in args])
+        except SystemExit as exc:  # argparse's usage errors
+            rc = exc.code if isinstance(exc.code, int) else 1
+    return subprocess.CompletedProcess(list(args), rc, out.getvalue(), err.getvalue())
 
 
 def is_png(path):

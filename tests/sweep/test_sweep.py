@@ -455,6 +455,104 @@ deck = "in.deck"
     kill_driver_and_check(a, cmd, "[started 2/", started)
 
 
+STALL_MIN = "0.05"  # --stall-timeout [min]: 3 s
+STALL_S = 3.0
+
+
+def stall_sweep(a, work):
+    """A one-point DEM sweep on a ci bin recipe with a build dir whose liggghts-wheel is
+    tests/sweep/liggghts_standin.py (wheel-rig and the meshes linked to the real build); returns
+    the command of `wheel-sweep --beds-only --stall-timeout 0.05` (3 s) and its output dir."""
+    if shutil.which("mpirun") is None:
+        raise Skip("mpirun not found (Debian openmpi-bin)")
+    build = work / "build"
+    (build / "bin").mkdir(parents=True)
+    (build / "bin" / "wheel-rig").symlink_to(Path(a.build_dir).resolve() / "bin" / "wheel-rig")
+    (build / "meshes").symlink_to(Path(a.build_dir).resolve() / "meshes")
+    (build / "bin" / "liggghts-wheel").symlink_to(Path(__file__).resolve().parent
+                                                  / "liggghts_standin.py")
+    (work / "in.deck").write_text("# never read: no point runs (--beds-only)\n")
+    repo = Path(a.sweep).resolve().parents[1]
+    cfg = work / "sweep.toml"
+    cfg.write_text(f"""terrain = "dem"
+base = "{repo}/inputs/rigs/ci_small_wheel.toml"
+wheels = ["test_small"]
+soils = [{{ soil = "ci", bin_length = 0.12, bin_width = 0.08, fill_height = 0.03 }}]
+slips = [0.2]
+[dem]
+np = 1
+bed_np = 1
+deck = "in.deck"
+""")
+    out = work / "out"
+    return [a.sweep, str(cfg), "--build-dir", str(build), "--out-dir", str(out), "--beds-only",
+            "--stall-timeout", STALL_MIN], out
+
+
+def run_stalling(cmd, env, work):
+    """Runs the sweep (stand-in behaviour in env); returns (exit status, output, wall time [s])
+    after checking that none of its processes is left."""
+    t0 = time.monotonic()
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=60,
+                       env=dict(os.environ, **env))
+    wall = time.monotonic() - t0
+    print(f"$ {' '.join(cmd)}  ({env}) -> exit {r.returncode} after {wall:.1f} s")
+    print(r.stdout + r.stderr)
+    left = procs_under(work / "build")
+    deadline = time.monotonic() + 2.0
+    while left and time.monotonic() < deadline:
+        time.sleep(0.1)
+        left = procs_under(work / "build")
+    for pid in left:
+        os.kill(pid, signal.SIGKILL)
+    check(not left, "processes of the stalled run left: "
+          + "; ".join(f"{pid} {_cmdline(pid)[:100]}" for pid in left))
+    return r.returncode, r.stdout + r.stderr, wall
+
+
+def stall_message(text, what, log):
+    """Checks the stall guard's one-line error: what, the timeout, the log, the option."""
+    lines = [x for x in text.splitlines() if "made no progress" in x]
+    check(len(lines) == 1, f"no one stall error line naming {what}")
+    m = re.fullmatch(r"wheel-sweep: error: (.*) made no progress for 0\.05 min \(log (\S+) "
+                     r"unchanged since \d\d:\d\d:\d\d\): killed; .*--stall-timeout MIN.*",
+                     lines[0])
+    check(m is not None, f"stall error not as documented: {lines[0]}")
+    check(m.group(1) == what and m.group(2) == str(log),
+          f"stall error names {m.group(1)!r} and {m.group(2)}, expected {what!r} and {log}")
+
+
+def case_bed_stall(a, work):
+    """The stall guard on a bed's preparation: liggghts-wheel (a stand-in under mpirun) prints one
+    line and hangs; with --stall-timeout 0.05 (3 s) wheel-sweep kills its session, stops with one
+    line naming in.soilbin and its log, exit 1, no process left, no bed written."""
+    cmd, out = stall_sweep(a, work)
+    rc, text, wall = run_stalling(cmd, {"STANDIN_STALL_DECKS": "in.soilbin"}, work)
+    check(rc == 1, f"exit {rc}, expected 1")
+    bdir = out / "beds" / "ci"
+    stall_message(text, "bed 'ci': in.soilbin", bdir / "soilbin.log")
+    check(STALL_S <= wall < STALL_S + 15, f"took {wall:.1f} s for a {STALL_S} s stall timeout")
+    check("stand-in liggghts-wheel" in (bdir / "soilbin.log").read_text(),
+          "the stand-in's line is not in the bed's log")
+    check(not (bdir / "soilbin_ci.restart").exists(), "a bed restart was written")
+
+
+def case_bed_steady(a, work):
+    """A bed's in.soilbin that prints a line every 0.25 s for 6 s (twice the 3 s stall timeout)
+    is not killed: the bed is made; then its bed-hold check prints one line and hangs, and is
+    killed: one line naming in.bedhold and its log, exit 1, no process left."""
+    cmd, out = stall_sweep(a, work)
+    rc, text, wall = run_stalling(cmd, {"STANDIN_STALL_DECKS": "in.bedhold",
+                                        "STANDIN_STEADY_S": "6"}, work)
+    bdir = out / "beds" / "ci"
+    check("in.soilbin made no progress" not in text, "the steadily printing in.soilbin was killed")
+    check(re.search(r"^bed ci: ready in ", text, re.M), "the bed was not made")
+    check((bdir / "soilbin_ci.restart").is_file(), "no bed restart")
+    check(rc == 1, f"exit {rc}, expected 1 (the bed-hold check stalled)")
+    stall_message(text, "bed 'ci': in.bedhold", bdir / "bedhold.log")
+    check(not (bdir / "soilbin_ci.restart.hold.json").exists(), "a bed-hold record was written")
+
+
 def dem_repo(a):
     """The repository of the sweep under test, for a case that runs LIGGGHTS (Skip without mpirun
     or liggghts-wheel)."""
