@@ -88,6 +88,16 @@ MeshReport check_mesh(const TriangleMesh &mesh) {
     }
   }
 
+  // Every later check is meaningless with a NaN or infinite coordinate.
+  for (int i = 0; i < r.vertex_count; ++i) {
+    if (!mesh.vertices_m[i].allFinite()) {
+      r.errors.push_back("vertex " + std::to_string(i) +
+                         " has a coordinate that is not a finite number: " +
+                         format_point(mesh.vertices_m[i]) + " m");
+      return r;
+    }
+  }
+
   // Bounding box and size plausibility.
   r.bbox_min_m = r.bbox_max_m = mesh.vertices_m.front();
   for (const auto &v : mesh.vertices_m) {

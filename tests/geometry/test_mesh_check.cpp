@@ -1,3 +1,5 @@
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "test_meshes_util.h"
@@ -45,6 +47,16 @@ TEST(CheckMesh, InsideOutIsAnError) {
   EXPECT_TRUE(r.consistently_oriented());
   ASSERT_EQ(r.errors.size(), 1u);
   EXPECT_NE(r.errors.front().find("inside out"), std::string::npos);
+}
+
+TEST(CheckMesh, NonFiniteVertexIsTheOnlyError) {
+  TriangleMesh m = box(1, 1, 1);
+  m.vertices_m[3].y() = std::nan("");
+  const MeshReport r = check_mesh(m);
+  ASSERT_EQ(r.errors.size(), 1u); // not also "inside out" or an implausible size
+  EXPECT_NE(r.errors.front().find("vertex 3 has a coordinate that is not a finite number: (1, nan"),
+            std::string::npos)
+      << r.errors.front();
 }
 
 TEST(CheckMesh, MillimetreSizeSuggestsScale) {

@@ -1,4 +1,6 @@
 #include <fstream>
+#include <sstream>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -38,6 +40,41 @@ void expect_load_error(const fs::path &path, const std::string &problem,
     EXPECT_NE(what.find(path.string()), std::string::npos) << what;
     EXPECT_NE(what.find(problem), std::string::npos) << what;
   }
+}
+
+/// Rewrites the text mesh file `path` with the first coordinate of its `n`-th (1-based) vertex
+/// record replaced by `value`: OBJ `v` lines, STL `vertex` lines, PLY rows after end_header.
+/// Returns that record's 1-based line number.
+int set_vertex_coordinate(const fs::path &path, int n, const std::string &value) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);)
+    lines.push_back(line);
+  in.close();
+  const bool ply = path.extension() == ".ply";
+  bool body = !ply;
+  int seen = 0, at = -1;
+  for (std::size_t i = 0; i < lines.size() && at < 0; ++i) {
+    std::istringstream words(lines[i]);
+    std::string first;
+    words >> first;
+    if (!body) {
+      body = first == "end_header";
+      continue;
+    }
+    if ((ply || first == "v" || first == "vertex") && ++seen == n) {
+      std::string x, rest;
+      if (!ply)
+        words >> x;
+      std::getline(words, rest);
+      lines[i] = (ply ? "" : first + " ") + value + rest;
+      at = static_cast<int>(i) + 1;
+    }
+  }
+  std::ofstream out(path);
+  for (const std::string &line : lines)
+    out << line << "\n";
+  return at;
 }
 
 } // namespace
@@ -159,4 +196,32 @@ TEST(MeshIo, ValidateOffReturnsReport) {
   const TriangleMesh m = load_mesh((dir / "open.obj").string(), options, &r);
   EXPECT_EQ(m.triangles.size(), 11u);
   EXPECT_FALSE(r.closed());
+}
+
+// A NaN or infinite coordinate (a broken export) is named with the file, the vertex's number among
+// the file's vertex records and its line, also without validation, instead of a misleading
+// "inside out" or "implausible size" from the checks that follow.
+TEST(MeshIo, NonFiniteVertexIsNamedWithItsNumberAndLine) {
+  const fs::path dir = test_meshes::temp_dir("io_nonfinite");
+  const TriangleMesh box = test_meshes::box(1, 1, 1);
+  struct Case {
+    const char *file;
+    int vertex;
+    const char *value;
+  };
+  for (const Case c : {Case{"box.obj", 3, "nan"}, Case{"box.stl", 5, "inf"},
+                       Case{"box.ply", 2, "-nan"}, Case{"big.obj", 7, "1e40"}}) {
+    SCOPED_TRACE(c.file);
+    const fs::path path = dir / c.file;
+    write_mesh(box, path.string());
+    const int line = set_vertex_coordinate(path, c.vertex, c.value);
+    ASSERT_GT(line, 0);
+    const std::string where = "vertex " + std::to_string(c.vertex) + " (line " +
+                              std::to_string(line) +
+                              ") has a coordinate that is not a finite number";
+    expect_load_error(path, where);
+    LoadOptions unchecked;
+    unchecked.validate = false;
+    expect_load_error(path, where, unchecked);
+  }
 }

@@ -16,6 +16,7 @@
 #include "wheelsim/rig/rig_simulation.h"
 #include "wheelsim/rig/slip_modes.h"
 #include "wheelsim/rig/terrain_registry.h"
+#include "wheelsim/rig/time_step.h"
 
 namespace wheelsim::rig {
 namespace {
@@ -395,6 +396,74 @@ TEST(RigConfig, EveryKeyIsDocumented) {
   const std::string doc = ss.str();
   for (const auto &k : rig_config_keys())
     EXPECT_NE(doc.find("`" + k + "`"), std::string::npos) << k << " missing in docs/rig-config.md";
+}
+
+// terrain.grid_length and terrain.grid_width bound the soil together (a bin along x and across
+// it): one alone is an error at its line naming the key that is missing.
+TEST(RigConfig, GridLengthAndWidthAreGivenTogether) {
+  Tables scm = with(base(), "terrain.type", "\"scm\"");
+  scm = with(with(scm, "terrain.soil", "\"soil.toml\""), "terrain.grid_spacing", "0.01");
+  EXPECT_EQ(error_of(scm), "(no error)");
+  EXPECT_EQ(error_of(with(with(scm, "terrain.grid_length", "3"), "terrain.grid_width", "1")),
+            "(no error)");
+  const std::string length_alone = error_of(with(scm, "terrain.grid_length", "3"));
+  EXPECT_NE(length_alone.find("terrain.grid_length is given without terrain.grid_width: a "
+                              "bounded soil bin needs both"),
+            std::string::npos)
+      << length_alone;
+  EXPECT_NE(length_alone.find("add terrain.grid_width = <extent in m>"), std::string::npos)
+      << length_alone;
+  EXPECT_EQ(length_alone.rfind("test.toml:", 0), 0u) << length_alone; // with the key's line
+  const std::string width_alone = error_of(with(scm, "terrain.grid_width", "1"));
+  EXPECT_NE(width_alone.find("terrain.grid_width is given without terrain.grid_length"),
+            std::string::npos)
+      << width_alone;
+}
+
+/// check_time_step's message for `config` with run.dt = `dt` ("(no error)" if it passes).
+std::string time_step_error(Tables t, const std::string &dt, const std::string &dt_name) {
+  const RigConfig c = parse_rig_config(render(with(std::move(t), "run.dt", dt)), "test.toml");
+  try {
+    check_time_step(c, rig_parameters(c, resolve_wheel_properties(c.wheel)), dt_name);
+  } catch (const RigConfigError &e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// The time step against the stiffest spring-damper the config fixes (time_step.h): the base rig's
+// suspension (12000 N/m, 800 N s/m on the 235.8 kg reduced mass of 305 kg and 1040 kg: limit
+// 0.2215 s) and the flat ground's contact (1e7 N/m, 2e4 N s/m on 305 kg: limit 9.22 ms). The
+// message names the time step as given, its value, the binding limit and where it comes from.
+TEST(RigConfig, TimeStepAboveTheRigsStabilityLimitIsAnError) {
+  EXPECT_EQ(time_step_error(base(), "1e-4", "run.dt"), "(no error)");
+  const std::string flat = time_step_error(base(), "1.0", "--dt");
+  EXPECT_NE(flat.find("test.toml: --dt = 1 s is at or above the stability limit 0.00922"),
+            std::string::npos)
+      << flat;
+  EXPECT_NE(flat.find("of the flat ground's contact (terrain.stiffness = 1e+07 N/m, "
+                      "terrain.damping = 20000 N s/m on wheel + spindle, 305 kg)"),
+            std::string::npos)
+      << flat;
+  EXPECT_NE(flat.find("reduce --dt below 0.00922"), std::string::npos) << flat;
+  EXPECT_NE(time_step_error(base(), "0.0093", "run.dt").find("run.dt = 0.0093 s is at or above"),
+            std::string::npos);
+  EXPECT_EQ(time_step_error(base(), "0.0092", "run.dt"), "(no error)");
+  // Without a contact the config fixes (SCM: it stiffens with its area; DEM: LIGGGHTS'), the
+  // suspension bounds the step.
+  Tables dem = with(base(), "terrain.type", "\"dem\"");
+  dem = with(dem, "terrain.endpoint", "\"ipc:///tmp/x\"");
+  EXPECT_EQ(time_step_error(dem, "0.2", "--dt"), "(no error)");
+  const std::string suspension = time_step_error(dem, "1.0", "--dt");
+  EXPECT_NE(suspension.find("--dt = 1 s is at or above the stability limit 0.2215"),
+            std::string::npos)
+      << suspension;
+  EXPECT_NE(suspension.find("of the suspension (rig.spring_k = 12000 N/m, rig.spring_c = 800 N "
+                            "s/m between wheel + spindle, 305 kg, and the suspended mass, 1040 "
+                            "kg: reduced mass 235.8"),
+            std::string::npos)
+      << suspension;
+  EXPECT_NE(suspension.find("natural period 0.88"), std::string::npos) << suspension;
 }
 
 // The terrain types and carriage modes come from their registries (terrain_registry.h,

@@ -1,5 +1,7 @@
 // The rig model against closed forms: free fall, the suspension's natural frequency, energy
-// conservation of the symplectic Euler integrator without damping.
+// conservation of the symplectic Euler integrator without damping, its stability limit (the
+// time-step bound of time_step.h).
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -7,6 +9,7 @@
 
 #include "wheelsim/rig/flat_ground.h"
 #include "wheelsim/rig/rig_model.h"
+#include "wheelsim/rig/time_step.h"
 
 namespace wheelsim::rig {
 namespace {
@@ -247,6 +250,65 @@ TEST(RigModel, TimeIsStepCountTimesDtNotASumOfSteps) {
   for (int i = 0; i < 3; ++i) // a new time step continues from where the old one ended
     rig.step(WheelWrench{}, 1e-3);
   EXPECT_EQ(rig.time_s(), (0.25 + 4000 * 5e-4) + 3 * 1e-3);
+}
+
+// The time-step bound is the integrator's own stability limit: the suspended mass on its spring
+// and damper (the spindle held, as in the release phase) stays bounded at 0.98 of
+// OscillatorMode::stable_time_step_s() and grows at 1.02 of it; damped, undamped, and the light
+// suspended mass of the small test rig (inputs/rigs/small_wheel_scm.toml, 0.029 kg on 30 N s/m:
+// damping-limited).
+TEST(TimeStep, BoundIsTheIntegratorsStabilityLimit) {
+  struct Case {
+    double k_N_m, c_N_s_m, mass_kg;
+  };
+  for (const Case c : {Case{12000.0, 800.0, 1040.0}, Case{12000.0, 0.0, 1040.0},
+                       Case{3000.0, 30.0, 0.0291}, Case{0.0, 30.0, 0.0291}}) {
+    SCOPED_TRACE(testing::Message() << "k " << c.k_N_m << " c " << c.c_N_s_m << " m " << c.mass_kg);
+    RigParameters p = reference_rig();
+    p.spring_k_N_m = std::max(c.k_N_m, 1e-12); // the Rig needs k > 0; 1e-12 N/m is none here
+    p.spring_c_N_s_m = c.c_N_s_m;
+    p.suspended_mass_kg = c.mass_kg;
+    const OscillatorMode mode{"", c.k_N_m, c.c_N_s_m, c.mass_kg};
+    const double limit_s = mode.stable_time_step_s();
+    if (c.c_N_s_m == 0.0) {
+      EXPECT_NEAR(limit_s, 2.0 / std::sqrt(c.k_N_m / c.mass_kg), 1e-12 * limit_s); // 2/omega
+    }
+    if (c.k_N_m == 0.0) {
+      EXPECT_NEAR(limit_s, 2.0 * c.mass_kg / c.c_N_s_m, 1e-12 * limit_s); // 2 m/c
+    }
+    // The deviation from the rest state: the extension from its static value (spring), or the
+    // speed from the terminal speed -m g/c (the damper alone).
+    const double rest_extension_m = -c.mass_kg * p.gravity_m_s2 / p.spring_k_N_m;
+    const double terminal_speed_m_s = -c.mass_kg * p.gravity_m_s2 / std::max(c.c_N_s_m, 1e-300);
+    const bool spring = c.k_N_m > 0.0;
+    for (const double factor : {0.98, 1.02}) {
+      RigCoordinates q0;
+      RigVelocities u0;
+      if (spring)
+        q0.mass_z_m = q0.z_m + rest_extension_m + 0.01; // 1 cm off its rest
+      else
+        u0.mass_z_m_s = terminal_speed_m_s + 1.0; // 1 m/s off its terminal speed
+      const auto deviation = [&](const Rig &rig) {
+        return spring ? std::abs(rig.spring_extension_m() - rest_extension_m) / 0.01
+                      : std::abs(rig.velocities().mass_z_m_s - terminal_speed_m_s) / 1.0;
+      };
+      Rig rig(p, q0, u0);
+      RigDrives held; // spindle, wheel and carriage held still
+      held.spindle = Drive::imposed_velocity;
+      held.wheel = Drive::imposed_velocity;
+      held.carriage = Drive::imposed_velocity;
+      rig.set_drives(held);
+      double largest = 0.0;
+      for (int i = 0; i < 2000 && largest < 1e6; ++i) {
+        rig.step(WheelWrench{}, factor * limit_s);
+        largest = std::max(largest, deviation(rig));
+      }
+      if (factor < 1.0)
+        EXPECT_LT(largest, 10.0) << "unstable below the bound";
+      else
+        EXPECT_GT(largest, 1e3) << "stable above the bound: the bound is not the limit";
+    }
+  }
 }
 
 } // namespace

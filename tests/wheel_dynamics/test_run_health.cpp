@@ -198,6 +198,33 @@ TEST(RunHealth, GridWiderThanTheLugsIsAWarning) {
   EXPECT_TRUE(fine.findings().empty());
 }
 
+// Fewer than 3 grid nodes across the wheel's width stops the run before its first step (and
+// wheel-rig --check): test_small is 0.08 m wide, so 0.03 m (2.7 nodes) stops while 0.02 m (4)
+// passes; both are below half its rim radius (0.05 m), the other setup limit.
+TEST(RunHealth, GridWithFewerThanThreeNodesAcrossTheWheelIsAnErrorBeforeTheRun) {
+  std::string cfg = config();
+  cfg.replace(cfg.find("mass = 1.0\n"), 11,
+              "mass = 1.0\nmesh = \"" WHEELSIM_MESH_DIR "/test_small.stl\"\n");
+  RigSimulation sim(parse_rig_config(cfg, "t.toml"));
+  ASSERT_NEAR(sim.wheel().width_m, 0.08, 1e-6);
+  RunHealth coarse(sim, nullptr);
+  try {
+    coarse.set_grid(0.03, 2e8);
+    FAIL() << "no error for 0.03 m across a 0.08 m wide wheel";
+  } catch (const RunHealthError &e) {
+    EXPECT_NE(std::string(e.what()).find("grid_coarse: terrain.grid_spacing = 0.03 m leaves fewer "
+                                         "than 3 grid nodes across the wheel's width (0.08 m"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("use at most 0.0266667 m (width/3)"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(coarse.status(), "unhealthy");
+  RunHealth fine(sim, nullptr);
+  fine.set_grid(0.02, 2e8);
+  EXPECT_FALSE(fine.has_error()); // the lugs' warning (8 mm thick) only
+}
+
 TEST(RunHealth, ContactStiffTooForTheTimeStepIsFlagged) {
   // omega_c dt = sqrt(k / 1.5 kg) * 2e-4 s: 2e4 N/m -> 0.023 (fine); 1e8 -> 1.6 (warning);
   // 1e9 -> 5.2 (error; the flat ground itself is still 2e4 N/m, so the run stays finite).

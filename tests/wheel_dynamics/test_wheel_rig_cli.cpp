@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -59,6 +60,17 @@ protected:
     return replaced(text, "../../inputs/scm_soils/", WHEELSIM_SOURCE_DIR "/inputs/scm_soils/");
   }
   std::string run_file() const { return (dir_ / "run.h5").string(); }
+  /// `text` written as <tmp>/<name> fails `wheel-rig --check` (with `args`) with exit 2, one line
+  /// on stderr containing `message`, and no run file.
+  void expect_check_error(const std::string &name, const std::string &text, const std::string &args,
+                          const std::string &message) {
+    const std::string path = write(name, text);
+    const CommandResult r = rig("--config " + path + " --check --out " + run_file() + " " + args);
+    EXPECT_EQ(r.status, 2) << name << ": " << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << name << ": " << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << name << ": " << r.output;
+    EXPECT_FALSE(fs::exists(run_file())) << name;
+  }
   fs::path dir_;
 };
 
@@ -154,6 +166,79 @@ TEST_F(WheelRigCli, CheckRejectsWhatARunWouldRejectNamingTheKey) {
     EXPECT_EQ(o.status, 2) << args << ": " << o.output;
     EXPECT_NE(o.output.find(message), std::string::npos) << args << ": " << o.output;
   }
+}
+
+} // namespace
+
+namespace {
+
+// The time step against the rig's stability bound (docs/rig-config.md "Time step"), on every
+// terrain: the flat example's contact (limit 4.59 ms) with --dt 1 or run.dt = 0.01; the SCM
+// example's suspension (limit 0.2215 s: the SCM contact is checked per step by the run health).
+TEST_F(WheelRigCli, CheckRejectsATimeStepAboveTheRigsStabilityLimit) {
+  const std::string flat = read(RIG_EXAMPLES_DIR "/rig_flat.toml");
+  expect_check_error("flat_dt1.toml", flat, "--dt 1.0",
+                     "--dt = 1 s is at or above the stability limit 0.00458846 s of the flat "
+                     "ground's contact (terrain.stiffness = 1e+07 N/m");
+  expect_check_error("flat_dt.toml", replaced(flat, "dt = 1.0e-4", "dt = 0.01"), "",
+                     "run.dt = 0.01 s is at or above the stability limit 0.00458846 s");
+  expect_check_error("scm_dt1.toml", scm_config(), "--dt 1",
+                     "--dt = 1 s is at or above the stability limit 0.221546 s of the suspension "
+                     "(rig.spring_k = 12000 N/m");
+  const CommandResult ok = rig("--config " + write("scm.toml", scm_config()) + " --check --dt 0.2");
+  EXPECT_EQ(ok.status, 0) << ok.output;
+}
+
+// A grid spacing that leaves fewer than 3 nodes across the wheel (wheel 2: 0.479 m wide) is refused
+// by --check as a run stops on it (run health grid_coarse, before the first step).
+TEST_F(WheelRigCli, CheckRejectsAGridCoarserThanAThirdOfTheWheelsWidth) {
+  expect_check_error("grid_0.2.toml",
+                     replaced(scm_config(), "grid_spacing = 0.02 ", "grid_spacing = 0.2 "), "",
+                     "grid_coarse: terrain.grid_spacing = 0.2 m leaves fewer than 3 grid nodes "
+                     "across the wheel's width (0.479 m, wheel.mesh)");
+  const CommandResult ok =
+      rig("--config " +
+          write("grid_0.15.toml",
+                replaced(scm_config(), "grid_spacing = 0.02 ", "grid_spacing = 0.15 ")) +
+          " --check");
+  EXPECT_EQ(ok.status, 0) << ok.output;
+}
+
+// A bounded soil needs grid_length and grid_width together, at least as wide as the wheel and as
+// long as two rim radii plus the carriage's travel: wheel 2 (rim radius 0.617 m) at 0.518 m/s
+// ((1 - 0.2) 1.05 rad/s 0.617 m) over 0.5 s of ramp + 4 s of test phase travels 2.33 m: 3.566 m.
+TEST_F(WheelRigCli, CheckRejectsASoilBinTooSmallForTheWheelOrAHalfGivenOne) {
+  const auto bin = [&](const std::string &keys) {
+    return replaced(scm_config(), "grid_spacing = 0.02 ", "grid_spacing = 0.02\n" + keys + "\n");
+  };
+  expect_check_error("length_alone.toml", bin("grid_length = 6.0"), "",
+                     "terrain.grid_length is given without terrain.grid_width: a bounded soil bin "
+                     "needs both");
+  expect_check_error("short.toml", bin("grid_length = 3.5\ngrid_width = 1.0"), "",
+                     "terrain.grid_length = 3.5 m is too short for the wheel: the soil starts one "
+                     "rim radius (0.617 m) behind the wheel's start and must reach one rim radius "
+                     "beyond its end, 2.33226 m ahead");
+  expect_check_error("narrow.toml", bin("grid_length = 6.0\ngrid_width = 0.4"), "",
+                     "terrain.grid_width = 0.4 m is narrower than the wheel (0.479 m wide");
+  const CommandResult ok =
+      rig("--config " + write("bin.toml", bin("grid_length = 3.6\ngrid_width = 0.5")) + " --check");
+  EXPECT_EQ(ok.status, 0) << ok.output;
+}
+
+// A NaN vertex in the wheel mesh is named with the file and the vertex (number and line), not
+// reported as an inside-out mesh.
+TEST_F(WheelRigCli, CheckNamesANonFiniteMeshVertex) {
+  std::istringstream mesh(read(WHEELSIM_MESH_DIR "/test_small.obj"));
+  std::string text;
+  int vertices = 0;
+  for (std::string line; std::getline(mesh, line);)
+    text += (line.rfind("v ", 0) == 0 && ++vertices == 100 ? "v nan 0.01 0.05" : line) + "\n";
+  const std::string path = write("nan.obj", text);
+  const std::string config = replaced(scm_config(), WHEELSIM_MESH_DIR "/wheel2.obj", path);
+  expect_check_error("nan_mesh.toml", config, "",
+                     "wheel.mesh: " + path +
+                         ": vertex 100 (line 101) has a coordinate that is not a finite number: "
+                         "(nan, 0.01, 0.05)");
 }
 
 } // namespace

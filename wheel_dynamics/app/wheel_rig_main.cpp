@@ -28,6 +28,7 @@
 #include "wheelsim/rig/rig_simulation.h"
 #include "wheelsim/rig/run_health.h"
 #include "wheelsim/rig/terrain_registry.h"
+#include "wheelsim/rig/time_step.h"
 #include "wheelsim/run_file/run_file.h"
 #include "wheelsim_version.h"
 
@@ -412,13 +413,34 @@ void run_dem(const rig::RigConfig &config, DemDriver &driver, runfile::RunFile &
   }
 }
 
+/// /parameters nowhere: --check starts the terrain as a run does, without a run file.
+class NoParameters : public rig::ParameterSink {
+public:
+  void number(const std::string &, double, const std::string &) override {}
+  void text(const std::string &, const std::string &) override {}
+  void long_text(const std::string &, const std::string &) override {}
+};
+
 /// --check: what a run builds from its config before its first step, without running it: the rig
-/// (the wheel: mesh loaded and checked, mass properties, release position) and the in-process
-/// terrain (SCM: soil file and grid). Throws rig::RigConfigError naming the key.
-void check_run_inputs(const rig::RigConfig &config) {
+/// (the wheel: mesh loaded and checked, mass properties, release position), the in-process
+/// terrain (SCM: soil file, grid and domain) and its start with the run health's setup checks
+/// (SCM: grid_coarse); and the time step against the rig's stability bound (time_step.h), which a
+/// run leaves to its health checks. Throws rig::RigConfigError naming the key; `dt_name` is how the
+/// time step was given ("run.dt" or "--dt").
+void check_run_inputs(const rig::RigConfig &config, const std::string &dt_name) {
   rig::RigSimulation sim(config);
-  if (const rig::TerrainKind &kind = rig::terrain_kind(config.terrain.type); kind.make)
-    kind.make(config, sim.wheel());
+  if (const rig::TerrainKind &kind = rig::terrain_kind(config.terrain.type); kind.make) {
+    const std::unique_ptr<rig::Terrain> terrain = kind.make(config, sim.wheel());
+    NoParameters parameters;
+    rig::RunHealth health(sim, nullptr);
+    try {
+      if (kind.start)
+        kind.start(config, *terrain, parameters, health);
+    } catch (const rig::RunHealthError &e) { // a run would stop here, before its first step
+      throw rig::RigConfigError(config.source + ": " + e.what());
+    }
+  }
+  rig::check_time_step(config, sim.rig().parameters(), dt_name);
 }
 
 /// Runs the rig on the terrain of `config` (or the --kinematic twist) to its end.
@@ -563,7 +585,7 @@ int main(int argc, char **argv) {
       throw cli::UsageError("--checkpoint-every-steps and --checkpoint-every-seconds are both 0: "
                             "give one > 0, or leave --checkpoint-dir out");
     if (check) {
-      check_run_inputs(config);
+      check_run_inputs(config, dt ? "--dt" : "run.dt");
       if (!quiet)
         std::printf("%s: ok\n", config_path.c_str());
       return cli::kExitSuccess;

@@ -83,6 +83,18 @@ void RunHealth::set_grid(double spacing_m, double elastic_K_Pa_m) {
              "in metres (did you mean " + fmt(spacing_m / 1000.0) + "?); use at most about " +
              fmt(R / 20.0) + " m (R/20)",
          sim_.step(), sim_.time_s());
+  // Fewer than 3 node rows across the wheel: SCM's patch width b = 2A/L (Bekker's kc/b) and its
+  // node sums are then off by up to a whole row, a third of the width or more.
+  const double width_m = sim_.wheel().width_m;
+  if (width_m > 0.0 && spacing_m > width_m / limits_.grid_nodes_across)
+    stop("grid_coarse",
+         "terrain.grid_spacing = " + fmt(spacing_m) + " m leaves fewer than " +
+             fmt(limits_.grid_nodes_across) + " grid nodes across the wheel's width (" +
+             fmt(width_m) + " m, wheel.mesh): the contact patch's width (Bekker's b) and its " +
+             "force sums cannot be resolved; use at most " +
+             fmt(width_m / limits_.grid_nodes_across) + " m (width/" +
+             fmt(limits_.grid_nodes_across) + "); the shipped SCM configs have 16-50 nodes across",
+         sim_.step(), sim_.time_s());
   // A lug narrower than the grid spacing can pass between two node rows: the terrain then sees
   // it only at some positions, and its thrust comes and goes with the lug's phase on the grid.
   const auto &wheel = sim_.wheel();

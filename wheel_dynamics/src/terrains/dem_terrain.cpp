@@ -34,8 +34,14 @@ void parse(const Table &t, const std::string & /*base_dir*/, RigConfig &c) {
 } // namespace
 
 TerrainKind dem_terrain() {
-  return {"dem",   TerrainType::dem, "LIGGGHTS particles over the coupler (remote)", keys(), parse,
-          nullptr, nullptr};
+  return {"dem",
+          TerrainType::dem,
+          "LIGGGHTS particles over the coupler (remote)",
+          keys(),
+          parse,
+          nullptr,
+          nullptr,
+          nullptr};
 }
 
 } // namespace wheelsim::rig::terrains

@@ -60,12 +60,24 @@ void start(const RigConfig &c, const Terrain &, ParameterSink &, RunHealth &heal
   health.set_contact_stiffness(c.terrain.flat.stiffness_N_m);
 }
 
+/// The normal penalty contact (k_n, c_n) on the wheel + spindle mass, as the run health's
+/// dt_unstable check sees it. The tangential spring is left out: it acts on the carriage and the
+/// wheel's rotation, which the usual drives impose.
+OscillatorMode contact_mode(const RigConfig &c, const RigParameters &rig) {
+  const FlatGroundParameters &f = c.terrain.flat;
+  const double mass_kg = rig.wheel_mass_kg + rig.spindle_mass_kg;
+  return {"the flat ground's contact (terrain.stiffness = " + fmt(f.stiffness_N_m) +
+              " N/m, terrain.damping = " + fmt(f.damping_N_s_m) + " N s/m on wheel + spindle, " +
+              fmt(mass_kg) + " kg)",
+          f.stiffness_N_m, f.damping_N_s_m, mass_kg};
+}
+
 } // namespace
 
 TerrainKind flat_terrain() {
   return {
       "flat", TerrainType::flat, "rigid flat ground (tests, known answers)", keys(), parse, make,
-      start};
+      start,  contact_mode};
 }
 
 } // namespace wheelsim::rig::terrains

@@ -34,8 +34,10 @@ std::vector<ConfigKey> keys() {
   return {
       scm({"", "soil", "path", "", "", "SCM soil file, relative to the config file"}),
       scm({"", "grid_spacing", "number", "m", "", "> 0"}),
-      scm({"", "grid_length", "number", "m", "unbounded", ">= grid_spacing"}),
-      scm({"", "grid_width", "number", "m", "unbounded", ">= grid_spacing"}),
+      scm({"", "grid_length", "number", "m", "unbounded",
+           ">= grid_spacing; with grid_width; >= 2 rim radii + the carriage's travel"}),
+      scm({"", "grid_width", "number", "m", "unbounded",
+           ">= grid_spacing; with grid_length; >= the wheel's width"}),
       scm({"", "normal_direction", "string", "", "\"surface\"",
            "one of \"surface\", \"vertical\""}),
       scm({"", "shear_surface", "string", "", "\"wheel\"",
@@ -101,6 +103,21 @@ void parse_snapshots(const Table &t, ScmTerrainConfig &m) {
   }
 }
 
+/// grid_length and grid_width bound the soil together (a bin: along x and across it); one alone
+/// would leave the other side unbounded, which the SCM domain cannot be.
+void check_grid_extents_given_together(const Table &t) {
+  const bool length = t.has("grid_length"), width = t.has("grid_width");
+  if (length == width)
+    return;
+  const std::string given = length ? "grid_length" : "grid_width";
+  const std::string missing = length ? "grid_width" : "grid_length";
+  t.fail(given, t.full(given) + " is given without " + t.full(missing) +
+                    ": a bounded soil bin needs both (grid_length along x from one rim radius "
+                    "behind the wheel's start, grid_width across it, centred on the wheel); add " +
+                    t.full(missing) + " = <extent in m>, or remove " + t.full(given) +
+                    " for unbounded soil");
+}
+
 void parse(const Table &t, const std::string &base_dir, RigConfig &c) {
   const auto soil = t.string("soil");
   if (!soil || soil->empty())
@@ -112,6 +129,7 @@ void parse(const Table &t, const std::string &base_dir, RigConfig &c) {
       t.required(t.positive("grid_spacing", "m"), "grid_spacing", "grid node spacing in m");
   m.grid_length_m = t.positive("grid_length", "m");
   m.grid_width_m = t.positive("grid_width", "m");
+  check_grid_extents_given_together(t);
   for (const char *extent : {"grid_length", "grid_width"})
     if (const auto v = t.number(extent, "m"); v && *v < m.grid_spacing_m)
       t.fail(extent, t.full(extent) + " must be >= terrain.grid_spacing (" + fmt(m.grid_spacing_m) +
@@ -166,7 +184,8 @@ TerrainKind scm_terrain() {
           keys(),
           parse,
           make,
-          start};
+          start,
+          nullptr}; // the contact stiffens with its area: checked per step (run health)
 }
 
 } // namespace wheelsim::rig::terrains

@@ -45,6 +45,7 @@ struct MeshReport {
 
 /// Checks `mesh` as a solid in metres:
 /// - empty (no triangles) — error;
+/// - a vertex with a NaN or infinite coordinate — error (0-based index; no further checks);
 /// - closed: every edge shared by exactly two triangles — error otherwise;
 /// - consistently oriented: the two triangles of an edge traverse it in opposite directions —
 ///   error otherwise;

@@ -31,7 +31,10 @@ struct LoadOptions {
 /// carry a relative round-off of about 6e-8 whatever the file's digits.
 ///
 /// Throws MeshError naming `path` and the problem: missing or unreadable file, empty file,
-/// unparseable file, no triangles, and (with `validate`) every error of check_mesh.
+/// unparseable file, a vertex with a NaN or infinite coordinate (also without `validate`: its
+/// 1-based number and line among the vertex records of a text OBJ, STL or PLY file; in a binary
+/// file its number in assimp's reading order), no triangles, and (with `validate`) every error of
+/// check_mesh.
 /// If `report` is non-null it receives the check_mesh report (warnings included), also when
 /// `validate` is false.
 TriangleMesh load_mesh(const std::string &path, const LoadOptions &options = {},

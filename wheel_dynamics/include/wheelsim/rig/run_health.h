@@ -50,6 +50,7 @@ struct HealthLimits {
   double stability_warning = 1.0;      ///< ω_c dt, contact frequency times time step [-]
   double stability_error = 2.0;        ///< symplectic Euler's limit [-]
   double grid_spacing_error = 0.5;     ///< grid spacing above this share of the rim radius [-]
+  double grid_nodes_across = 3.0;      ///< ... or fewer nodes across the wheel's width [-]
   double grid_lug_width = 1.0;         ///< ... warning above this share of the lug thickness [-]
   double contact_nodes_warning = 20.0; ///< mean grid nodes in contact in the test phase [-]
   double contact_nodes_error = 4.0;    ///< [-]
@@ -70,10 +71,10 @@ public:
   RunHealth(const RigSimulation &sim, Report report, HealthLimits limits = {});
 
   /// SCM: the grid spacing Δ [m] and the soil's elastic stiffness Ke [Pa/m]. Checks Δ against
-  /// the wheel now (throws RunHealthError if coarser than half the rim radius; a warning if wider
-  /// than the lugs, when the wheel's props file gives them), enables the
-  /// contact-patch resolution check (contact counts are grid nodes) and the stability check with
-  /// contact stiffness Ke·n·Δ².
+  /// the wheel now (throws RunHealthError if coarser than half the rim radius or than a third of
+  /// the wheel's width; a warning if wider than the lugs, when the wheel's props file gives
+  /// them), enables the contact-patch resolution check (contact counts are grid nodes) and the
+  /// stability check with contact stiffness Ke·n·Δ².
   void set_grid(double spacing_m, double elastic_K_Pa_m);
   /// A contact stiffness [N/m] for the stability check (flat ground: its k_n).
   void set_contact_stiffness(double stiffness_N_m);

@@ -13,7 +13,9 @@ class ScmGround : public Terrain {
 public:
   /// Loads the soil file (terrain.soil; the config's elastic_stiffness and damping override the
   /// file's) and the wheel mesh (wheel.mesh, required). The domain, if grid_length/grid_width are
-  /// set, starts one rim radius behind the wheel's start and is centred on it in y.
+  /// set, starts one rim radius behind the wheel's start and is centred on it in y; it must be at
+  /// least as wide as the wheel and reach one rim radius beyond the wheel's end (its start plus the
+  /// carriage's travel, where the config fixes the carriage speed).
   /// Throws RigConfigError naming the key (soil file, mesh or setting).
   ScmGround(const RigConfig &config, const WheelProperties &wheel);
 

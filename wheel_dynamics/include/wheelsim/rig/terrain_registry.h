@@ -11,6 +11,7 @@
 #include "wheelsim/rig/config_schema.h"
 #include "wheelsim/rig/rig_config.h"
 #include "wheelsim/rig/terrain.h"
+#include "wheelsim/rig/time_step.h"
 
 namespace wheelsim::rig {
 
@@ -45,6 +46,10 @@ struct TerrainKind {
   /// Called once after `make`: writes the terrain's /parameters entries and gives the run's
   /// health checks the terrain's scales. nullptr: nothing to write.
   void (*start)(const RigConfig &c, const Terrain &terrain, ParameterSink &out, RunHealth &health);
+  /// Its contact as a spring-damper whose stiffness the config fixes, for the time-step bound
+  /// (time_step.h; wheel-rig --check). nullptr where the config does not fix it (the SCM contact
+  /// stiffens with its area: the run health checks it at every step; DEM: LIGGGHTS').
+  OscillatorMode (*contact_mode)(const RigConfig &c, const RigParameters &rig);
 };
 
 /// Every terrain type, in the order of the docs.
