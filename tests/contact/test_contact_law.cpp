@@ -465,7 +465,8 @@ TEST(RollingEpsdt, HoldsASteadyMomentBelowTheCapWhereCdtCreepsAtARateProportiona
   // creep). epsdt winds its spring to the moment and holds: the angle stays within twice the
   // static wind-up T / k_r (an undamped spring released from rest overshoots to twice it).
   // dt 1e-6 s over 0.01 s: 10 000 steps a run (250 000 took > 60 s, its timeout, under ASan), the
-  // same ratios to 1e-4 as at 2e-7 s over 0.05 s, and epsdt's swing still exactly twice its wind-up.
+  // same ratios to 1e-4 as at 2e-7 s over 0.05 s, and epsdt's swing still exactly twice its
+  // wind-up.
   const double mur = 0.1, dt = 1e-6, t = 0.01;
   const int steps = static_cast<int>(t / dt);
   const auto cdt = rolling(wc::RollingModel::Cdt, mur);
