@@ -2,7 +2,9 @@
 # does not touch LIGGGHTS/MPI into BINARY_DIR, build it on JOBS cores, run its unit tests but the
 # Python-only ones, JOBS at a time. Not ctest --build-and-test: that runs make with MAKEFLAGS
 # emptied and no -j, i.e. on one core (stop 25: 8.5 of the tier's 11 min, the other core idle).
-#   cmake -DSOURCE_DIR=... -DBINARY_DIR=... -DGENERATOR=... -DJOBS=2 -P run_sanitize.cmake
+# MESHES_FROM (optional): a directory of wheel meshes another build generated, used instead of
+# generating them with the ASan wheel-mesh (~60 s of CPU; meshes/CMakeLists.txt).
+#   cmake -DSOURCE_DIR=... -DBINARY_DIR=... -DGENERATOR=... -DJOBS=2 [-DMESHES_FROM=DIR] -P run_sanitize.cmake
 foreach(var SOURCE_DIR BINARY_DIR GENERATOR JOBS)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "run_sanitize.cmake: -D${var}=... is required")
@@ -47,7 +49,7 @@ if(NOT compiler)
 endif()
 run_step(configure ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BINARY_DIR} -G ${GENERATOR} ${compiler}
          -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-g1 -DWHEELSIM_SANITIZE=ON
-         -DWHEELSIM_WITH_LIGGGHTS=OFF)
+         -DWHEELSIM_WITH_LIGGGHTS=OFF "-DWHEELSIM_MESHES_FROM=${MESHES_FROM}")
 run_step(build ${CMAKE_COMMAND} --build ${BINARY_DIR} --parallel ${JOBS})
 run_step("unit tests under ASan+UBSan" ${CMAKE_CTEST_COMMAND} --test-dir ${BINARY_DIR} -L unit
          -LE python -j ${JOBS} --output-on-failure)
