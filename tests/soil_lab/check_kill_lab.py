@@ -20,23 +20,6 @@ import lab_check
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def survivors(tag):
-    """{pid: command line} of the live processes (not this one) whose command line contains
-    `tag`."""
-    out = {}
-    for name in os.listdir("/proc"):
-        if not name.isdigit() or int(name) == os.getpid():
-            continue
-        try:
-            cmd = Path(f"/proc/{name}/cmdline").read_bytes().replace(b"\0", b" ").decode(
-                errors="replace")
-            state = Path(f"/proc/{name}/stat").read_text().rsplit(")", 1)[1].split()[0]
-        except OSError:
-            continue
-        if tag in cmd and state != "Z":
-            out[int(name)] = cmd
-    return out
-
 
 def main():
     started = lab_check.start(
@@ -51,19 +34,19 @@ def main():
         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     tag = str(out)
     deadline = time.monotonic() + 120
-    while not any("liggghts-wheel" in cmd for cmd in survivors(tag).values()):
+    while not any("liggghts-wheel" in cmd for cmd in lab_check.survivors(tag).values()):
         if lab.poll() is not None or time.monotonic() > deadline:
             print(f"FAIL: no LIGGGHTS run of the lab seen (lab exit {lab.poll()})")
             return 1
         time.sleep(0.2)
-    running = survivors(tag)
+    running = lab_check.survivors(tag)
     lab.send_signal(getattr(signal, f"SIG{a.signal}"))
     lab.wait()
     t0 = time.monotonic()
-    left = survivors(tag)
+    left = lab_check.survivors(tag)
     while left and time.monotonic() - t0 < 5.0:
         time.sleep(0.1)
-        left = survivors(tag)
+        left = lab_check.survivors(tag)
     print(f"soil-lab killed with SIG{a.signal} while {len(running)} process(es) of its run were "
           f"alive; after {time.monotonic() - t0:.1f} s {len(left)} left")
     for p in left:

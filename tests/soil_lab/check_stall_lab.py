@@ -24,27 +24,13 @@ import sys
 import time
 from pathlib import Path
 
+import lab_check
+
 ROOT = Path(__file__).resolve().parents[2]
 STANDIN = ROOT / "tests" / "sweep" / "liggghts_standin.py"
 SKIP = 77
 STALL_S = 3.0  # --stall-timeout 0.05 min
 
-
-def survivors(tag):
-    """{pid: command line} of the live processes (not this one) whose command line holds tag."""
-    out = {}
-    for name in os.listdir("/proc"):
-        if not name.isdigit() or int(name) == os.getpid():
-            continue
-        try:
-            cmd = Path(f"/proc/{name}/cmdline").read_bytes().replace(b"\0", b" ").decode(
-                errors="replace")
-            state = Path(f"/proc/{name}/stat").read_text().rsplit(")", 1)[1].split()[0]
-        except OSError:
-            continue
-        if tag in cmd and state != "Z":
-            out[int(name)] = cmd
-    return out
 
 
 def run_lab(work, env):
@@ -64,11 +50,11 @@ def run_lab(work, env):
     wall = time.monotonic() - t0
     print(f"$ {' '.join(cmd)}  ({env}) -> exit {r.returncode} after {wall:.1f} s")
     print(r.stdout + r.stderr, end="")
-    left = survivors(str(build))
+    left = lab_check.survivors(str(build))
     deadline = time.monotonic() + 2.0
     while left and time.monotonic() < deadline:
         time.sleep(0.1)
-        left = survivors(str(build))
+        left = lab_check.survivors(str(build))
     for pid in left:  # leave nothing behind when the check fails
         try:
             os.kill(pid, signal.SIGKILL)

@@ -418,15 +418,22 @@ def case_kill_flat(a, work):
         "wheel-rig" in c for _, c in t.values()) == 2)
 
 
+def stand_in_build(a, work):
+    """work/build: a build dir of links to the real wheel-rig and meshes, without liggghts-wheel
+    (the caller puts a stand-in there)."""
+    build = work / "build"
+    (build / "bin").mkdir(parents=True)
+    (build / "bin" / "wheel-rig").symlink_to(Path(a.build_dir).resolve() / "bin" / "wheel-rig")
+    (build / "meshes").symlink_to(Path(a.build_dir).resolve() / "meshes")
+    return build
+
+
 def case_kill_dem(a, work):
     """SIGKILL of the driver during 2 DEM points: wheel-cosim, its rig, mpirun and mpirun's 2
     ranks each (a stand-in liggghts-wheel that sleeps, in a build dir of links) all die."""
     if shutil.which("mpirun") is None:
         raise Skip("mpirun not found (Debian openmpi-bin)")
-    build = work / "build"
-    (build / "bin").mkdir(parents=True)
-    (build / "bin" / "wheel-rig").symlink_to(Path(a.build_dir).resolve() / "bin" / "wheel-rig")
-    (build / "meshes").symlink_to(Path(a.build_dir).resolve() / "meshes")
+    build = stand_in_build(a, work)
     fake = build / "bin" / "liggghts-wheel"
     fake.write_text("#!/bin/sh\nexec sleep 300\n")
     fake.chmod(0o755)
@@ -465,10 +472,7 @@ def stall_sweep(a, work):
     the command of `wheel-sweep --beds-only --stall-timeout 0.05` (3 s) and its output dir."""
     if shutil.which("mpirun") is None:
         raise Skip("mpirun not found (Debian openmpi-bin)")
-    build = work / "build"
-    (build / "bin").mkdir(parents=True)
-    (build / "bin" / "wheel-rig").symlink_to(Path(a.build_dir).resolve() / "bin" / "wheel-rig")
-    (build / "meshes").symlink_to(Path(a.build_dir).resolve() / "meshes")
+    build = stand_in_build(a, work)
     (build / "bin" / "liggghts-wheel").symlink_to(Path(__file__).resolve().parent
                                                   / "liggghts_standin.py")
     (work / "in.deck").write_text("# never read: no point runs (--beds-only)\n")
@@ -1060,7 +1064,7 @@ slips = {json.dumps(slips)}
             r_eff = float(f["parameters/wheel/effective_radius"][()])
         omega = SPEED / ((1 - float(x["slip"])) * r_eff) if float(x["slip"]) >= 0 else \
             SPEED * (1 + float(x["slip"])) / r_eff
-        check(f'slip_control = "wheel_speed": motor.omega = ' in text and
+        check('slip_control = "wheel_speed": motor.omega = ' in text and
               f"for slip {x['slip']} (" in text, f"{rf}: the rig config header lacks the setting")
         got = float(re.search(r"^omega = (\S+)", text, re.M).group(1))
         check(abs(got - omega) <= 1e-12 * max(1.0, omega), f"{rf}: motor.omega {got} != {omega}")
