@@ -71,10 +71,11 @@ def main(argv=None):
                          f"{bed_hold.DEFAULT_HOLD_S:g}; 0: no check; docs/soil-bins.md)")
     ap.add_argument("--stall-timeout", type=float, default=mpi_launch.DEFAULT_STALL_MIN,
                     metavar="MIN",
-                    help="DEM: a bed's in.soilbin or bed-hold check whose log has not grown for "
-                         "MIN minutes is taken for hung (an MPI rank stuck), killed, and the "
-                         f"sweep stops (exit 1) (default {mpi_launch.DEFAULT_STALL_MIN:g}; 0: no "
-                         "limit; the points have timeouts of their own)")
+                    help="DEM: a bed's in.soilbin or bed-hold check (or a --measure-rate run) "
+                         "whose log has not grown for MIN minutes is taken for hung (an MPI rank "
+                         "stuck), killed, and the sweep stops (exit 1) (default "
+                         f"{mpi_launch.DEFAULT_STALL_MIN:g}; 0: no limit; the points have "
+                         "timeouts of their own)")
     ap.add_argument("--archive", metavar="DIR",
                     help="keep each finished point's done.json, run.h5, rig.toml and run.log in "
                          "DIR (e.g. a folder committed to git) and restore them from there into "
@@ -130,7 +131,7 @@ def main(argv=None):
     build = Path(a.build_dir or os.environ.get("WHEELSIM_BUILD_DIR") or REPO / "build").resolve()
     liggghts = build / "bin" / "liggghts-wheel"
     if a.measure_rate:
-        rc = measure_rate(liggghts, build)
+        rc = measure_rate(liggghts, build, stall_s)
         if rc != 0 or a.config is None:
             return rc
     try:
@@ -185,7 +186,7 @@ def main(argv=None):
         return 1
 
 
-def measure_rate(liggghts, build):
+def measure_rate(liggghts, build, stall_s):
     mesh = build / "meshes" / "test_small.stl"
     for f in (liggghts, mesh):
         if not f.is_file():
@@ -194,7 +195,7 @@ def measure_rate(liggghts, build):
             return EXIT_USAGE
     np2 = rate.have_mpirun() and machine_cores() >= 2
     try:
-        entry = rate.measure(liggghts, REPO, mesh, np2=np2)
+        entry = rate.measure(liggghts, REPO, mesh, np2=np2, stall_s=stall_s)
         path = rate.cache_path()
         rate.write_cache(path, entry)
     except (estimate.EstimateError, OSError) as e:

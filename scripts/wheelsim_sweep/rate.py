@@ -29,6 +29,7 @@ from pathlib import Path
 import tomli_w
 from wheelsim_post import liggghts_log, mpi_launch
 
+from . import watchdog
 from .estimate import Rate, EstimateError
 
 # Defaults without a measurement: issue 12's numbers on this project's 2-core machine (LIGGGHTS
@@ -174,19 +175,42 @@ def _loop(text, what):
     return m
 
 
-def _run(cmd, cwd, what, say):
+def _run(cmd, cwd, what, say, stall_s):
+    """Runs one benchmark step with its output in cwd/bench.log; returns (output, wall [s]). In a
+    session of its own that dies with this process; killed whole (mpirun and its ranks) when its
+    output has not grown for stall_s (the stall guard, mpi_launch.wait_watching; 0: never)."""
     say(f"measure-rate: {what}: {' '.join(cmd)}")
+    log = Path(cwd) / "bench.log"
     t0 = time.monotonic()
-    r = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, stdin=subprocess.DEVNULL)
+    with open(log, "w+") as f:
+        p = subprocess.Popen(cmd, cwd=cwd, stdout=f, stderr=subprocess.STDOUT,
+                             stdin=subprocess.DEVNULL,
+                             preexec_fn=mpi_launch.die_with_parent(os.getpid(), new_session=True,
+                                                                   who="wheel-sweep"))
+        try:
+            rc = mpi_launch.wait_watching(
+                p, f, stall_s, lambda: watchdog.kill_sessions_until_empty([p.pid]),
+                f"rate benchmark: {what}", "--stall-timeout")
+        except mpi_launch.Stalled as e:
+            f.seek(0)
+            tail = "\n".join(f.read().strip().splitlines()[-5:])
+            raise EstimateError(f"{e}\nits last lines (the log goes with the benchmark's "
+                                f"temporary directory):\n{tail}") from None
+        finally:
+            watchdog.kill_sessions_until_empty([p.pid])  # what it left in its session
+        f.seek(0)
+        out = f.read()
     wall = time.monotonic() - t0
-    if r.returncode != 0:
-        tail = "\n".join(r.stdout.strip().splitlines()[-5:])
-        raise EstimateError(f"rate benchmark: {what} failed (exit {r.returncode}):\n{tail}")
-    return r.stdout, wall
+    if rc != 0:
+        tail = "\n".join(out.strip().splitlines()[-5:])
+        raise EstimateError(f"rate benchmark: {what} failed (exit {rc}):\n{tail}")
+    return out, wall
 
 
-def measure(liggghts, repo, mesh, say=print, np2=True):
-    """Runs the benchmark (module docstring); returns the cache entry (dict)."""
+def measure(liggghts, repo, mesh, say=print, np2=True,
+            stall_s=60.0 * mpi_launch.DEFAULT_STALL_MIN):
+    """Runs the benchmark (module docstring); returns the cache entry (dict). stall_s: the stall
+    guard of each of its LIGGGHTS runs [s] (wheel-sweep --stall-timeout; 0: none)."""
     inputs = repo / "inputs"
     deck = Path(__file__).resolve().parent / "rate_bench.in"
     load0 = os.getloadavg()[0]
@@ -198,7 +222,7 @@ def measure(liggghts, repo, mesh, say=print, np2=True):
                "-var", "out_dir", tmp, "-var", "restart_file", str(restart)]
         for k, v in BENCH_BIN.items():
             cmd += ["-var", k, str(v)]
-        out, _ = _run(cmd, tmp, "bed (in.soilbin, 1 rank)", say)
+        out, _ = _run(cmd, tmp, "bed (in.soilbin, 1 rank)", say, stall_s)
         loops = _loop(out, "bed")
         bed_time = sum(m.seconds for m in loops)
         bed_psteps = sum(m.steps * m.atoms for m in loops)
@@ -208,7 +232,8 @@ def measure(liggghts, repo, mesh, say=print, np2=True):
                                   "-var", "inputs_dir", str(inputs), "-var", "restart_file",
                                   str(restart), "-var", "mesh", str(mesh),
                                   "-var", "steps", str(BENCH_STEPS)]
-            out, wall = _run(cmd, tmp, f"wheel run ({np_} rank(s), {BENCH_STEPS} steps)", say)
+            out, wall = _run(cmd, tmp, f"wheel run ({np_} rank(s), {BENCH_STEPS} steps)", say,
+                             stall_s)
             last = [m for m in _loop(out, f"wheel run np {np_}") if m.steps == BENCH_STEPS][-1]
             runs[np_] = (last.seconds, last.atoms, wall)
     loop1, atoms, wall1 = runs[1]

@@ -541,6 +541,27 @@ def case_bed_stall(a, work):
     check(not (bdir / "soilbin_ci.restart").exists(), "a bed restart was written")
 
 
+def case_rate_stall(a, work):
+    """The stall guard on --measure-rate: its first run (in.soilbin, a stand-in that prints one
+    line and hangs) is killed after --stall-timeout 0.05 (3 s): one error line naming the
+    benchmark step, its last lines after it, exit 1, no process left, no rate cached."""
+    build = stand_in_build(a, work)
+    (build / "bin" / "liggghts-wheel").symlink_to(Path(__file__).resolve().parent
+                                                  / "liggghts_standin.py")
+    cache = work / "dem_rate.toml"
+    cmd = [a.sweep, "--measure-rate", "--build-dir", str(build), "--stall-timeout", STALL_MIN]
+    rc, text, wall = run_stalling(cmd, {"STANDIN_STALL_DECKS": "in.soilbin",
+                                        "WHEELSIM_RATE_CACHE": str(cache)}, work)
+    check(rc == 1, f"exit {rc}, expected 1")
+    lines = [x for x in text.splitlines() if "made no progress" in x]
+    check(len(lines) == 1 and lines[0].startswith(
+        "wheel-sweep: error: --measure-rate: rate benchmark: bed (in.soilbin, 1 rank) made no "
+        "progress for 0.05 min (log "), f"stall error not as documented: {lines}")
+    check("stand-in liggghts-wheel" in text, "the run's last lines are not in the error")
+    check(STALL_S <= wall < STALL_S + 15, f"took {wall:.1f} s for a {STALL_S} s stall timeout")
+    check(not cache.exists(), "a rate was cached")
+
+
 def case_bed_steady(a, work):
     """A bed's in.soilbin that prints a line every 0.25 s for 6 s (twice the 3 s stall timeout)
     is not killed: the bed is made; then its bed-hold check prints one line and hangs, and is
