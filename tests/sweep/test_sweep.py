@@ -418,13 +418,16 @@ def case_kill_flat(a, work):
         "wheel-rig" in c for _, c in t.values()) == 2)
 
 
-def stand_in_build(a, work):
-    """work/build: a build dir of links to the real wheel-rig and meshes, without liggghts-wheel
-    (the caller puts a stand-in there)."""
+def stand_in_build(a, work, standin=False):
+    """work/build: a build dir of links to the real wheel-rig and meshes; its liggghts-wheel is
+    liggghts_standin.py with standin, else left to the caller."""
     build = work / "build"
     (build / "bin").mkdir(parents=True)
     (build / "bin" / "wheel-rig").symlink_to(Path(a.build_dir).resolve() / "bin" / "wheel-rig")
     (build / "meshes").symlink_to(Path(a.build_dir).resolve() / "meshes")
+    if standin:
+        (build / "bin" / "liggghts-wheel").symlink_to(Path(__file__).resolve().parent
+                                                      / "liggghts_standin.py")
     return build
 
 
@@ -472,9 +475,7 @@ def stall_sweep(a, work):
     the command of `wheel-sweep --beds-only --stall-timeout 0.05` (3 s) and its output dir."""
     if shutil.which("mpirun") is None:
         raise Skip("mpirun not found (Debian openmpi-bin)")
-    build = stand_in_build(a, work)
-    (build / "bin" / "liggghts-wheel").symlink_to(Path(__file__).resolve().parent
-                                                  / "liggghts_standin.py")
+    build = stand_in_build(a, work, standin=True)
     (work / "in.deck").write_text("# never read: no point runs (--beds-only)\n")
     repo = Path(a.sweep).resolve().parents[1]
     cfg = work / "sweep.toml"
@@ -545,9 +546,7 @@ def case_rate_stall(a, work):
     """The stall guard on --measure-rate: its first run (in.soilbin, a stand-in that prints one
     line and hangs) is killed after --stall-timeout 0.05 (3 s): one error line naming the
     benchmark step, its last lines after it, exit 1, no process left, no rate cached."""
-    build = stand_in_build(a, work)
-    (build / "bin" / "liggghts-wheel").symlink_to(Path(__file__).resolve().parent
-                                                  / "liggghts_standin.py")
+    build = stand_in_build(a, work, standin=True)
     cache = work / "dem_rate.toml"
     cmd = [a.sweep, "--measure-rate", "--build-dir", str(build), "--stall-timeout", STALL_MIN]
     rc, text, wall = run_stalling(cmd, {"STANDIN_STALL_DECKS": "in.soilbin",
