@@ -424,7 +424,9 @@ TEST(RigConfig, GridLengthAndWidthAreGivenTogether) {
 std::string time_step_error(Tables t, const std::string &dt, const std::string &dt_name) {
   const RigConfig c = parse_rig_config(render(with(std::move(t), "run.dt", dt)), "test.toml");
   try {
-    check_time_step(c, rig_parameters(c, resolve_wheel_properties(c.wheel)), dt_name);
+    const Rig rig(rig_parameters(c, resolve_wheel_properties(c.wheel)), RigCoordinates{},
+                  RigVelocities{});
+    check_time_step(c, rig, dt_name);
   } catch (const RigConfigError &e) {
     return e.what();
   }

@@ -440,7 +440,7 @@ void check_run_inputs(const rig::RigConfig &config, const std::string &dt_name) 
       throw rig::RigConfigError(config.source + ": " + e.what());
     }
   }
-  rig::check_time_step(config, sim.rig().parameters(), dt_name);
+  rig::check_time_step(config, sim.rig(), dt_name);
 }
 
 /// Runs the rig on the terrain of `config` (or the --kinematic twist) to its end.

@@ -25,26 +25,25 @@ double OscillatorMode::stable_time_step_s() const {
   return denominator > 0.0 ? 4.0 / denominator : std::numeric_limits<double>::infinity();
 }
 
-OscillatorMode suspension_mode(const RigParameters &rig) {
-  const double spindle_kg = rig.wheel_mass_kg + rig.spindle_mass_kg;
-  const double reduced_kg =
-      spindle_kg * rig.suspended_mass_kg / (spindle_kg + rig.suspended_mass_kg);
-  return {"the suspension (rig.spring_k = " + fmt(rig.spring_k_N_m) + " N/m, rig.spring_c = " +
-              fmt(rig.spring_c_N_s_m) + " N s/m between wheel + spindle, " + fmt(spindle_kg) +
-              " kg, and the suspended mass, " + fmt(rig.suspended_mass_kg) + " kg: reduced mass " +
-              fmt(reduced_kg) + " kg)",
-          rig.spring_k_N_m, rig.spring_c_N_s_m, reduced_kg};
+OscillatorMode suspension_mode(const Rig &rig) {
+  const RigParameters &p = rig.parameters();
+  const double spindle_kg = rig.spindle_dof_mass_kg();
+  const double reduced_kg = spindle_kg * p.suspended_mass_kg / (spindle_kg + p.suspended_mass_kg);
+  return {"the suspension (rig.spring_k = " + fmt(p.spring_k_N_m) +
+              " N/m, rig.spring_c = " + fmt(p.spring_c_N_s_m) + " N s/m between wheel + spindle, " +
+              fmt(spindle_kg) + " kg, and the suspended mass, " + fmt(p.suspended_mass_kg) +
+              " kg: reduced mass " + fmt(reduced_kg) + " kg)",
+          p.spring_k_N_m, p.spring_c_N_s_m, reduced_kg};
 }
 
-std::vector<OscillatorMode> oscillator_modes(const RigConfig &config, const RigParameters &rig) {
+std::vector<OscillatorMode> oscillator_modes(const RigConfig &config, const Rig &rig) {
   std::vector<OscillatorMode> modes = {suspension_mode(rig)};
   if (const TerrainKind &kind = terrain_kind(config.terrain.type); kind.contact_mode)
     modes.push_back(kind.contact_mode(config, rig));
   return modes;
 }
 
-void check_time_step(const RigConfig &config, const RigParameters &rig,
-                     const std::string &dt_name) {
+void check_time_step(const RigConfig &config, const Rig &rig, const std::string &dt_name) {
   const double dt_s = config.run.dt_s;
   if (dt_s == 0.0)
     return;

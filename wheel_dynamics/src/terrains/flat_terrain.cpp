@@ -63,9 +63,9 @@ void start(const RigConfig &c, const Terrain &, ParameterSink &, RunHealth &heal
 /// The normal penalty contact (k_n, c_n) on the wheel + spindle mass, as the run health's
 /// dt_unstable check sees it. The tangential spring is left out: it acts on the carriage and the
 /// wheel's rotation, which the usual drives impose.
-OscillatorMode contact_mode(const RigConfig &c, const RigParameters &rig) {
+OscillatorMode contact_mode(const RigConfig &c, const Rig &rig) {
   const FlatGroundParameters &f = c.terrain.flat;
-  const double mass_kg = rig.wheel_mass_kg + rig.spindle_mass_kg;
+  const double mass_kg = rig.spindle_dof_mass_kg();
   return {"the flat ground's contact (terrain.stiffness = " + fmt(f.stiffness_N_m) +
               " N/m, terrain.damping = " + fmt(f.damping_N_s_m) + " N s/m on wheel + spindle, " +
               fmt(mass_kg) + " kg)",

@@ -49,7 +49,7 @@ struct TerrainKind {
   /// Its contact as a spring-damper whose stiffness the config fixes, for the time-step bound
   /// (time_step.h; wheel-rig --check). nullptr where the config does not fix it (the SCM contact
   /// stiffens with its area: the run health checks it at every step; DEM: LIGGGHTS').
-  OscillatorMode (*contact_mode)(const RigConfig &c, const RigParameters &rig);
+  OscillatorMode (*contact_mode)(const RigConfig &c, const Rig &rig);
 };
 
 /// Every terrain type, in the order of the docs.

@@ -36,16 +36,16 @@ struct OscillatorMode {
 /// The suspension: rig.spring_k and rig.spring_c between the wheel + spindle and the suspended
 /// mass, on their reduced mass (the relative motion with the spindle free; the spindle held in the
 /// release phase, or carried by the contact, leaves a slower mode on the suspended mass alone).
-OscillatorMode suspension_mode(const RigParameters &rig);
+OscillatorMode suspension_mode(const Rig &rig);
 
 /// The modes of `config` whose stiffness it fixes: the suspension, and the terrain's contact if its
 /// registry entry declares one.
-std::vector<OscillatorMode> oscillator_modes(const RigConfig &config, const RigParameters &rig);
+std::vector<OscillatorMode> oscillator_modes(const RigConfig &config, const Rig &rig);
 
 /// Throws RigConfigError if config.run.dt_s is at or above the smallest stable step of the modes,
 /// naming the time step as `dt_name` ("run.dt", or "--dt" when the command line set it), its value,
 /// that limit and the mode it comes from. A time step of 0 (not set: a DEM run's comes with --dt)
 /// is not checked.
-void check_time_step(const RigConfig &config, const RigParameters &rig, const std::string &dt_name);
+void check_time_step(const RigConfig &config, const Rig &rig, const std::string &dt_name);
 
 } // namespace wheelsim::rig
