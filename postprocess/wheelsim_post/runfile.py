@@ -244,6 +244,13 @@ class RunFile:
             raise PostError(f"run file '{self.path}' has no dataset '/{key}'")
         return float(np.ravel(self._file[key][()])[0])
 
+    def _not_numbers(self, key):
+        """The PostError of a snapshot holding a dataset that is not numbers."""
+        return PostError(
+            f"run file '{self.path}': snapshot '/{key}' holds a dataset that is not "
+            "numbers (expected numeric step, time, value, x0, y0, spacing)"
+        )
+
     def snapshot_grid(self, field, step):
         """The grid of the snapshot of ``field`` at ``step``: (shape of its value, x0, y0,
         spacing), checked as ``snapshot`` checks it (PostError if absent or malformed) without
@@ -266,10 +273,7 @@ class RunFile:
         except (TypeError, ValueError, IndexError):
             kind = None
         if kind is None or kind not in "biuf":
-            raise PostError(
-                f"run file '{self.path}': snapshot '/{key}' holds a dataset that is not "
-                "numbers (expected numeric step, time, value, x0, y0, spacing)"
-            )
+            raise self._not_numbers(key)
         if len(shape) != 2 or 0 in shape:
             raise PostError(
                 f"run file '{self.path}': snapshot '/{key}/value' has shape "
@@ -306,7 +310,4 @@ class RunFile:
                 spacing=spacing,
             )
         except (TypeError, ValueError, IndexError):
-            raise PostError(
-                f"run file '{self.path}': snapshot '/{key}' holds a dataset that is not "
-                "numbers (expected numeric step, time, value, x0, y0, spacing)"
-            ) from None
+            raise self._not_numbers(key) from None

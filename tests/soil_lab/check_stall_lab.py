@@ -28,9 +28,7 @@ import lab_check
 
 ROOT = Path(__file__).resolve().parents[2]
 STANDIN = ROOT / "tests" / "sweep" / "liggghts_standin.py"
-SKIP = 77
 STALL_S = 3.0  # --stall-timeout 0.05 min
-
 
 
 def run_lab(work, env):
@@ -70,7 +68,7 @@ def main():
     a = ap.parse_args()
     if shutil.which("mpirun") is None:
         print("SKIP: mpirun not found (Debian openmpi-bin)")
-        return SKIP
+        return lab_check.SKIP
     work = Path(a.work).resolve()
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)
