@@ -22,8 +22,6 @@ using Eigen::Vector2d;
 using Eigen::Vector3d;
 using geometry::TriangleMesh;
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
-
 /// Convex cells in the plane z = 0, counter-clockwise seen from +z, on shared points.
 struct PlaneRegion {
   std::vector<Vector2d> points_m;
@@ -86,7 +84,7 @@ PlaneRegion polar_region(double r_in, double r_out, int segments, double max_edg
   for (int l = first; l <= rings; ++l) {
     const double radius = r_in + (r_out - r_in) * l / rings;
     for (int m = 0; m < segments; ++m) {
-      const double theta = kTwoPi * m / segments;
+      const double theta = 2.0 * M_PI * m / segments;
       r.points_m.emplace_back(radius * std::cos(theta), radius * std::sin(theta));
     }
   }

@@ -13,9 +13,9 @@ using ::testing::HasSubstr;
 
 namespace {
 
-constexpr Timeouts kShort{300ms, 300ms};
+constexpr Timeouts kSessionTimeouts{300ms, 300ms};
 /// Allowed lateness of a timeout on a loaded CI machine.
-constexpr double kMarginMs = 500.0;
+constexpr double kSessionMarginMs = 500.0;
 
 struct LoopbackSession {
   LoopbackSession() {
@@ -32,10 +32,10 @@ struct LoopbackSession {
 TEST(CouplerSession, LoopbackRoundTrip) {
   for (std::uint32_t every : {1u, 5u}) {
     LoopbackSession s;
-    CouplingServer server(std::move(s.server_transport), kShort);
+    CouplingServer server(std::move(s.server_transport), kSessionTimeouts);
     RigResult rig;
     Background rig_thread([&] { rig = run_fake_rig(server, kDt); });
-    CouplingClient client(std::move(s.client_transport), kShort);
+    CouplingClient client(std::move(s.client_transport), kSessionTimeouts);
     const Hello hello = sample_hello(1000, every);
     EXPECT_EQ(run_fake_liggghts(client, hello, 200), 200) << "exchange_every " << every;
     rig_thread.join();
@@ -53,11 +53,11 @@ TEST(CouplerSession, LoopbackRoundTrip) {
 
 TEST(CouplerSession, VersionMismatchIsReportedOnBothSides) {
   LoopbackSession s;
-  CouplingServer server(std::move(s.server_transport), kShort);
+  CouplingServer server(std::move(s.server_transport), kSessionTimeouts);
   std::string server_error;
   Background rig_thread(
       [&] { server_error = message_of<ProtocolError>([&] { server.accept(kDt); }); });
-  CouplingClient client(std::move(s.client_transport), kShort);
+  CouplingClient client(std::move(s.client_transport), kSessionTimeouts);
   Hello hello = sample_hello();
   hello.protocol_version = 3;
   std::string client_error;
@@ -78,7 +78,7 @@ TEST(CouplerSession, VersionMismatchIsReportedOnBothSides) {
 TEST(CouplerSession, ServerOfAnotherVersionIsRejectedByTheClient) {
   LoopbackSession s;
   Transport &rig = *s.server_transport;
-  CouplingClient client(std::move(s.client_transport), kShort);
+  CouplingClient client(std::move(s.client_transport), kSessionTimeouts);
   Welcome welcome;
   welcome.protocol_version = 3;
   welcome.start_step = 100;
@@ -94,11 +94,11 @@ TEST(CouplerSession, ServerOfAnotherVersionIsRejectedByTheClient) {
 
 TEST(CouplerSession, TimeStepMismatchIsReportedOnBothSides) {
   LoopbackSession s;
-  CouplingServer server(std::move(s.server_transport), kShort);
+  CouplingServer server(std::move(s.server_transport), kSessionTimeouts);
   std::string server_error;
   Background rig_thread(
       [&] { server_error = message_of<ProtocolError>([&] { server.accept(2e-5); }); });
-  CouplingClient client(std::move(s.client_transport), kShort);
+  CouplingClient client(std::move(s.client_transport), kSessionTimeouts);
   const std::string client_error =
       message_of<PeerClosedError>([&] { client.connect(sample_hello()); });
   rig_thread.join();
@@ -109,34 +109,34 @@ TEST(CouplerSession, TimeStepMismatchIsReportedOnBothSides) {
 
 TEST(CouplerSession, TimeStepWithinRelativeToleranceIsAccepted) {
   LoopbackSession s;
-  CouplingServer server(std::move(s.server_transport), kShort);
+  CouplingServer server(std::move(s.server_transport), kSessionTimeouts);
   Background rig_thread([&] { run_fake_rig(server, kDt * (1 + 1e-12)); });
-  CouplingClient client(std::move(s.client_transport), kShort);
+  CouplingClient client(std::move(s.client_transport), kSessionTimeouts);
   EXPECT_EQ(run_fake_liggghts(client, sample_hello(), 3), 3);
   rig_thread.join();
 }
 
 TEST(CouplerSession, SilentServerTimesOutNamingPeerAndWelcome) {
   LoopbackSession s; // the server end exists but nobody answers
-  CouplingClient client(std::move(s.client_transport), kShort);
+  CouplingClient client(std::move(s.client_transport), kSessionTimeouts);
   std::string m;
   const double ms = elapsed_ms_of(
       [&] { m = message_of<TimeoutError>([&] { client.connect(sample_hello(100)); }); });
   EXPECT_EQ(m,
             "no Welcome (reply to Hello for start step 100) from the rig (loopback) within 0.3 s");
   EXPECT_GE(ms, 300.0);
-  EXPECT_LE(ms, 300.0 + kMarginMs);
+  EXPECT_LE(ms, 300.0 + kSessionMarginMs);
 }
 
 TEST(CouplerSession, SilentClientTimesOutNamingPeerAndHello) {
   LoopbackSession s;
-  CouplingServer server(std::move(s.server_transport), kShort);
+  CouplingServer server(std::move(s.server_transport), kSessionTimeouts);
   std::string m;
   const double ms =
       elapsed_ms_of([&] { m = message_of<TimeoutError>([&] { server.accept(kDt); }); });
   EXPECT_EQ(m, "no Hello from LIGGGHTS (loopback) within 0.3 s");
   EXPECT_GE(ms, 300.0);
-  EXPECT_LE(ms, 300.0 + kMarginMs);
+  EXPECT_LE(ms, 300.0 + kSessionMarginMs);
 }
 
 TEST(CouplerSession, RigThatVanishesMidRunIsATimeoutOnTheClient) {
@@ -144,24 +144,24 @@ TEST(CouplerSession, RigThatVanishesMidRunIsATimeoutOnTheClient) {
   auto cuttable = std::make_unique<CuttableTransport>(std::move(s.server_transport));
   CuttableTransport *cut = cuttable.get();
   Background rig_thread([&] {
-    CouplingServer server(std::move(cuttable), kShort);
+    CouplingServer server(std::move(cuttable), kSessionTimeouts);
     run_fake_rig(server, kDt, 10); // answers 9 wrenches, then "crashes" on the 10th
     cut->cut();                    // the destructor's Close is lost like a killed process's
   });
-  CouplingClient client(std::move(s.client_transport), kShort);
+  CouplingClient client(std::move(s.client_transport), kSessionTimeouts);
   std::string m;
   const double ms = elapsed_ms_of([&] {
     m = message_of<TimeoutError>([&] { run_fake_liggghts(client, sample_hello(100), 50); });
   });
   rig_thread.join();
   EXPECT_EQ(m, "no Pose for step 110 from the rig (loopback) within 0.3 s");
-  EXPECT_LE(ms, 300.0 + kMarginMs);
+  EXPECT_LE(ms, 300.0 + kSessionMarginMs);
   EXPECT_FALSE(client.is_open());
 }
 
 TEST(CouplerSession, ClientThatVanishesMidRunIsATimeoutOnTheServer) {
   LoopbackSession s;
-  CouplingServer server(std::move(s.server_transport), kShort);
+  CouplingServer server(std::move(s.server_transport), kSessionTimeouts);
   std::string server_error;
   Background rig_thread(
       [&] { server_error = message_of<TimeoutError>([&] { run_fake_rig(server, kDt); }); });
@@ -169,7 +169,7 @@ TEST(CouplerSession, ClientThatVanishesMidRunIsATimeoutOnTheServer) {
     CuttableTransport *cut = nullptr;
     auto cuttable = std::make_unique<CuttableTransport>(std::move(s.client_transport));
     cut = cuttable.get();
-    CouplingClient client(std::move(cuttable), kShort);
+    CouplingClient client(std::move(cuttable), kSessionTimeouts);
     EXPECT_EQ(run_fake_liggghts(client, sample_hello(100, 2), 7, false), 7);
     cut->cut(); // LIGGGHTS dies: no Close
   }
@@ -179,7 +179,7 @@ TEST(CouplerSession, ClientThatVanishesMidRunIsATimeoutOnTheServer) {
 
 TEST(CouplerSession, CloseFromTheRigCarriesItsReason) {
   LoopbackSession s;
-  CouplingServer server(std::move(s.server_transport), kShort);
+  CouplingServer server(std::move(s.server_transport), kSessionTimeouts);
   Background rig_thread([&] {
     server.accept(kDt);
     Welcome w;
@@ -189,7 +189,7 @@ TEST(CouplerSession, CloseFromTheRigCarriesItsReason) {
     (void)server.receive();
     server.close(CloseReason::Error, "error: spring stiffness became negative");
   });
-  CouplingClient client(std::move(s.client_transport), kShort);
+  CouplingClient client(std::move(s.client_transport), kSessionTimeouts);
   client.connect(sample_hello(100));
   client.send_wrench(sample_wrench(100));
   try {
@@ -208,7 +208,7 @@ TEST(CouplerSession, CloseFromTheRigCarriesItsReason) {
 TEST(CouplerSession, PoseForAnotherStepIsReportedWithBothSteps) {
   LoopbackSession s;
   Transport &rig = *s.server_transport;
-  CouplingClient client(std::move(s.client_transport), kShort);
+  CouplingClient client(std::move(s.client_transport), kSessionTimeouts);
   Welcome w;
   w.start_step = 100;
   w.dt_s = kDt;
@@ -228,7 +228,7 @@ TEST(CouplerSession, PoseForAnotherStepIsReportedWithBothSteps) {
 TEST(CouplerSession, WrenchForAnotherStepIsReportedByTheServer) {
   LoopbackSession s;
   Transport &liggghts = *s.client_transport;
-  CouplingServer server(std::move(s.server_transport), kShort);
+  CouplingServer server(std::move(s.server_transport), kSessionTimeouts);
   liggghts.send(encode(sample_hello(100, 4)));
   server.accept(kDt);
   Welcome w;
@@ -249,9 +249,9 @@ TEST(CouplerSession, WrenchForAnotherStepIsReportedByTheServer) {
 
 TEST(CouplerSession, ClientRefusesToSendOutOfStepOrInvalidWrench) {
   LoopbackSession s;
-  CouplingServer server(std::move(s.server_transport), kShort);
+  CouplingServer server(std::move(s.server_transport), kSessionTimeouts);
   Background rig_thread([&] { run_fake_rig(server, kDt); });
-  CouplingClient client(std::move(s.client_transport), kShort);
+  CouplingClient client(std::move(s.client_transport), kSessionTimeouts);
   client.connect(sample_hello(100, 1));
   EXPECT_THAT(message_of<ProtocolError>([&] { client.send_wrench(sample_wrench(99)); }),
               HasSubstr("the next exchange is at step 100 (start step 100, exchange_every 1), got "
@@ -263,7 +263,7 @@ TEST(CouplerSession, ClientRefusesToSendOutOfStepOrInvalidWrench) {
 TEST(CouplerSession, MalformedPoseIsRejectedAndThePeerTold) {
   LoopbackSession s;
   Transport &rig = *s.server_transport;
-  CouplingClient client(std::move(s.client_transport), kShort);
+  CouplingClient client(std::move(s.client_transport), kSessionTimeouts);
   Welcome w;
   w.start_step = 100;
   w.dt_s = kDt;
@@ -286,11 +286,11 @@ TEST(CouplerSession, MalformedPoseIsRejectedAndThePeerTold) {
 
 TEST(CouplerSession, DestroyedClientTellsTheRig) {
   LoopbackSession s;
-  CouplingServer server(std::move(s.server_transport), kShort);
+  CouplingServer server(std::move(s.server_transport), kSessionTimeouts);
   RigResult rig;
   Background rig_thread([&] { rig = run_fake_rig(server, kDt); });
   {
-    CouplingClient client(std::move(s.client_transport), kShort);
+    CouplingClient client(std::move(s.client_transport), kSessionTimeouts);
     run_fake_liggghts(client, sample_hello(), 3, false);
   } // e.g. an exception unwinds the fix: the destructor sends Close{aborted}
   rig_thread.join();

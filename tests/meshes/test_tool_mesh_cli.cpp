@@ -5,19 +5,13 @@
 
 #include <gtest/gtest.h>
 
-#include "cli_test_util.h"
+#include "wheel_mesh_cli.h"
 #include "wheelsim/geometry/mass_properties.h"
 #include "wheelsim/geometry/mesh_io.h"
 
 namespace fs = std::filesystem;
 
 namespace {
-
-using CliResult = wheelsim::cli_test::CommandResult;
-
-CliResult run_cli(const std::string &args) {
-  return wheelsim::cli_test::run_command(std::string(WHEEL_MESH_EXE) + " " + args);
-}
 
 std::string read_text(const fs::path &path) {
   std::ifstream in(path);

@@ -5,18 +5,12 @@
 
 #include <gtest/gtest.h>
 
-#include "cli_test_util.h"
+#include "wheel_mesh_cli.h"
 #include "wheelsim/cli.h"
 
 namespace fs = std::filesystem;
 
 namespace {
-
-using CliResult = wheelsim::cli_test::CommandResult;
-
-CliResult run_cli(const std::string &args) {
-  return wheelsim::cli_test::run_command(std::string(WHEEL_MESH_EXE) + " " + args);
-}
 
 /// Bad parameters are bad usage: exit status 2 and a message with every fragment.
 void expect_rejected(const std::string &args, const std::vector<std::string> &fragments) {

@@ -28,14 +28,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string temp_path(const std::string &name) {
+std::string crash_temp_path(const std::string &name) {
   const fs::path dir =
       fs::temp_directory_path() / ("wheelsim_run_file_crash_" + std::to_string(getpid()));
   fs::create_directories(dir);
   return (dir / name).string();
 }
 
-const rf::Creator kCreator{"test_run_file_crash", "1.0", "cafe"};
+const rf::Creator kCrashCreator{"test_run_file_crash", "1.0", "cafe"};
 
 struct Series {
   const char *name;
@@ -124,10 +124,10 @@ std::int64_t check_consistent_prefix(const std::string &path) {
 } // namespace
 
 TEST(RunFileCrash, SigkillAfterManualFlushKeepsExactlyTheFlushedRows) {
-  const std::string path = temp_path("manual.h5");
+  const std::string path = crash_temp_path("manual.h5");
   const std::int64_t flushed = 1500, unflushed = 700;
   run_child_until_killed([&] {
-    rf::RunFile file(path, kCreator, rf::FlushPolicy{0, 0.0}); // no automatic flush
+    rf::RunFile file(path, kCrashCreator, rf::FlushPolicy{0, 0.0}); // no automatic flush
     file.set_parameter_text("rig.toml", "[run]\ndt = 1e-5\n");
     auto series = declare(file);
     for (std::int64_t step = 1; step <= flushed; ++step)
@@ -144,9 +144,9 @@ TEST(RunFileCrash, SigkillAfterManualFlushKeepsExactlyTheFlushedRows) {
 }
 
 TEST(RunFileCrash, RowsWrittenToTheWorkingCopyButNotCommittedAreNotInTheFile) {
-  const std::string path = temp_path("auto_rows.h5");
+  const std::string path = crash_temp_path("auto_rows.h5");
   run_child_until_killed([&] {
-    rf::RunFile file(path, kCreator, rf::FlushPolicy{500, 0.0});
+    rf::RunFile file(path, kCrashCreator, rf::FlushPolicy{500, 0.0});
     auto series = declare(file);
     for (std::int64_t step = 1; step <= 1234; ++step)
       append_row(series, step);
@@ -161,7 +161,7 @@ TEST(RunFileCrash, RowsWrittenToTheWorkingCopyButNotCommittedAreNotInTheFile) {
 /// A writer with `policy` that appends steps 1..10, sleeps 0.3 s, appends step 11 and is killed.
 void write_sleep_append_kill(const std::string &path, const rf::FlushPolicy &policy) {
   run_child_until_killed([&] {
-    rf::RunFile file(path, kCreator, policy);
+    rf::RunFile file(path, kCrashCreator, policy);
     auto series = declare(file);
     for (std::int64_t step = 1; step <= 10; ++step)
       append_row(series, step);
@@ -174,12 +174,12 @@ void write_sleep_append_kill(const std::string &path, const rf::FlushPolicy &pol
 TEST(RunFileCrash, SigkillKeepsTheRowsOfTheLastWallClockCommit) {
   // No cost stretch: the commit due after 0.2 s ran at the start of the first append of step 11,
   // steps 1..10 of all series.
-  const std::string path = temp_path("auto_interval.h5");
+  const std::string path = crash_temp_path("auto_interval.h5");
   write_sleep_append_kill(path, rf::FlushPolicy{0, 0.2, 0.0});
   EXPECT_EQ(check_consistent_prefix(path), 10);
   // A cost factor of 1e9 stretches the interval to >= 1e9 x (a commit's duration, > 1 us): no
   // automatic commit after the declarations.
-  const std::string stretched = temp_path("auto_interval_stretched.h5");
+  const std::string stretched = crash_temp_path("auto_interval_stretched.h5");
   write_sleep_append_kill(stretched, rf::FlushPolicy{0, 0.2, 1e9});
   EXPECT_EQ(check_consistent_prefix(stretched), 0);
 }
@@ -213,7 +213,7 @@ TEST(RunFileCrash, SigkillInsideCommitsLosesNoCommittedRow) {
   int kills = 0, inside_commit = 0, at_next_commit = 0;
   for (; kills < kMaxKills && inside_commit < kKillsInsideCommit; ++kills) {
     SCOPED_TRACE("kill " + std::to_string(kills));
-    const std::string path = temp_path("random.h5");
+    const std::string path = crash_temp_path("random.h5");
     const int delay = delay_us(rng);
     progress->in_commit = 0;
     progress->committed_rows = -1;
@@ -222,7 +222,7 @@ TEST(RunFileCrash, SigkillInsideCommitsLosesNoCommittedRow) {
     run_child_until_killed(
         [&] {
           close(ready[0]);
-          rf::RunFile file(path, kCreator, rf::FlushPolicy{0, 0.0});
+          rf::RunFile file(path, kCrashCreator, rf::FlushPolicy{0, 0.0});
           file.set_parameter("rig/seed", std::int64_t{7}, "1");
           auto series = declare(file);
           progress->committed_rows = 0;

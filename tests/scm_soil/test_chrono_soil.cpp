@@ -85,7 +85,7 @@ void expect_same(const SoilParameters &a, const SoilParameters &b) {
 }
 
 /// The message of the ChronoSoilError `text` raises ("" if none).
-std::string error_of(const std::string &text) {
+std::string chrono_error_of(const std::string &text) {
   try {
     parse_chrono_soil(text, "c.json");
   } catch (const ChronoSoilError &e) {
@@ -199,66 +199,72 @@ TEST(ChronoSoil, MissingKeysNameTheKeyAndItsUnit) {
   std::string text = kChronoCosimScmHard;
   text.replace(text.find("        \"Mohr friction limit\": 20,\n"),
                std::string("        \"Mohr friction limit\": 20,\n").size(), "");
-  EXPECT_EQ(error_of(text),
+  EXPECT_EQ(chrono_error_of(text),
             "c.json:12: missing key \"Soil parameters\".\"Mohr friction limit\": write "
             "\"Mohr friction limit\": <internal friction angle in deg, in [0, 90)>");
   text = kChronoVehicleScmHard;
   text.replace(text.find("    \"Janosi Shear\": 1.2e-3,\n"),
                std::string("    \"Janosi Shear\": 1.2e-3,\n").size(), "");
-  EXPECT_NE(error_of(text).find("missing key \"Soil Parameters\".\"Janosi Shear\": write "
-                                "\"Janosi Shear\": <Janosi shear deformation modulus in m, > 0>"),
-            std::string::npos)
-      << error_of(text);
-  EXPECT_NE(error_of(R"({"Type": "SCM"})").find("missing key \"Soil parameters\""),
+  EXPECT_NE(
+      chrono_error_of(text).find("missing key \"Soil Parameters\".\"Janosi Shear\": write "
+                                 "\"Janosi Shear\": <Janosi shear deformation modulus in m, > 0>"),
+      std::string::npos)
+      << chrono_error_of(text);
+  EXPECT_NE(chrono_error_of(R"({"Type": "SCM"})").find("missing key \"Soil parameters\""),
             std::string::npos);
 }
 
 TEST(ChronoSoil, UnknownKeysAreNamedWithTheIntendedOne) {
   std::string text = kChronoCosimScmHard;
   text.replace(text.find("\"Damping\""), 9, "\"Dampng\"");
-  EXPECT_EQ(error_of(text), "c.json:20: unknown key \"Soil parameters\".\"Dampng\"; did you mean "
-                            "\"Damping\"?");
+  EXPECT_EQ(chrono_error_of(text),
+            "c.json:20: unknown key \"Soil parameters\".\"Dampng\"; did you mean "
+            "\"Damping\"?");
   // A key of the other layout: its name in this one.
   text = kChronoCosimScmHard;
   text.replace(text.find("\"Mohr friction limit\""), 21, "\"Mohr Friction\"");
-  EXPECT_EQ(error_of(text),
+  EXPECT_EQ(chrono_error_of(text),
             "c.json:17: unknown key \"Soil parameters\".\"Mohr Friction\"; in a Chrono SCM "
             "terrain-node file (\"Soil parameters\") the internal friction angle is "
             "\"Mohr friction limit\"");
   text = kChronoCosimScmHard;
   text.replace(text.find("\"Grid spacing\""), 14, "\"Grid spaceing\"");
-  EXPECT_NE(error_of(text).find("unknown key \"Grid spaceing\"; did you mean \"Grid spacing\"?"),
-            std::string::npos)
-      << error_of(text);
+  EXPECT_NE(
+      chrono_error_of(text).find("unknown key \"Grid spaceing\"; did you mean \"Grid spacing\"?"),
+      std::string::npos)
+      << chrono_error_of(text);
   text = kChronoCosimScmHard;
   text.replace(text.find("\"Soil parameters\""), 17, "\"Soil paramters\"");
-  EXPECT_NE(error_of(text).find("unknown key \"Soil paramters\"; did you mean"), std::string::npos)
-      << error_of(text);
+  EXPECT_NE(chrono_error_of(text).find("unknown key \"Soil paramters\"; did you mean"),
+            std::string::npos)
+      << chrono_error_of(text);
 }
 
 TEST(ChronoSoil, RangeTypeAndSyntaxErrors) {
   std::string text = kChronoVehicleScmHard;
   text.replace(text.find("31.1"), 4, "95");
-  EXPECT_EQ(error_of(text),
+  EXPECT_EQ(chrono_error_of(text),
             "c.json:11: \"Soil Parameters\".\"Mohr Friction\" must be in [0, 90) deg, got 95");
   text = kChronoVehicleScmHard;
   text.replace(text.find("0.793"), 5, "\"0.8\"");
-  EXPECT_NE(error_of(text).find("\"Soil Parameters\".\"Bekker n\" must be a number (sinkage "
-                                "exponent, in (0, 2]), got a string"),
+  EXPECT_NE(chrono_error_of(text).find("\"Soil Parameters\".\"Bekker n\" must be a number (sinkage "
+                                       "exponent, in (0, 2]), got a string"),
             std::string::npos)
-      << error_of(text);
+      << chrono_error_of(text);
   text = kChronoCosimScmHard;
   text.replace(text.find("\"Bekker Kphi\": 2e7"), 18, "\"Bekker Kphi\": 0");
-  EXPECT_NE(error_of(text).find("must be > 0 (the soil must resist sinkage)"), std::string::npos);
+  EXPECT_NE(chrono_error_of(text).find("must be > 0 (the soil must resist sinkage)"),
+            std::string::npos);
   text = kChronoCosimScmHard;
   text.replace(text.find("0.01,"), 5, "0.01");
-  EXPECT_EQ(error_of(text), "c.json:19: JSON syntax error: expected ',' or '}' in an object");
+  EXPECT_EQ(chrono_error_of(text),
+            "c.json:19: JSON syntax error: expected ',' or '}' in an object");
   text = kChronoCosimScmHard;
   text.replace(text.find("\"SCM\""), 5, "\"Rigid\"");
-  EXPECT_NE(error_of(text).find("\"Type\" must be \"SCM\""), std::string::npos);
-  EXPECT_NE(error_of("[1, 2]").find("is an object"), std::string::npos);
+  EXPECT_NE(chrono_error_of(text).find("\"Type\" must be \"SCM\""), std::string::npos);
+  EXPECT_NE(chrono_error_of("[1, 2]").find("is an object"), std::string::npos);
   // SCMPlane.json style: the soil is in another file.
-  EXPECT_NE(error_of(R"({"Soil Parameters": {"Input File": "terrain/scm_soft.json"}})")
+  EXPECT_NE(chrono_error_of(R"({"Soil Parameters": {"Input File": "terrain/scm_soft.json"}})")
                 .find("\"Input File\" refers to another file (\"terrain/scm_soft.json\")"),
             std::string::npos);
   EXPECT_THROW(load_chrono_soil("/nonexistent/chrono.json"), ChronoSoilError);

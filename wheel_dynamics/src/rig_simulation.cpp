@@ -5,17 +5,19 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 #include <toml++/toml.h>
 
+#include "wheelsim/config_messages.h"
 #include "wheelsim/geometry/mass_properties.h"
 #include "wheelsim/geometry/mesh_error.h"
 #include "wheelsim/geometry/mesh_io.h"
 
 namespace wheelsim::rig {
 namespace {
+
+using config::fmt;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 /// Below these, slip and efficiency are undefined (reported as NaN).
@@ -27,12 +29,6 @@ constexpr double kMaxCentroidOffset_m = 1e-3;
 /// the holder's force changes by only (wheel + spindle mass) * release_speed / this (e.g. 30 N
 /// for 305 kg at 0.01 m/s) and the suspended mass is barely excited.
 constexpr double kReleaseAccelerationTime_s = 0.1;
-
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 /// The lugs of a wheel-mesh mesh from `<stem>.props.toml` beside it (see WheelProperties); leaves
 /// `p` unchanged if there is no such file. A props file that does not parse is an error naming it.

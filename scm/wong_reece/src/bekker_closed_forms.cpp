@@ -5,23 +5,12 @@
 #include "numerics.h"
 
 #include <cmath>
-#include <sstream>
 
 namespace wheelsim::scm {
 namespace {
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
-
-void require(bool ok, const char *function, const char *argument, const char *range, double v) {
-  if (!ok)
-    throw std::invalid_argument(std::string(function) + ": " + argument + " must be " + range +
-                                ", got " + fmt(v));
-}
+using detail::fmt10;
+using detail::require;
 
 void check_wheel(const char *function, double radius_m, double width_m) {
   require(radius_m > 0 && std::isfinite(radius_m), function, "radius", "> 0 m", radius_m);
@@ -61,8 +50,8 @@ double solve_sinkage(const char *function, const char *model, double radius_m, d
   const double w_max = load(radius_m);
   if (w_max < load_N)
     throw TerramechanicsError(std::string(function) + ": the " + model + " cannot carry " +
-                              fmt(load_N) + " N: at sinkage = radius (" + fmt(radius_m) +
-                              " m) it carries only " + fmt(w_max) + " N");
+                              fmt10(load_N) + " N: at sinkage = radius (" + fmt10(radius_m) +
+                              " m) it carries only " + fmt10(w_max) + " N");
   return detail::brent_root([&](double z) { return load(z) - load_N; }, 0.0, radius_m, -load_N,
                             w_max - load_N, 1e-12, 0.0);
 }

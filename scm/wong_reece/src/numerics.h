@@ -1,14 +1,32 @@
 // Numerical helpers of the Wong–Reece library (internal): tanh–sinh quadrature, which integrates
 // the endpoint singularities of the Bekker stresses ((θ1 − θ)^n, n < 1) to machine precision,
-// and Brent's bracketed root finder.
+// Brent's bracketed root finder, and the library's argument checks.
 #pragma once
 
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace wheelsim::scm::detail {
+
+/// `v` with 10 significant digits, for error messages that name a value.
+inline std::string fmt10(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+/// Throws std::invalid_argument "<function>: <argument> must be <range>, got <v>" unless `ok`.
+inline void require(bool ok, const char *function, const std::string &argument, const char *range,
+                    double v) {
+  if (!ok)
+    throw std::invalid_argument(std::string(function) + ": " + argument + " must be " + range +
+                                ", got " + fmt10(v));
+}
 
 /// ∫_a^b f(x) dx by the tanh–sinh (double-exponential) rule with `points` nodes (odd, ≥ 3; an
 /// even count is raised by one). Nodes near the ends are placed by their distance to the end, so

@@ -6,26 +6,14 @@
 #include "numerics.h"
 
 #include <cmath>
-#include <sstream>
 
 namespace wheelsim::scm {
 namespace {
 
+using detail::fmt10;
+using detail::require;
+
 constexpr double kHalfPi = 1.57079632679489661923;
-
-std::string fmt(double v) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str();
-}
-
-void require(bool ok, const char *function, const std::string &argument, const char *range,
-             double v) {
-  if (!ok)
-    throw std::invalid_argument(std::string(function) + ": " + argument + " must be " + range +
-                                ", got " + fmt(v));
-}
 
 void check_inputs(const char *f, const SoilParameters &soil, const WongReeceWheel &wheel,
                   double slip, const WongReeceOptions &o) {
@@ -45,7 +33,7 @@ void check_inputs(const char *f, const SoilParameters &soil, const WongReeceWhee
   require(slip >= 0 && slip <= 1, f, "slip", "in [0, 1] (driven wheel)", slip);
   require(o.c1 >= 0 && o.c1 < 1, f, "c1", "in [0, 1)", o.c1);
   require(o.c1 + o.c2 * slip >= 0 && o.c1 + o.c2 * slip < 1, f,
-          "c1 + c2 s (theta_m / theta_1) at slip " + fmt(slip), "in [0, 1)", o.c1 + o.c2 * slip);
+          "c1 + c2 s (theta_m / theta_1) at slip " + fmt10(slip), "in [0, 1)", o.c1 + o.c2 * slip);
   require(o.rebound_ratio >= 0 && o.rebound_ratio <= 1, f, "rebound ratio", "in [0, 1]",
           o.rebound_ratio);
   require(o.quadrature_points >= 9, f, "quadrature points", ">= 9", o.quadrature_points);
@@ -188,10 +176,10 @@ WongReeceResult solve_wong_reece(const SoilParameters &soil, const WongReeceWhee
     g_lo = g_hi;
   }
   throw TerramechanicsError(std::string(f) + ": the soil \"" + soil.name + "\" cannot carry " +
-                            fmt(load_N) + " N on this wheel (R = " + fmt(wheel.radius_m) +
-                            " m, b = " + fmt(wheel.width_m) + " m) at slip " + fmt(slip) +
+                            fmt10(load_N) + " N on this wheel (R = " + fmt10(wheel.radius_m) +
+                            " m, b = " + fmt10(wheel.width_m) + " m) at slip " + fmt10(slip) +
                             ": at entry angle 90 deg (sinkage = R) the vertical force is " +
-                            fmt(g_lo + load_N) + " N");
+                            fmt10(g_lo + load_N) + " N");
 }
 
 } // namespace wheelsim::scm

@@ -6,7 +6,7 @@
 #include "../config_table.h"
 
 namespace wheelsim::rig::terrains {
-namespace {
+namespace dem_entry {
 
 using detail::fmt;
 using detail::Table;
@@ -31,9 +31,10 @@ void parse(const Table &t, const std::string & /*base_dir*/, RigConfig &c) {
   c.terrain.timeout_s = t.positive("timeout", "s").value_or(c.terrain.timeout_s);
 }
 
-} // namespace
+} // namespace dem_entry
 
 TerrainKind dem_terrain() {
+  using namespace dem_entry;
   return {"dem",
           TerrainType::dem,
           "LIGGGHTS particles over the coupler (remote)",

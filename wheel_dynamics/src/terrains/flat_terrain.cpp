@@ -7,7 +7,7 @@
 #include "wheelsim/rig/run_health.h"
 
 namespace wheelsim::rig::terrains {
-namespace {
+namespace flat_entry {
 
 using detail::fmt;
 using detail::Table;
@@ -72,9 +72,10 @@ OscillatorMode contact_mode(const RigConfig &c, const Rig &rig) {
           f.stiffness_N_m, f.damping_N_s_m, mass_kg};
 }
 
-} // namespace
+} // namespace flat_entry
 
 TerrainKind flat_terrain() {
+  using namespace flat_entry;
   return {
       "flat", TerrainType::flat, "rigid flat ground (tests, known answers)", keys(), parse, make,
       start,  contact_mode};

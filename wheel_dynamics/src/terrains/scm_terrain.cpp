@@ -11,7 +11,7 @@
 #include <sstream>
 
 namespace wheelsim::rig::terrains {
-namespace {
+namespace scm_entry {
 
 using detail::closest;
 using detail::fmt;
@@ -175,9 +175,10 @@ void start(const RigConfig &c, const Terrain &terrain, ParameterSink &out, RunHe
   health.set_grid(settings.grid_spacing_m, soil.elastic_K);
 }
 
-} // namespace
+} // namespace scm_entry
 
 TerrainKind scm_terrain() {
+  using namespace scm_entry;
   return {"scm",
           TerrainType::scm,
           "SCM soft soil in-process (Bekker-Wong, Janosi-Hanamoto)",
