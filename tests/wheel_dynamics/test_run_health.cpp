@@ -48,9 +48,9 @@ slip_velocity_scale = 0.01
 /// the findings. A RunHealthError ends the run early (its finding is in the list).
 template <class Terrain>
 std::vector<HealthFinding> run_checked(RigSimulation &sim, Terrain terrain,
-                                       double stiffness_N_m = 2.0e4) {
+                                       double stiffness_N_m = 2.0e4, double damping_N_s_m = 0.0) {
   RunHealth health(sim, nullptr);
-  health.set_contact_stiffness(stiffness_N_m);
+  health.set_contact_stiffness(stiffness_N_m, damping_N_s_m);
   try {
     while (!sim.finished()) {
       const WheelWrench w = terrain(sim.wheel_state(), sim.time_s());
@@ -226,8 +226,9 @@ TEST(RunHealth, GridWithFewerThanThreeNodesAcrossTheWheelIsAnErrorBeforeTheRun) 
 }
 
 TEST(RunHealth, ContactStiffTooForTheTimeStepIsFlagged) {
-  // omega_c dt = sqrt(k / 1.5 kg) * 2e-4 s: 2e4 N/m -> 0.023 (fine); 1e8 -> 1.6 (warning);
-  // 1e9 -> 5.2 (error; the flat ground itself is still 2e4 N/m, so the run stays finite).
+  // omega_c dt = sqrt(k / 1.5 kg) * 2e-4 s: 2e4 N/m -> 0.023 (fine); 1e8 -> 1.6 (warning: over
+  // half the limit 2); 1e9 -> 5.2 (error; the flat ground itself is still 2e4 N/m, so the run
+  // stays finite).
   for (const auto &[k, expected] : std::vector<std::pair<double, std::string>>{
            {1e8, "dt_unstable/warning"}, {1e9, "dt_unstable/error"}}) {
     RigSimulation sim(parse_rig_config(config(), "t.toml"));
@@ -236,6 +237,22 @@ TEST(RunHealth, ContactStiffTooForTheTimeStepIsFlagged) {
         sim, [&](const WheelPose &s, double t) { return ground.contact(s, t); }, k);
     EXPECT_EQ(codes(findings), std::vector<std::string>{expected}) << "k = " << k;
   }
+}
+
+TEST(RunHealth, ContactDampingLowersTheStableTimeStep) {
+  // The bound wheel-rig --check uses (time_step.h): dt < 4 / (c/m + sqrt((c/m)^2 + 4 k/m)). On
+  // 1.5 kg with k = 1e8 N/m: 2.45e-4 s undamped (dt = 2e-4 s is 0.82 of it: a warning), 1.65e-4 s
+  // with c = 1e4 N s/m (1.22 of it: an error, although omega dt = 1.63 < 2).
+  RigSimulation sim(parse_rig_config(config(), "t.toml"));
+  ASSERT_DOUBLE_EQ(sim.rig().spindle_dof_mass_kg(), 1.5);
+  FlatGround ground = make_flat_ground(sim.config(), sim.wheel());
+  const auto findings = run_checked(
+      sim, [&](const WheelPose &s, double t) { return ground.contact(s, t); }, 1e8, 1e4);
+  ASSERT_EQ(codes(findings), std::vector<std::string>{"dt_unstable/error"});
+  EXPECT_NE(findings[0].message.find("damping 10000 N s/m"), std::string::npos)
+      << findings[0].message;
+  EXPECT_NE(findings[0].message.find("stable up to dt = 0.000164575"), std::string::npos)
+      << findings[0].message;
 }
 
 TEST(RunHealth, EfficiencyAboveOneMinusSlipIsFlagged) {

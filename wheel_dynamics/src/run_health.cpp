@@ -2,6 +2,7 @@
 
 #include "wheelsim/config_messages.h"
 #include "wheelsim/rig/slip_modes.h"
+#include "wheelsim/rig/time_step.h"
 
 #include <cmath>
 #include <numeric>
@@ -108,7 +109,10 @@ void RunHealth::set_grid(double spacing_m, double elastic_K_Pa_m) {
         sim_.step(), sim_.time_s());
 }
 
-void RunHealth::set_contact_stiffness(double stiffness_N_m) { stiffness_N_m_ = stiffness_N_m; }
+void RunHealth::set_contact_stiffness(double stiffness_N_m, double damping_N_s_m) {
+  stiffness_N_m_ = stiffness_N_m;
+  damping_N_s_m_ = damping_N_s_m;
+}
 
 void RunHealth::before_step(const WheelWrench &w) {
   double bad = 0.0;
@@ -173,29 +177,36 @@ void RunHealth::after_step(const RigOutputs &o, double contacts) {
         o.step, o.time_s);
   }
 
-  // Stability: ω_c dt with ω_c = sqrt(k / m) of the contact spring on the spindle's mass.
-  const double k = grid_spacing_m_ > 0.0
-                       ? elastic_K_Pa_m_ * contacts * grid_spacing_m_ * grid_spacing_m_
-                       : stiffness_N_m_;
+  // Stability: the contact as a spring-damper on the spindle's mass, against the integrator's
+  // stable step (time_step.h, the bound wheel-rig --check applies to the springs the config fixes).
+  const bool grid = grid_spacing_m_ > 0.0;
+  const double k =
+      grid ? elastic_K_Pa_m_ * contacts * grid_spacing_m_ * grid_spacing_m_ : stiffness_N_m_;
   if (k > 0.0) {
-    const double m = sim_.rig().spindle_dof_mass_kg(), dt = sim_.config().run.dt_s;
-    const double wdt = std::sqrt(k / m) * dt;
-    const std::string what = "the contact's stiffness " + fmt(k) + " N/m on the wheel + " +
-                             "spindle mass " + fmt(m) + " kg gives omega*dt = " + fmt(wdt) +
-                             " at run.dt = " + fmt(dt) + " s (step " + std::to_string(o.step) + ")";
-    if (wdt > limits_.stability_error && !stability_failed_) {
+    const OscillatorMode contact{"", k, grid ? 0.0 : damping_N_s_m_,
+                                 sim_.rig().spindle_dof_mass_kg()};
+    const double dt = sim_.config().run.dt_s, limit_s = contact.stable_time_step_s();
+    const double share = dt / limit_s;
+    const std::string what =
+        "the contact's stiffness " + fmt(k) + " N/m" +
+        (contact.damping_N_s_m > 0.0 ? " and damping " + fmt(contact.damping_N_s_m) + " N s/m"
+                                     : std::string()) +
+        " on the wheel + spindle mass " + fmt(contact.mass_kg) +
+        " kg is stable up to dt = " + fmt(limit_s) +
+        " s ((omega dt)^2 + 2 (c/m) dt < 4); run.dt = " + fmt(dt) + " s is " + fmt(share) +
+        " of it (step " + std::to_string(o.step) + ")";
+    const std::string margin = fmt(limits_.stability_warning * limit_s);
+    if (share >= limits_.stability_error && !stability_failed_) {
       stability_failed_ = true;
       add(Severity::error, "dt_unstable",
-          what + ": above the explicit integrator's limit " + fmt(limits_.stability_error) +
-              "; reduce run.dt below " + fmt(dt * limits_.stability_warning / wdt) + " s",
-          o.step, o.time_s);
-    } else if (wdt > limits_.stability_warning && !stability_warned_ && !stability_failed_) {
+          what + ": the explicit integrator diverges; reduce run.dt below " + margin + " s", o.step,
+          o.time_s);
+    } else if (share > limits_.stability_warning && !stability_warned_ && !stability_failed_) {
       stability_warned_ = true;
       add(Severity::warning, "dt_unstable",
           what + ": less than a factor " +
-              fmt(limits_.stability_error / limits_.stability_warning) + " inside the limit " +
-              fmt(limits_.stability_error) + "; reduce run.dt below " +
-              fmt(dt * limits_.stability_warning / wdt) + " s for a margin",
+              fmt(limits_.stability_error / limits_.stability_warning) +
+              " inside the limit; reduce run.dt below " + margin + " s for a margin",
           o.step, o.time_s);
     }
   }

@@ -57,7 +57,7 @@ std::unique_ptr<Terrain> make(const RigConfig &c, const WheelProperties &wheel) 
 }
 
 void start(const RigConfig &c, const Terrain &, ParameterSink &, RunHealth &health) {
-  health.set_contact_stiffness(c.terrain.flat.stiffness_N_m);
+  health.set_contact_stiffness(c.terrain.flat.stiffness_N_m, c.terrain.flat.damping_N_s_m);
 }
 
 /// The normal penalty contact (k_n, c_n) on the wheel + spindle mass, as the run health's

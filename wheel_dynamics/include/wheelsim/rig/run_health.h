@@ -47,8 +47,8 @@ struct HealthLimits {
   double lost_contact_error = 0.5;     ///< [-]
   double slip_tolerance = 0.01;        ///< mean |s - s_target| over the test phase [-]
   double efficiency_tolerance = 0.01;  ///< η above 1 - s by more than this [-]
-  double stability_warning = 1.0;      ///< ω_c dt, contact frequency times time step [-]
-  double stability_error = 2.0;        ///< symplectic Euler's limit [-]
+  double stability_warning = 0.5;      ///< dt over the contact's stable step (time_step.h) [-]
+  double stability_error = 1.0;        ///< ... at or above which the integrator diverges [-]
   double grid_spacing_error = 0.5;     ///< grid spacing above this share of the rim radius [-]
   double grid_nodes_across = 3.0;      ///< ... or fewer nodes across the wheel's width [-]
   double grid_lug_width = 1.0;         ///< ... warning above this share of the lug thickness [-]
@@ -76,8 +76,9 @@ public:
   /// them), enables the contact-patch resolution check (contact counts are grid nodes) and the
   /// stability check with contact stiffness Ke·n·Δ².
   void set_grid(double spacing_m, double elastic_K_Pa_m);
-  /// A contact stiffness [N/m] for the stability check (flat ground: its k_n).
-  void set_contact_stiffness(double stiffness_N_m);
+  /// A fixed contact stiffness [N/m] and damping [N s/m] for the stability check (flat ground:
+  /// its k_n and c_n).
+  void set_contact_stiffness(double stiffness_N_m, double damping_N_s_m = 0.0);
 
   /// Before RigSimulation::advance: the wrench must be finite (throws RunHealthError).
   void before_step(const WheelWrench &wrench);
@@ -114,6 +115,7 @@ private:
   double grid_spacing_m_ = 0.0; // 0: not a grid terrain
   double elastic_K_Pa_m_ = 0.0; // SCM: stiffness per area [Pa/m]
   double stiffness_N_m_ = 0.0;  // flat: fixed contact stiffness [N/m]
+  double damping_N_s_m_ = 0.0;  // flat: fixed contact damping [N s/m]
   bool stability_warned_ = false, stability_failed_ = false;
   bool buried_warned_ = false; ///< sinkage_beyond_radius warned once (the wheel still carried)
   long long last_step_ = 0;

@@ -7,8 +7,8 @@
 // and trace 2 − (ω dt)² − (c/m) dt; the Jury conditions give the bound.) check_time_step applies
 // it to every spring-damper whose stiffness the config fixes: the suspension, and the terrain's
 // contact where the terrain declares one (TerrainKind::contact_mode: the flat ground). The SCM
-// contact stiffens with its area, which is known only while running: the run health checks it at
-// every step (dt_unstable); a DEM contact is LIGGGHTS' own.
+// contact stiffens with its area, which is known only while running: the run health checks it, and
+// the flat ground's, with the same bound at every step (dt_unstable); a DEM contact is LIGGGHTS'.
 #pragma once
 
 #include <string>
