@@ -187,26 +187,28 @@ void RunHealth::after_step(const RigOutputs &o, double contacts) {
                                  sim_.rig().spindle_dof_mass_kg()};
     const double dt = sim_.config().run.dt_s, limit_s = contact.stable_time_step_s();
     const double share = dt / limit_s;
-    const std::string what =
-        "the contact's stiffness " + fmt(k) + " N/m" +
-        (contact.damping_N_s_m > 0.0 ? " and damping " + fmt(contact.damping_N_s_m) + " N s/m"
-                                     : std::string()) +
-        " on the wheel + spindle mass " + fmt(contact.mass_kg) +
-        " kg is stable up to dt = " + fmt(limit_s) +
-        " s ((omega dt)^2 + 2 (c/m) dt < 4); run.dt = " + fmt(dt) + " s is " + fmt(share) +
-        " of it (step " + std::to_string(o.step) + ")";
-    const std::string margin = fmt(limits_.stability_warning * limit_s);
+    // The message is built only for a finding: this runs at every step.
+    const auto what = [&] {
+      return "the contact's stiffness " + fmt(k) + " N/m" +
+             (contact.damping_N_s_m > 0.0 ? " and damping " + fmt(contact.damping_N_s_m) + " N s/m"
+                                          : std::string()) +
+             " on the wheel + spindle mass " + fmt(contact.mass_kg) +
+             " kg is stable up to dt = " + fmt(limit_s) +
+             " s ((omega dt)^2 + 2 (c/m) dt < 4); run.dt = " + fmt(dt) + " s is " + fmt(share) +
+             " of it (step " + std::to_string(o.step) + ")";
+    };
+    const auto margin = [&] { return fmt(limits_.stability_warning * limit_s); };
     if (share >= limits_.stability_error && !stability_failed_) {
       stability_failed_ = true;
       add(Severity::error, "dt_unstable",
-          what + ": the explicit integrator diverges; reduce run.dt below " + margin + " s", o.step,
-          o.time_s);
+          what() + ": the explicit integrator diverges; reduce run.dt below " + margin() + " s",
+          o.step, o.time_s);
     } else if (share > limits_.stability_warning && !stability_warned_ && !stability_failed_) {
       stability_warned_ = true;
       add(Severity::warning, "dt_unstable",
-          what + ": less than a factor " +
+          what() + ": less than a factor " +
               fmt(limits_.stability_error / limits_.stability_warning) +
-              " inside the limit; reduce run.dt below " + margin + " s for a margin",
+              " inside the limit; reduce run.dt below " + margin() + " s for a margin",
           o.step, o.time_s);
     }
   }
