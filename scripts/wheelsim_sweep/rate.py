@@ -175,6 +175,10 @@ def _loop(text, what):
     return m
 
 
+def _last_lines(text):
+    return "\n".join(text.strip().splitlines()[-5:])
+
+
 def _run(cmd, cwd, what, say, stall_s):
     """Runs one benchmark step with its output in cwd/bench.log; returns (output, wall [s]). In a
     session of its own that dies with this process; killed whole (mpirun and its ranks) when its
@@ -193,17 +197,15 @@ def _run(cmd, cwd, what, say, stall_s):
                 f"rate benchmark: {what}", "--stall-timeout")
         except mpi_launch.Stalled as e:
             f.seek(0)
-            tail = "\n".join(f.read().strip().splitlines()[-5:])
             raise EstimateError(f"{e}\nits last lines (the log goes with the benchmark's "
-                                f"temporary directory):\n{tail}") from None
+                                f"temporary directory):\n{_last_lines(f.read())}") from None
         finally:
             watchdog.kill_sessions_until_empty([p.pid])  # what it left in its session
         f.seek(0)
         out = f.read()
     wall = time.monotonic() - t0
     if rc != 0:
-        tail = "\n".join(out.strip().splitlines()[-5:])
-        raise EstimateError(f"rate benchmark: {what} failed (exit {rc}):\n{tail}")
+        raise EstimateError(f"rate benchmark: {what} failed (exit {rc}):\n{_last_lines(out)}")
     return out, wall
 
 
