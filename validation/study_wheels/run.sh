@@ -28,8 +28,9 @@
 # wheel-sand friction at the grains' 0.7869 instead of 0.5 (sweep_wheel_mu.toml, the same bed;
 # ~1.2 h): how much of the DEM-SCM traction gap is the interface; speed — wheel 1 at 20 % at half
 # the wheel speed, 0.525 rad/s, over the same travel (sweep_speed.toml: test phase 12 s, window
-# 4-12 s; ~2.4 h): how much of the case depends on the speed; dt — wheel 1 at 20 % at half the
-# time step, 2.2e-5 s (sweep_dt.toml; ~2.5 h): how much depends on the step. Resumable: a re-run skips
+# 4-12 s; ~2.4 h estimated, 6 h measured on a slow machine): how much of the case depends on the
+# speed; dt — wheel 1 at 20 % at half the time step, 2.2e-5 s (sweep_dt.toml; ~2.5 h): how much
+# depends on the step. Resumable: a re-run skips
 # finished points. Writes here results.csv (DEM), results_<part>.csv (the others), comparison.md
 # and comparison.png (the case), comparison_active_domain.md (the check) and
 # provenance[_<part>].toml (git hash, command, machine, wall time); finished DEM points are kept in points/ (committed) and restored on the
