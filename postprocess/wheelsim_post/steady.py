@@ -188,7 +188,10 @@ def resolve_window(run, window, lug_count=None, lug_source="unknown"):
         end = t0 + window.end * (t1 - t0)
     else:
         start, end = t0 + window.start, t0 + window.end
-        if end > t1 * (1 + WINDOW_TOLERANCE) + WINDOW_TOLERANCE:
+        # a window ending with the test phase (--window-end = its duration) ends up to one
+        # sample interval after its last sample (t0 is the first sample): not worth a warning
+        interval = float(np.median(np.diff(times))) if len(times) > 1 else 0.0
+        if end > (t1 + interval) * (1 + WINDOW_TOLERANCE) + WINDOW_TOLERANCE:
             print(
                 f"wheelsim-post: warning: run file '{run.path}': window end "
                 f"{end:g} s is after the last test-phase sample ({t1:g} s); "

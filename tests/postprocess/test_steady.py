@@ -1,5 +1,7 @@
 """wheelsim_post.steady: the window and the statistics against the analytic answers."""
 
+import contextlib
+import io
 import math
 import unittest
 
@@ -125,6 +127,18 @@ class WindowTest(TempDirTestCase):
             PostError, "no_dp.h5' has no observable 'drawbar_pull'"
         ):
             stats(other)
+
+    def test_a_window_past_the_last_sample_warns_beyond_one_sample_interval(self):
+        # test phase 0.3 .. 1.3 s, one sample per 1 ms: ending the window half a sample after
+        # the last one (a window as long as the phase, t0 its first sample) is not warned of;
+        # two samples after it is
+        for end, warned in ((1.0005, False), (1.002, True)):
+            with self.subTest(end=end):
+                err = io.StringIO()
+                with contextlib.redirect_stderr(err):
+                    s = stats(self.run_path, make_window(0.5, end, None))
+                self.assertEqual(s["n_samples"], 501)
+                self.assertEqual("after the last test-phase sample" in err.getvalue(), warned)
 
     def test_window_after_the_data_is_an_error(self):
         with self.assertRaisesRegex(PostError, "holds no test-phase sample"):
