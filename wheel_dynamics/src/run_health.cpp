@@ -179,12 +179,12 @@ void RunHealth::after_step(const RigOutputs &o, double contacts) {
 
   // Stability: the contact as a spring-damper on the spindle's mass, against the integrator's
   // stable step (time_step.h, the bound wheel-rig --check applies to the springs the config fixes).
-  const bool grid = grid_spacing_m_ > 0.0;
-  const double k =
-      grid ? elastic_K_Pa_m_ * contacts * grid_spacing_m_ * grid_spacing_m_ : stiffness_N_m_;
+  // (SCM: Ke n Δ², no damper; the flat ground: the fixed k and c set_contact_stiffness gave)
+  const double k = grid_spacing_m_ > 0.0
+                       ? elastic_K_Pa_m_ * contacts * grid_spacing_m_ * grid_spacing_m_
+                       : stiffness_N_m_;
   if (k > 0.0) {
-    const OscillatorMode contact{"", k, grid ? 0.0 : damping_N_s_m_,
-                                 sim_.rig().spindle_dof_mass_kg()};
+    const OscillatorMode contact{"", k, damping_N_s_m_, sim_.rig().spindle_dof_mass_kg()};
     const double dt = sim_.config().run.dt_s, limit_s = contact.stable_time_step_s();
     const double share = dt / limit_s;
     // The message is built only for a finding: this runs at every step.
