@@ -4,7 +4,6 @@ import math
 import textwrap
 
 import numpy as np
-from matplotlib.ticker import MaxNLocator
 
 from .analysis import analyse_runs, group_label, window_lines
 from .csvio import write_csv
@@ -152,6 +151,8 @@ def plot_curves(groups, path, window_text, normalised=False, notes=()):
     """One panel per quantity against measured slip (signed convention: driving for s ≥ 0,
     skid for s < 0), error bars ± SEM; points whose health
     is not ok hollow, listed with the window notes in a footnote."""
+    from matplotlib.ticker import MaxNLocator  # matplotlib on first plot (plotting.py)
+
     names = NORMALISED_CURVE_QUANTITIES if normalised else CURVE_QUANTITIES
     fig, axes = panel_grid(len(names), columns=2)
     efficiency_values = []

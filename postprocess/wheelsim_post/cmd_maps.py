@@ -13,9 +13,6 @@ from .errors import PostError
 from .choices import split_list
 from .plotting import panel_grid, save
 from .runfile import RunFile
-from matplotlib.collections import PolyCollection
-from mpl_toolkits.axes_grid1 import make_axes_locatable
-
 from .vtk import (
     bounding_box_centre,
     read_wheel_surface,
@@ -139,6 +136,8 @@ def plot_snapshot(snap, path):
         interpolation="nearest",
         cmap="viridis",
     )
+    from mpl_toolkits.axes_grid1 import make_axes_locatable  # matplotlib on first plot
+
     bar_axes = make_axes_locatable(ax).append_axes("right", size="3%", pad=0.1)
     bar = fig.colorbar(image, cax=bar_axes)
     unit = "-" if snap.unit == "1" else snap.unit
@@ -206,6 +205,8 @@ def _binned(ax, surface, centre, args):
 
 def _triangles(ax, surface, centre):
     """Each triangle drawn in the (θ, y) plane, coloured by its pressure (loaded on top)."""
+    from matplotlib.collections import PolyCollection  # matplotlib on first plot (plotting.py)
+
     polygons = unrolled_triangles(surface, centre)
     pressure = surface.cell_data["contact_pressure"]
     order = np.argsort(pressure, kind="stable")

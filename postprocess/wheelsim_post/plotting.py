@@ -1,24 +1,33 @@
-"""matplotlib helpers (Agg backend): figure grids, phase shading, saving."""
+"""matplotlib helpers (Agg backend): figure grids, phase shading, saving.
+
+matplotlib is imported on the first plot, not with this module: pyplot costs ~0.5 s of start-up
+that the commands which write no PNG (results, statistics, --help, ...) need not pay."""
 
 import os
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402  (after selecting the backend)
-import numpy as np  # noqa: E402
-
-from .errors import PostError  # noqa: E402
-from .steady import PHASES  # noqa: E402
+from .errors import PostError
+from .steady import PHASES
 
 PHASE_COLOURS = {0: "tab:gray", 1: "tab:blue", 2: "tab:orange", 3: "tab:green"}
+
+
+def pyplot():
+    """matplotlib.pyplot on the Agg backend (imported on first use)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
 
 
 def panel_grid(count, columns=2, width=5.0, height=3.5, sharex=False):
     """A figure with ``count`` axes in a grid (unused cells removed); returns (fig, axes)."""
     columns = min(columns, count)
     rows = (count + columns - 1) // columns
-    fig, grid = plt.subplots(
+    fig, grid = pyplot().subplots(
         rows,
         columns,
         figsize=(width * columns, height * rows),
@@ -59,6 +68,7 @@ def save(fig, path, tight=True):
     """Saves ``fig`` as PNG to ``path`` and closes it (PostError if the directory is missing);
     ``tight``: apply tight_layout first (False if the caller laid the figure out)."""
     directory = os.path.dirname(os.path.abspath(path))
+    plt = pyplot()
     if not os.path.isdir(directory):
         plt.close(fig)
         raise PostError(

@@ -3,16 +3,23 @@
 Each function saves one figure to path and returns the matplotlib Figure (for tests and for
 callers who want more). Axes in the units a lab engineer reads: sinkage and displacement in mm,
 stresses in kPa; every title names the soil and the test, every axis its unit. The figures are
-made without pyplot, so no display or backend setting is needed.
+made without pyplot, so no display or backend setting is needed; matplotlib is imported on the
+first figure (~0.5 s of start-up the lab's other commands need not pay).
 """
 
 import numpy as np
-from matplotlib.figure import Figure
 
 __all__ = ["plot_pressure_sinkage", "plot_holds", "plot_shear_curves", "plot_mohr_coulomb",
            "plot_repose"]
 
 _DPI = 120
+
+
+def _figure(figsize):
+    """A matplotlib Figure (no pyplot; matplotlib imported on first use)."""
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=figsize)
 
 
 def _axes(ax, xlabel, ylabel, title, title_size=11, legend_size=8):
@@ -35,7 +42,7 @@ def plot_pressure_sinkage(path, soil_name, plates, fit=None):
 
     plates: sequence of (b_m, z_m, p_Pa) as given to fits.fit_bekker (whole curves may be given,
     unloading included); fit: its BekkerFit or None. x: sinkage z [mm]; y: pressure p [kPa]."""
-    fig = Figure(figsize=(7, 5))
+    fig = _figure(figsize=(7, 5))
     ax = fig.add_subplot()
     for k, (b, z, p) in enumerate(plates):
         z = np.asarray(z, float)
@@ -65,7 +72,7 @@ def plot_holds(path, soil_name, holds):
 
     holds: {b_m: [stage, ...]}, each stage a dict with t_s, p_Pa, z_m, p_moving_Pa, converged
     and fit (a fits.RelaxationFit or None), as analysis.plate_holds returns them."""
-    fig = Figure(figsize=(5.5 * len(holds), 4.5))
+    fig = _figure(figsize=(5.5 * len(holds), 4.5))
     for i, (b, stages) in enumerate(sorted(holds.items())):
         ax = fig.add_subplot(1, len(holds), i + 1)
         for k, h in enumerate(stages):
@@ -106,7 +113,7 @@ def plot_shear_curves(path, soil_name, curves, fits=None, lid_dz=None):
         raise ValueError(f"plot_shear_curves: {len(curves)} curves but {len(fits)} fits")
     if lid_dz is not None and len(lid_dz) != len(curves):
         raise ValueError(f"plot_shear_curves: {len(curves)} curves but {len(lid_dz)} lid records")
-    fig = Figure(figsize=(7, 5 if lid_dz is None else 7.5))
+    fig = _figure(figsize=(7, 5 if lid_dz is None else 7.5))
     if lid_dz is None:
         ax = fig.add_subplot()
     else:
@@ -144,7 +151,7 @@ def plot_mohr_coulomb(
     """Mohr–Coulomb strength envelope: peak (and residual) shear strengths vs normal stress with
     the fitted lines; c and φ of each in the legend. fit_*: MohrCoulombFit.
     x: normal stress σn [kPa]; y: shear strength τ [kPa]."""
-    fig = Figure(figsize=(7, 5))
+    fig = _figure(figsize=(7, 5))
     ax = fig.add_subplot()
     series = [("peak", sigma_peak_Pa, tau_peak_Pa, fit_peak, "o", "C0")]
     if sigma_res_Pa is not None:
@@ -174,7 +181,7 @@ def plot_repose(path, soil_name, x_m, h_m, fit):
 
     x_m, h_m: the profile given to repose.repose_angle; fit: its ReposeFit.
     x: horizontal position x [mm]; y: surface height h [mm]."""
-    fig = Figure(figsize=(8, 4.5))
+    fig = _figure(figsize=(8, 4.5))
     ax = fig.add_subplot()
     x = np.asarray(x_m, float)
     h = np.asarray(h_m, float)

@@ -2,10 +2,12 @@
 
 import argparse
 import os
+import subprocess
+import sys
 import unittest
 
 import synthetic
-from helpers import TempDirTestCase, run_cli
+from helpers import SCRIPT, TempDirTestCase, run_cli
 from wheelsim_post.cli import build_parser
 
 
@@ -152,6 +154,25 @@ class UsageTest(TempDirTestCase):
                 result = run_cli(*args)
                 self.assertEqual(result.returncode, 0, result.stderr)
                 self.assertIn("usage: wheelsim-post", result.stdout)
+
+    def test_start_up_leaves_matplotlib_out(self):
+        # pyplot is ~0.5 s of every command's start-up; only a command that draws imports it
+        # (plotting.pyplot). A run that writes a CSV and no PNG must not load it either.
+        code = (
+            "import sys\nfrom wheelsim_post import cli\ntry:\n    cli.main(sys.argv[1:])\n"
+            "except SystemExit:\n    pass\nprint(sorted(m for m in sys.modules\n"
+            "             if m.split('.')[0] == 'matplotlib' or m.startswith('mpl_toolkits.')))"
+        )  # (Debian's matplotlib registers the bare mpl_toolkits namespace at start-up: a .pth)
+        run = self.path("run.h5")
+        synthetic.write_rig_run(run)
+        for args in (["--version"], ["curves", run, "--csv", self.path("c.csv")]):
+            with self.subTest(args=args):
+                result = subprocess.run(
+                    [sys.executable, "-c", code, *args], capture_output=True, text=True,
+                    env=dict(os.environ, PYTHONPATH=os.path.dirname(SCRIPT)), timeout=120,
+                )
+                self.assertEqual(result.returncode, 0, result.stderr)
+                self.assertTrue(result.stdout.rstrip().endswith("[]"), result.stdout)
 
     def test_project_version_comes_from_cmakelists(self):
         from wheelsim_post import usage
