@@ -194,10 +194,12 @@ TriangleMesh load_mesh(const std::string &path, const LoadOptions &options, Mesh
   }
 
   Assimp::Importer importer;
-  // Triangulate polygons and join vertices that assimp considers identical; nothing that changes
-  // winding or normals (no aiProcess_FixInfacingNormals, no aiProcess_GenNormals).
-  const aiScene *scene =
-      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+  // Triangulate polygons; nothing that changes winding or normals (no
+  // aiProcess_FixInfacingNormals, no aiProcess_GenNormals). Vertices are welded by position below
+  // (VertexWelder), not by aiProcess_JoinIdenticalVertices: that step compares every vertex
+  // attribute, so on an STL (a normal per facet) it joins almost nothing, and it was most of the
+  // load time of a study wheel (wheel-rig --check).
+  const aiScene *scene = importer.ReadFile(path, aiProcess_Triangulate);
   if (scene == nullptr || scene->mRootNode == nullptr) {
     throw MeshError(path + ": cannot parse mesh file: " + importer.GetErrorString());
   }
