@@ -2,6 +2,7 @@
 #include <functional>
 #include <map>
 #include <numeric>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -105,6 +106,13 @@ TEST(WheelMesh, LuggedWheelsAreValidSolidsWithMeasurableLugs) {
   };
   for (const auto &c : cases) {
     SCOPED_TRACE(c.name);
+#ifdef WHEELSIM_SANITIZER_TIER
+    // Under ASan the four largest wheels (~3/4 of this test's 33 s there) are left to the Release
+    // tier: every lug type and the lug-count edge cases stay (tests/meshes/CMakeLists.txt).
+    const std::string name = c.name;
+    if (name == "wheel6" || name == "wheel4" || name == "scm_size_1620" || name == "nondirectional")
+      continue;
+#endif
     const auto w = generate_wheel(c.spec, 7850.0); // validates with check_mesh
     const auto report = wheelsim::geometry::check_mesh(w.mesh);
     EXPECT_TRUE(report.ok());
