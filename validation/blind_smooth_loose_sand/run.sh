@@ -39,9 +39,7 @@ while (($#)); do
   esac
 done
 ((smoke + sensitivity + scm > 1)) && { echo "run.sh: --smoke, --sensitivity and --scm exclude each other" >&2; exit 2; }
-# The smoke's bed-hold check lasts 0.05 s, not wheel-sweep's 0.2 s: 2 834 steps instead of 11 336,
-# which were ~2/3 of the smoke's LIGGGHTS steps (bed ~3 400, point ~3 000). Same deck and verdict.
-if ((smoke)); then out=${out:-$root/runs/validation/blind_smooth_loose_sand_smoke}; sweep_args+=(--bed-hold 0.05)
+if ((smoke)); then out=${out:-$root/runs/validation/blind_smooth_loose_sand_smoke}; sweep_args+=("${smoke_sweep_args[@]}")
 else out=${out:-$root/runs/validation/blind_smooth_loose_sand}; fi
 if ((scm)); then
   soil=$root/inputs/scm_soils/from_dem/loose_sand_1330.toml

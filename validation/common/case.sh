@@ -1,6 +1,7 @@
 # Sourced first by validation/<case>/run.sh: sets here (the case's folder), root (the checkout),
-# build_dir ($WHEELSIM_BUILD_DIR, else <root>/build) and python (Debian's, with numpy, h5py and
-# matplotlib), and brings write_provenance (provenance.sh) and stop_if_signalled.
+# build_dir ($WHEELSIM_BUILD_DIR, else <root>/build), python (Debian's, with numpy, h5py and
+# matplotlib) and smoke_sweep_args, and brings write_provenance (provenance.sh) and
+# stop_if_signalled.
 # Each run.sh wraps everything after `set -euo pipefail` in one brace group, so bash reads it
 # whole before it runs: bash otherwise reads a script as it goes, and an edit of a run.sh (or an
 # update of the checkout) during a run of hours would change what the running case does next.
@@ -8,6 +9,10 @@ here=$(cd "$(dirname "${BASH_SOURCE[1]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
 build_dir=${WHEELSIM_BUILD_DIR:-$root/build}
 python=/usr/bin/python3
+# What every case's --smoke passes to wheel-sweep: a bed-hold check of 0.05 s, not 0.2 s (CI time;
+# the same deck and verdict on a quarter of the steps; the 0.2 s check was ~2/3 of the blind
+# smoke's LIGGGHTS steps and ~1/10 of the study-wheels smoke's wall time).
+smoke_sweep_args=(--bed-hold 0.05)
 source "$root/validation/common/provenance.sh"
 
 # stop_if_signalled RC WHAT: wheel-sweep exited 128 + N (stopped by signal N, e.g. at a session's

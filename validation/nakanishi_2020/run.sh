@@ -38,7 +38,8 @@
 #          writes results_scm.csv, comparison_scm.md/png (against the cdt DEM curve, the soil it
 #          was fitted to) and provenance_scm.toml here.
 # --smoke: the CI version (the krot soil on a 0.40 m bin, its bed-hold check 0.05 s, one slip,
-#          0.3 s of test phase; minutes): same pipeline, outputs into --out-dir only (nothing in this folder changes).
+#          0.3 s of test phase; minutes): same pipeline, outputs into --out-dir only (nothing in
+#          this folder changes).
 set -euo pipefail
 # The rest is one brace group, read whole before it runs (common/case.sh says why).
 {
@@ -70,8 +71,7 @@ while (($#)); do
 done
 ((smoke + cdt + sensitivity + scm > 1)) && { echo "run.sh: --smoke, --cdt, --sensitivity and --scm exclude each other" >&2; exit 2; }
 runs_dir=$root/runs/validation/nakanishi_2020   # the cdt sweep's; its bed serves three sensitivities
-# The smoke's bed-hold check lasts 0.05 s, not wheel-sweep's 0.2 s (as the blind case's smoke).
-if ((smoke)); then config=$here/sweep_smoke.toml; out=${out:-${runs_dir}_smoke}; sweep_args+=(--bed-hold 0.05)
+if ((smoke)); then config=$here/sweep_smoke.toml; out=${out:-${runs_dir}_smoke}; sweep_args+=("${smoke_sweep_args[@]}")
 elif ((scm)); then config=$here/sweep_scm.toml; out=${out:-${runs_dir}_scm}
 elif ((cdt || sensitivity)); then config=$here/sweep_cdt.toml; out=${out:-$runs_dir}
 else config=$here/sweep.toml; out=${out:-$runs_dir/sensitivity/krot}; fi

@@ -111,9 +111,7 @@ sys.exit(tomllib.load(open(sys.argv[1], "rb")).get("terrain") != "scm")' "$here/
 }
 
 if ((smoke)); then
-  # The smoke's bed-hold check lasts 0.05 s, not wheel-sweep's 0.2 s (as the blind case's smoke):
-  # the same deck and verdict, a quarter of its steps (the 0.2 s check was ~1/10 of the smoke).
-  out=${out:-$root/runs/validation/study_wheels_smoke}; sweep_args+=(--bed-hold 0.05)
+  out=${out:-$root/runs/validation/study_wheels_smoke}; sweep_args+=("${smoke_sweep_args[@]}")
   window=(--window-start 0.1 --window-end 0.2)
   part sweep_smoke.toml "$out" "$out/results.csv" "$out/provenance.toml"
   "$python" "$here/compare.py" "$out/results.csv" --md "$out/comparison.md" \
