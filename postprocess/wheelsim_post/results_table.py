@@ -96,9 +96,23 @@ def wall_time(run):
     return seconds
 
 
+def writer_revisions(run):
+    """The git revisions that wrote a run file, in order: ``/h5md/creator``'s (the first start)
+    then each resume's (``/parameters/resume/<k>/git_revision``, k = 1, 2, ...), a revision
+    written once where consecutive ones repeat, joined by ' > '."""
+    revisions = [run.creator()["git_revision"]]
+    k = 1
+    while run.has_parameter(f"resume/{k}/step"):
+        revision = run.parameter_text(f"resume/{k}/git_revision", "")
+        if revision != revisions[-1]:
+            revisions.append(revision)
+        k += 1
+    return " > ".join(revisions)
+
+
 def run_cost(path):
-    """(wall_s, particles, np, git revision of the writer) of a run file; None for a value
-    that is not recorded.
+    """(wall_s, particles, np, writer_revisions()) of a run file; None for a value that is not
+    recorded.
 
     particles: ``/parameters/liggghts/atoms`` (DEM runs through scripts/wheel-cosim); np:
     ``/parameters/liggghts/np``, else 1 when the rig config's terrain is not "dem" (SCM and
@@ -108,7 +122,7 @@ def run_cost(path):
         particles = _count(run, PARTICLES_END_PARAMETER, "the number of particles")
         ranks = _count(run, RANKS_PARAMETER, "the number of MPI ranks of LIGGGHTS")
         terrain = rig_config(run).get("terrain", {}).get("type")
-        revision = run.creator()["git_revision"]
+        revision = writer_revisions(run)
     if ranks is None and terrain in ("scm", "flat"):
         ranks = 1
     return wall, particles, ranks, revision

@@ -153,6 +153,17 @@ class ResultsTest(TempDirTestCase):
         self.assertEqual(locked["terrain"], "dem")  # write_run's default config: np unknown
         self.assertEqual(locked["np"], "")
 
+    def test_run_git_revision_names_every_writer_in_order(self):
+        # a run resumed three times: twice at one revision, once at another
+        resumes = {"resume/1/git_revision": "abc", "resume/2/git_revision": "abc",
+                   "resume/3/git_revision": "def+dirty"}
+        resumes.update({f"resume/{k}/step": 100 * k for k in (1, 2, 3)})
+        syn.write_rig_run(self.dem, slip=0.2, dp_mean=100.0, torque=60.0, parameters=resumes)
+        (_, rows), _ = self.results()
+        revisions = {r["run_file"]: r["run_git_revision"] for r in rows}
+        self.assertEqual(revisions["dem_drive.h5"], "none > abc > def+dirty")
+        self.assertEqual(revisions["dem_skid.h5"], "none")  # never resumed: the creator's
+
     def test_header_names_the_git_revision_and_the_command(self):
         (comments, _), result = self.results("--window-fraction", "0.5", "1")
         git = next(c for c in comments if c.startswith("# git: "))
