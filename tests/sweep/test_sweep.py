@@ -31,8 +31,9 @@ FRICTION = 0.5
 # the one soil: on the flat ground with regularized friction DP = mu W once v_j >> v_c
 SOIL = (f'{{ name = "mu05", friction = {FRICTION}, friction_model = "regularized", '
         'slip_velocity_scale = 1.0e-3 }')
-# s simulated: a point takes ~3 s of wall time (400 s took 12-20 s, 2026-11-28)
-DURATION_SIGTERM = 100.0
+# s simulated: a point takes ~1.5 s of wall time on 2 idle cores (100 s took 0.5 s on 2026-12-03,
+# after mesh loading got 4x faster, and the second point finished before the SIGTERM came)
+DURATION_SIGTERM = 300.0
 DURATION_KILL = 1.0e5  # s simulated: ~10 min of wall time, far longer than a kill test
 
 
@@ -301,7 +302,11 @@ def case_resume_sigterm(a, work):
         print(line, end="")
         if line.startswith("[started 2/4]"):
             break
-    time.sleep(0.5)
+    # ... and its wheel-rig is running (a fixed sleep raced the point's end on a fast machine)
+    t1 = time.monotonic()
+    while not procs_under(out / "wheel1/mu05/s0.200") and time.monotonic() - t1 < 10:
+        time.sleep(0.02)
+    check(procs_under(out / "wheel1/mu05/s0.200"), "the second point's wheel-rig never started")
     p.send_signal(signal.SIGTERM)
     rest = p.stdout.read()
     print(rest, end="")
