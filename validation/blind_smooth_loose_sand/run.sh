@@ -9,10 +9,11 @@
 # hash, command, machine, wall time). Many hours on 2 cores (README "Cost"): run it in the
 # background, nohup ... &
 # --sensitivity: afterwards also the travel (0.25 m on a 0.52 m bin), speed (0.05 m/s), bed-depth
-#          (0.063 m; then ~0.155 m at s = 0.9 alone) and grain-size sweeps (1.5 x the main size,
-#          4.5-7.9 mm; then the calibrated 2-3.5 mm spheres), in that order, at 2 slips each but
-#          the deeper bed: results_travel_0.25.csv, results_speed_0.05.csv,
-#          results_depth_0.06.csv, results_depth_0.15.csv, results_grain_2.25.csv,
+#          (0.063 m; then ~0.155 m at s = 0.9 alone), time-step (half, at s = 0.9 alone) and
+#          grain-size sweeps (1.5 x the main size, 4.5-7.9 mm; then the calibrated 2-3.5 mm
+#          spheres), in that order, at 2 slips each but the deeper bed and the time step:
+#          results_travel_0.25.csv, results_speed_0.05.csv, results_depth_0.06.csv,
+#          results_depth_0.15.csv, results_dt_0.5.csv, results_grain_2.25.csv,
 #          results_grain_1.0.csv and sensitivity.png here.
 # --scm:   only the SCM half (sweep_scm.toml: the same rig and slips on the SCM soil the soil lab
 #          fitted to the DEM soil, inputs/scm_soils/from_dem/loose_sand_1330.toml; ~1 min per
@@ -99,20 +100,22 @@ fi
 "$python" "$here/plot.py" --png "$dest/prediction.png" "$dest/results.csv"
 if ((sensitivity)); then
   # the order is the order of what each tells: travel first (every main point warns of a trend:
-  # how far from steady are they), then speed (the quasi-static question), depth, grain (dearest)
+  # how far from steady are they), then speed (the quasi-static question), depth, time step,
+  # grain (dearest)
   sweep travel_0.25 "$here/sweep_travel.toml" 2.0 2.5 "$dest/results_travel_0.25.csv"
   sweep speed_0.05 "$here/sweep_speed.toml" 1.4 2.4 "$dest/results_speed_0.05.csv"
   sweep depth_0.06 "$here/sweep_depth.toml" 0.7 1.2 "$dest/results_depth_0.06.csv"
   sweep depth_0.15 "$here/sweep_depth_deep.toml" 0.7 1.2 "$dest/results_depth_0.15.csv"
+  sweep dt_0.5 "$here/sweep_dt.toml" 0.7 1.2 "$dest/results_dt_0.5.csv"
   sweep grain_2.25 "$here/sweep_grain_2.25.toml" 0.7 1.2 "$dest/results_grain_2.25.csv"
   sweep grain_1.0 "$here/sweep_grain.toml" 0.7 1.2 "$dest/results_grain_1.0.csv"
   "$python" "$here/plot.py" --png "$dest/sensitivity.png" \
-    --title "sensitivity: speed, grain size, bed depth, travel (smooth wheel, loose sand 1330)" \
+    --title "sensitivity: speed, grain size, bed depth, travel, time step (smooth wheel, loose sand 1330)" \
     "main: 0.1 m/s, d50 4.1 mm, bed 0.105 m=$dest/results.csv" \
     "0.05 m/s=$dest/results_speed_0.05.csv" "d50 6.2 mm=$dest/results_grain_2.25.csv" \
     "d50 2.75 mm=$dest/results_grain_1.0.csv" \
     "bed 0.063 m=$dest/results_depth_0.06.csv" "bed 0.155 m=$dest/results_depth_0.15.csv" \
-    "travel 0.25 m=$dest/results_travel_0.25.csv"
+    "travel 0.25 m=$dest/results_travel_0.25.csv" "dt 0.825e-5 s=$dest/results_dt_0.5.csv"
 fi
 write_provenance "$dest/provenance.toml" validation/blind_smooth_loose_sand \
   "validation/blind_smooth_loose_sand/run.sh${args[*]:+ }${args[*]}" \
