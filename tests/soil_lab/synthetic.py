@@ -1,5 +1,8 @@
 """Synthetic bulk-test data with known parameters (fixed seeds) for the soil_lab_py tests."""
 
+import json
+from pathlib import Path
+
 import numpy as np
 
 
@@ -42,3 +45,42 @@ def heap_particles(height_m, left_deg, right_deg, radius_m, depth_m=None, n_surf
     z[fill] = radius_m + rng.uniform(0.0, 1.0, fill.sum()) * (z[fill] - radius_m)
     z = np.maximum(z, radius_m)
     return x, y, z
+
+
+def shear_run(directory, sigma, c=1e3, phi_deg=30.0, K=1e-3, name=None, tau_scale=1.0):
+    """A shear box run at `sigma` [Pa] in directory/<name> (default shear_s<sigma>): 50
+    consolidation rows (phase 1), then 400 rows of a Janosi curve (phase 2) to j = 10 mm whose
+    plateau is tau_scale (c + sigma tan phi)."""
+    j = np.concatenate([np.zeros(50), np.linspace(0.0, 0.01, 400)])
+    tau = tau_scale * (c + sigma * np.tan(np.radians(phi_deg))) * -np.expm1(-j / K)
+    phase = np.repeat([1, 2], [50, 400])
+    t = np.arange(j.size) * 1e-3
+    run = Path(directory) / (name or f"shear_s{sigma:g}")
+    run.mkdir(parents=True)
+    np.savetxt(run / "shear.csv", np.column_stack([t, j, tau * 0.01, tau, sigma + 0 * j,
+                                                   0.05 + 0 * j, phase]),
+               header="time_s displacement_m shear_force_N tau_Pa sigma_Pa lid_z_m phase")
+    (run / "done.json").write_text(json.dumps(
+        {"meta": {"normal_stress_Pa": sigma, "box_m": 0.1, "speed_m_s": 0.005}, "wall_s": 2.0,
+         "steps": 1000, "particles": 500, "np": 1, "dt_s": 1e-5}))
+
+
+def repose_run(directory, angle_deg, name="repose", height_m=0.02, radius_m=0.001, seed=3):
+    """A lifted-cylinder repose run in directory/<name>: a cone of `angle_deg` (heap_particles)
+    centred on a square base of side base_m at x = base_m / 2, y = 0, written as LIGGGHTS'
+    write_dump (9 header lines, then "id x y z radius"). Returns base_m."""
+    x, y, z = heap_particles(height_m, angle_deg, angle_deg, radius_m, seed=seed)
+    base_m = 2.6 * height_m / np.tan(np.radians(angle_deg))  # the heap's foot inside the base
+    run = Path(directory) / name
+    run.mkdir(parents=True)
+    header = ["ITEM: TIMESTEP", "0", "ITEM: NUMBER OF ATOMS", str(x.size), "ITEM: BOX BOUNDS",
+              "0 1", "0 1", "0 1", "ITEM: ATOMS id x y z radius"]
+    np.savetxt(run / "repose.dump",
+               np.column_stack([np.arange(1, x.size + 1), x + 0.5 * base_m, y, z,
+                                np.full(x.size, radius_m)]),
+               fmt=["%d", "%.9g", "%.9g", "%.9g", "%.9g"], header="\n".join(header),
+               comments="")
+    (run / "done.json").write_text(json.dumps(
+        {"meta": {"base_m": base_m}, "wall_s": 2.0, "steps": 1000, "particles": int(x.size),
+         "np": 1, "dt_s": 1e-5}))
+    return base_m

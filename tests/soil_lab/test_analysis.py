@@ -12,6 +12,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
+import synthetic as syn
 from soil_lab_py import analysis, fits
 
 KE_Pa_m = 2.0e7  # the synthetic soil's unloading stiffness
@@ -129,6 +130,47 @@ class Analysis(unittest.TestCase):
         p1 = (1e4 / 0.032 + 5e5) * z1 ** 1.1
         self.assertAlmostEqual(analysis.plate_end_pressure(plate) / p1[z1 >= 0.016].mean(), 1.0,
                                places=9)
+
+    def test_shear_speed_check_compares_the_peaks(self):
+        # Three boxes; the one at 10 kPa again at half speed with a 10 % lower, then a 3 % lower
+        # plateau: the check reads -10 % (outside its 5 %) and -3 % (inside), relative.
+        for scale, passed in ((0.9, False), (0.97, True)):
+            d = Path(tempfile.mkdtemp())
+            (d / "soil.toml").write_text('name = "synthetic"\npreset = "standard"\n'
+                                         'dmax_m = 0.004\n')
+            for sigma in (5e3, 1e4, 2e4):
+                syn.shear_run(d, sigma)
+            syn.shear_run(d, 1e4, name="shear_s10000_half", tau_scale=scale)
+            r = analysis.analyse(d)
+            q, = r.quasi_static
+            self.assertEqual((q["run"], q["quantity"], q["unit"]),
+                             ("shear_s10000", "peak shear stress", "Pa"))
+            self.assertAlmostEqual(q["difference"], scale - 1.0, places=6)
+            self.assertAlmostEqual(q["half_speed"] / q["full_speed"], scale, places=6)
+            self.assertTrue(q["relative"])
+            self.assertEqual(q["tolerance"], 0.05)
+            self.assertIs(q["passed"], passed)
+            self.assertEqual(len(r.shears), 3)  # the half-speed box is not a Mohr-Coulomb point
+
+    def test_repose_speed_check_compares_the_angles_in_degrees(self):
+        # A 30 deg heap against one of 33 deg (fails the 1.5 deg tolerance), then against another
+        # 30 deg heap (another random packing: passes); the difference is absolute, in degrees.
+        for half_deg, passed in ((33.0, False), (30.0, True)):
+            d = Path(tempfile.mkdtemp())
+            (d / "soil.toml").write_text('name = "synthetic"\npreset = "standard"\n'
+                                         'dmax_m = 0.004\n')
+            syn.repose_run(d, 30.0)
+            syn.repose_run(d, half_deg, name="repose_half", seed=5)
+            r = analysis.analyse(d)
+            self.assertIsNone(r.repose_error)
+            q, = r.quasi_static
+            self.assertEqual((q["run"], q["quantity"], q["unit"]),
+                             ("repose", "angle of repose", "deg"))
+            self.assertAlmostEqual(q["full_speed"], 30.0, delta=0.5)
+            self.assertAlmostEqual(q["difference"], half_deg - 30.0, delta=0.7)
+            self.assertFalse(q["relative"])
+            self.assertEqual(q["tolerance"], 1.5)
+            self.assertIs(q["passed"], passed)
 
     def held_lab(self, tau_s, creep=0.0):
         d = Path(tempfile.mkdtemp())

@@ -22,9 +22,8 @@ import unittest
 from pathlib import Path
 from unittest import mock
 
-import numpy as np
-
 from soil_lab_py import cli, runner
+from synthetic import shear_run
 from test_analysis import plate_run
 
 SOIL_LAB = Path(__file__).resolve().parents[2] / "soil_lab" / "soil-lab"
@@ -136,23 +135,6 @@ youngs_Pa = 5e7
 [[invocations]]
 command = "soil-lab run synthetic.in"
 '''
-
-
-def shear_run(directory, sigma, c=1e3, phi_deg=30.0, K=1e-3):
-    """A shear box at `sigma` [Pa]: 50 consolidation rows (phase 1), then 400 rows of a Janosi
-    curve (phase 2) to j = 10 mm."""
-    j = np.concatenate([np.zeros(50), np.linspace(0.0, 0.01, 400)])
-    tau = (c + sigma * np.tan(np.radians(phi_deg))) * -np.expm1(-j / K)
-    phase = np.repeat([1, 2], [50, 400])
-    t = np.arange(j.size) * 1e-3
-    run = Path(directory) / f"shear_s{sigma:g}"
-    run.mkdir(parents=True)
-    np.savetxt(run / "shear.csv", np.column_stack([t, j, tau * 0.01, tau, sigma + 0 * j,
-                                                   0.05 + 0 * j, phase]),
-               header="time_s displacement_m shear_force_N tau_Pa sigma_Pa lid_z_m phase")
-    (run / "done.json").write_text(json.dumps(
-        {"meta": {"normal_stress_Pa": sigma, "box_m": 0.1, "speed_m_s": 0.005}, "wall_s": 2.0,
-         "steps": 1000, "particles": 500, "np": 1, "dt_s": 1e-5}))
 
 
 class DamagedLab(unittest.TestCase):
