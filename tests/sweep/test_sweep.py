@@ -303,10 +303,11 @@ def case_resume_sigterm(a, work):
         if line.startswith("[started 2/4]"):
             break
     # ... and its wheel-rig is running (a fixed sleep raced the point's end on a fast machine)
-    t1 = time.monotonic()
-    while not procs_under(out / "wheel1/mu05/s0.200") and time.monotonic() - t1 < 10:
+    t1, rig = time.monotonic(), []
+    while not rig and time.monotonic() - t1 < 10:
+        rig = procs_under(out / "wheel1/mu05/s0.200")
         time.sleep(0.02)
-    check(procs_under(out / "wheel1/mu05/s0.200"), "the second point's wheel-rig never started")
+    check(rig, "the second point's wheel-rig was never seen running")
     p.send_signal(signal.SIGTERM)
     rest = p.stdout.read()
     print(rest, end="")
