@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include <toml++/toml.h>
@@ -114,6 +115,7 @@ WheelProperties resolve_wheel_properties(const WheelConfig &w) {
       p.axle_inertia_kg_m2 = geometry::inertia_about_point(mp, Eigen::Vector3d::Zero())(1, 1);
       p.source += " (density " + fmt(*w.density_kg_m3) + " kg/m^3)";
     }
+    p.mesh = std::make_shared<const geometry::TriangleMesh>(std::move(mesh));
   }
   if (!w.density_kg_m3) {
     p.mass_kg = w.mass_kg.value();

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 namespace wheelsim::rig {
@@ -72,14 +73,20 @@ void check_domain(const RigConfig &config, const WheelProperties &wheel) {
   check_domain_length(config, wheel);
 }
 
-geometry::TriangleMesh load_wheel_mesh(const RigConfig &config) {
+/// The wheel surface: the one resolve_wheel_properties loaded, or loaded here for properties
+/// built without it.
+std::shared_ptr<const geometry::TriangleMesh> wheel_mesh(const RigConfig &config,
+                                                         const WheelProperties &wheel) {
   if (config.wheel.mesh.empty())
     throw RigConfigError(config.source + ": terrain.type = \"scm\" needs the wheel's surface: set "
                                          "wheel.mesh (OBJ, STL or PLY in the wheel frame)");
+  if (wheel.mesh)
+    return wheel.mesh;
   try {
     geometry::LoadOptions options;
     options.scale = config.wheel.mesh_scale;
-    return geometry::load_mesh(config.wheel.mesh, options);
+    return std::make_shared<const geometry::TriangleMesh>(
+        geometry::load_mesh(config.wheel.mesh, options));
   } catch (const std::exception &e) {
     throw RigConfigError(config.source + ": wheel.mesh: " + e.what());
   }
@@ -126,10 +133,10 @@ scm::ScmSettings scm_settings(const RigConfig &config, const WheelProperties &wh
 
 ScmGround::ScmGround(const RigConfig &config, const WheelProperties &wheel)
     : terrain_([&] {
-        const geometry::TriangleMesh mesh = load_wheel_mesh(config);
+        const auto mesh = wheel_mesh(config, wheel);
         check_domain(config, wheel);
         try {
-          return scm::ScmTerrain(scm_soil(config.terrain.scm), scm_settings(config, wheel), mesh);
+          return scm::ScmTerrain(scm_soil(config.terrain.scm), scm_settings(config, wheel), *mesh);
         } catch (const std::invalid_argument &e) {
           throw RigConfigError(config.source + ": [terrain] scm: " + e.what());
         }

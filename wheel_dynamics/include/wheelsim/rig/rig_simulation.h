@@ -21,12 +21,17 @@
 //   test:    run.duration at the target; constant_load / ramped_load apply their load law.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "wheelsim/rig/checkpoint.h"
 #include "wheelsim/rig/rig_config.h"
 #include "wheelsim/rig/rig_model.h"
+
+namespace wheelsim::geometry {
+struct TriangleMesh;
+}
 
 namespace wheelsim::rig {
 
@@ -44,6 +49,9 @@ struct WheelProperties {
   double lug_width_m = 0.0;  ///< lug thickness, across the lug [m]
   double lug_height_m = 0.0; ///< [m]
   std::string lug_source;    ///< the props file read, empty if none
+  /// The wheel surface as loaded from wheel.mesh (wheel frame, scaled by wheel.mesh_scale), kept
+  /// for the terrains that need it (SCM) so that a run loads the mesh once; null without a mesh.
+  std::shared_ptr<const geometry::TriangleMesh> mesh;
 };
 
 /// From the config: mass/inertia given, or from the mesh and density (wheelsim_geometry). With a
