@@ -24,17 +24,19 @@ def _error(msg):
     print(f"wheel-sweep: error: {msg}", file=sys.stderr)
 
 
-def _accept(record, now, files, reason, stamp):
+def _accept(record, now, files, reason, stamp, r):
     """Updates `record` (a dict with included_sha256) for the accepted `files` whose recorded
-    hash differs from `now`; returns (accepted [(key, old, new)], others [keys still differing])."""
+    hash differs from `now` (Runner r's portable paths: the record's are made so); returns
+    (accepted [(key, old, new)], others [keys still differing])."""
     recorded = record.get("included_sha256")
     if not isinstance(recorded, dict):
         return [], []
+    recorded = record["included_sha256"] = r.portable(recorded)
     accepted, others = [], []
     for k in sorted(set(recorded) | set(now)):
         if recorded.get(k) == now.get(k):
             continue
-        if Path(k).resolve() in files and k in recorded and k in now:
+        if Path(r.local(k)).resolve() in files and k in recorded and k in now:
             accepted.append((k, recorded[k], now[k]))
         else:
             others.append(k)
@@ -42,7 +44,7 @@ def _accept(record, now, files, reason, stamp):
         for k, old, new in accepted:
             recorded[k] = new
             record.setdefault("accepted_changes", []).append(
-                {"file": k, "old_sha256": old, "new_sha256": new, "reason": reason, "utc": stamp})
+                {"file": r.local(k), "old_sha256": old, "new_sha256": new, "reason": reason, "utc": stamp})
     return accepted, others
 
 
@@ -59,8 +61,9 @@ def accept_changes(r, files, reason):
     point_now = {p.index: r.included_hashes(p) for p in sw.points}  # current hashes, once
     beds = {id(p.soil): p.soil for p in sw.points if p.soil.recipe is not None}
     bed_now = {k: r.bed_inputs(soil) for k, soil in beds.items()}
-    included = {Path(f).resolve() for now in point_now.values() for f in now}
-    included |= {Path(f).resolve() for now in bed_now.values() for f in now["included_sha256"]}
+    included = {Path(r.local(f)).resolve() for now in point_now.values() for f in now}
+    included |= {Path(r.local(f)).resolve() for now in bed_now.values()
+                 for f in now["included_sha256"]}
     unknown = sorted(str(f) for f in files - included)
     if unknown:
         _error(f"--accept-change {unknown[0]}: not a file the sweep's DEM "
@@ -81,19 +84,20 @@ def accept_changes(r, files, reason):
             continue  # not run, unfinished or unreadable: it runs anyway
         if done.get("exit_status") != 0 or not (d / RUN_FILE).is_file():
             continue
-        if done.get("inputs_sha256") != r.inputs_hash(p):
+        if done.get("inputs_sha256") not in r.inputs_hashes(p):
             r.say(f"    {r.describe(p)}: left as is: its inputs changed (not only included "
                   "files), so it re-runs")
             continue
-        accepted, others = _accept(done, point_now[p.index], files, reason, stamp)
+        accepted, others = _accept(done, point_now[p.index], files, reason, stamp, r)
         if others:
             if accepted:
-                r.say(f"    {r.describe(p)}: left as is: {others[0]} changed too, so it re-runs")
+                r.say(f"    {r.describe(p)}: left as is: {r.local(others[0])} changed too, so it "
+                      "re-runs")
             continue
         if accepted:
             _write_atomic(d / DONE_FILE, json.dumps(done, indent=2) + "\n")
             n_points += 1
-            r.say(f"    {r.describe(p)}: accepted {', '.join(k for k, _, _ in accepted)} "
+            r.say(f"    {r.describe(p)}: accepted {', '.join(r.local(k) for k, _, _ in accepted)} "
                   f"({p.reldir}/{DONE_FILE})")
     for k, soil in beds.items():
         f = r.bed_inputs_file(soil)
@@ -102,20 +106,22 @@ def accept_changes(r, files, reason):
         except (OSError, ValueError):
             continue
         now = bed_now[k]
-        same_rest = all(record.get(k) == v for k, v in now.items() if k != "included_sha256")
+        rest = r.portable(record)
+        same_rest = all(rest.get(k) == v for k, v in now.items() if k != "included_sha256")
         if not same_rest:
             r.say(f"    bed {soil.label}: left as is: its soil file or in.soilbin changed, so it "
                   "is prepared again")
             continue
-        accepted, others = _accept(record, now["included_sha256"], files, reason, stamp)
+        accepted, others = _accept(record, now["included_sha256"], files, reason, stamp, r)
         if others:
             if accepted:
-                r.say(f"    bed {soil.label}: left as is: {others[0]} changed too")
+                r.say(f"    bed {soil.label}: left as is: {r.local(others[0])} changed too")
             continue
         if accepted:
             _write_atomic(f, json.dumps(record, sort_keys=True, indent=2) + "\n")
             n_beds += 1
-            r.say(f"    bed {soil.label}: accepted {', '.join(k for k, _, _ in accepted)} ({f})")
+            r.say(f"    bed {soil.label}: accepted "
+                  f"{', '.join(r.local(k) for k, _, _ in accepted)} ({f})")
     r.say(f"wheel-sweep: accepted the change of {len(files)} file(s) in {n_points} finished "
           f"point(s) and {n_beds} bed(s) (reason: {reason})")
     return 0

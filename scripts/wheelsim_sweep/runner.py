@@ -59,16 +59,25 @@ def _write_atomic(path, text):
 
 # the deck files a tiled bed is made with besides in.soilbin (docs/soil-bins.md "Tiled beds")
 TILE_DECKS = ("tile.in", "tile_check.in")
+# What the records write for the output, sweep-file, build and checkout directories
+# (Runner.portable)
+OUT_TOKEN, CONFIG_TOKEN, BUILD_TOKEN, REPO_TOKEN = "<out>", "<config>", "<build>", "<repo>"
 
 
-def _prep_keys_changed(recipe_file, recipe):
-    """When a bed's recorded recipe (recipe_file, JSON) differs from `recipe` in the preparation
-    keys of a tiled bed only (config.TILE_VARS): 'key old -> new, ...'; None when any other key
-    differs or the record cannot be read."""
+def _recorded(record_file, portable):
+    """A JSON record's contents with its paths made portable (Runner.portable); None if it cannot
+    be read."""
     try:
-        old = json.loads(Path(recipe_file).read_text())
+        return portable(json.loads(Path(record_file).read_text()))
     except (OSError, ValueError):
         return None
+
+
+def _prep_keys_changed(recipe_file, recipe, portable):
+    """When a bed's recorded recipe (recipe_file, JSON) differs from `recipe` (paths portable) in
+    the preparation keys of a tiled bed only (config.TILE_VARS): 'key old -> new, ...'; None when
+    any other key differs or the record cannot be read."""
+    old = _recorded(recipe_file, portable)
     if not isinstance(old, dict):
         return None
     keys = sorted(k for k in set(old) | set(recipe) if old.get(k) != recipe.get(k))
@@ -77,15 +86,21 @@ def _prep_keys_changed(recipe_file, recipe):
     return ", ".join(f"{k} {old.get(k, 'unset')} -> {recipe.get(k, 'unset')}" for k in keys)
 
 
-def _same_bed_inputs(inputs_file, inputs):
-    """True if a bed's recorded inputs (its .inputs.json) are `inputs`. A record from before the
-    included files were recorded is compared without them."""
+def _sha256_json(value):
+    return hashlib.sha256(json.dumps(value, sort_keys=True).encode()).hexdigest()
+
+
+def _same_bed_inputs(inputs_file, inputs, portable):
+    """True if a bed's recorded inputs (its .inputs.json) are `inputs` (Runner.bed_inputs), the
+    record's paths made portable as `inputs`' are (records before 2026-12-03 named absolute
+    paths). A record from before the included files were recorded is compared without them."""
     try:
         recorded = json.loads(inputs_file.read_text())
     except (OSError, ValueError):
         return False
     if not isinstance(recorded, dict):
         return False
+    recorded = portable(recorded)
     recorded.pop("accepted_changes", None)  # wheel-sweep --accept-change's notes (accept.py)
     if "included_sha256" not in recorded:
         inputs = {k: v for k, v in inputs.items() if k != "included_sha256"}
@@ -145,6 +160,21 @@ class Runner:
         self.exit_status = {}
         self._file_hashes = {}  # path -> ((size, mtime), sha256) of its contents (file_hash)
         self._includes = {}  # deck path -> the files it includes in turn (included_files)
+        # The directories whose absolute paths a point's and a bed's records name as tokens, so
+        # that the records hold when the output directory, the sweep file's directory (with the
+        # decks, meshes and soil files beside it), the build or the checkout moves (portable,
+        # local; docs/sweeps.md "Resume semantics"): longest path first, each as given and
+        # resolved.
+        anchors = {}
+        config_dir = Path(sweep.path).parent if getattr(sweep, "path", None) else None
+        for path, token in ((self.out, OUT_TOKEN), (config_dir, CONFIG_TOKEN),
+                            (build_dir, BUILD_TOKEN), (repo, REPO_TOKEN)):
+            if path is None:
+                continue
+            for form in (str(Path(path)), str(Path(path).resolve())):
+                if len(form) > 1:
+                    anchors.setdefault(form, token)
+        self._anchors = sorted(anchors.items(), key=lambda a: -len(a[0]))
         self.health = {}  # point index -> (status, codes) of its run file (check_health)
 
     # ---- output ---------------------------------------------------------------------------------
@@ -271,6 +301,10 @@ class Runner:
                    "--bed", str(self.bed_restart(p.soil)), "--deck", str(self.sweep.deck),
                    "--np", str(self.sweep.np), "--out", str(d / PART_FILE),
                    "--work", str(d / "cosim"), "--mesh", str(p.wheel.mesh)] + params
+            if p.soil.recipe is not None:
+                # the soil file of this checkout that the bed's record vouches for (bed_inputs),
+                # not the absolute path its .vars names: the checkout may have moved since
+                cmd += ["--soil-file", str(p.soil.dem_soil_file)]
             if resume:
                 cmd.append("--resume")
             if self.sweep.checkpoint_every_s is not None:
@@ -306,7 +340,41 @@ class Runner:
             kept = self._file_hashes[path] = (stamp, h.hexdigest())
         return kept[1]
 
+    def portable(self, value):
+        """`value` (a string, or a dict / list of them, keys included) with the absolute paths of
+        the output, sweep-file, build and checkout directories replaced by <out>, <config>,
+        <build> and <repo>: what the records compare, so that moving any of them re-runs
+        nothing."""
+        if isinstance(value, str):
+            for path, token in self._anchors:
+                value = value.replace(path, token)
+            return value
+        if isinstance(value, dict):
+            return {self.portable(k): self.portable(v) for k, v in value.items()}
+        if isinstance(value, (list, tuple)):
+            return [self.portable(v) for v in value]
+        return value
+
+    def local(self, text):
+        """A portable path (`portable`) as a path of this run: the tokens replaced by the
+        directories they stand for."""
+        for path, token in reversed(self._anchors):  # the resolved form first, then as given
+            text = text.replace(token, path)
+        return text
+
     def inputs_hash(self, p):
+        """The sha256 of `inputs_ident` with the output, build and checkout directories as tokens
+        (`portable`): what a finished point records (done.json inputs_sha256)."""
+        return _sha256_json(self.portable(self.inputs_ident(p)))
+
+    def inputs_hashes(self, p):
+        """The hashes a finished point's record may hold for the same inputs: `inputs_hash`, and
+        the one of records written before 2026-12-03, which named absolute paths (valid while the
+        directories have not moved)."""
+        ident = self.inputs_ident(p)
+        return {_sha256_json(self.portable(ident)), _sha256_json(ident)}
+
+    def inputs_ident(self, p):
         """What decides a point's result (not the out dir): its rig config, its run settings, and
         the contents of the files they name: the mesh, the SCM soil file; for DEM the deck, the
         bed (a restart and its .vars, or the bin recipe with in.soilbin), the DEM soil's include
@@ -333,7 +401,7 @@ class Runner:
                              bed_vars_sha256=self.file_hash(f"{bed}.vars"))
                 if p.soil.dem_soil_file is not None:  # (beds from before soil_file: by name)
                     ident.update(bed_soil_sha256=self.file_hash(p.soil.dem_soil_file))
-        return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
+        return ident
 
     def included_hashes(self, p):
         """{path: sha256} of the files a DEM point's LIGGGHTS inputs include in turn: the deck's
@@ -351,12 +419,13 @@ class Runner:
 
     def included_files(self, roots):
         """{path: sha256} of the files the LIGGGHTS inputs `roots` include in turn
-        (deck_includes with inputs_dir; each root is read once per run of the driver)."""
+        (deck_includes with inputs_dir; each root is read once per run of the driver); the paths
+        portable (`portable`)."""
         out = {}
         for r in roots:
             if str(r) not in self._includes:
                 self._includes[str(r)] = deck_includes(r, {"inputs_dir": str(self.repo / "inputs")})
-            out.update((str(f), self.file_hash(f)) for f in self._includes[str(r)])
+            out.update((self.portable(str(f)), self.file_hash(f)) for f in self._includes[str(r)])
         return out
 
     def bed_inputs_file(self, soil):
@@ -371,7 +440,7 @@ class Runner:
         (settle.in, ...)."""
         soilbin = self.repo / "inputs" / "in.soilbin"
         return {"soilbin_sha256": self.file_hash(soilbin),
-                "soil_file": str(soil.dem_soil_file),
+                "soil_file": self.portable(str(soil.dem_soil_file)),
                 "soil_file_sha256": self.file_hash(soil.dem_soil_file),
                 **self.tile_hashes(soil),
                 "included_sha256": self.included_files((soilbin, soil.dem_soil_file))}
@@ -400,14 +469,15 @@ class Runner:
             return False, "unreadable done.json"
         if done.get("exit_status") != 0:
             return False, f"failed before (exit {done.get('exit_status')})"
-        if done.get("inputs_sha256") != self.inputs_hash(p):
+        if done.get("inputs_sha256") not in self.inputs_hashes(p):
             return False, "inputs changed since it finished"
         recorded = done.get("included_sha256")
         if recorded is not None:
+            recorded = self.portable(recorded)
             now = self.included_hashes(p)
             changed = sorted(f for f in set(recorded) | set(now) if recorded.get(f) != now.get(f))
             if changed:
-                return False, f"included file {changed[0]} changed since it finished"
+                return False, f"included file {self.local(changed[0])} changed since it finished"
         if not (d / RUN_FILE).is_file():
             return False, f"{RUN_FILE} missing"
         return True, ""
@@ -584,15 +654,16 @@ class Runner:
             restart = self.bed_restart(soil)
             bdir = restart.parent
             recipe_file = bdir / f"{restart.name}.recipe.json"
-            recipe_text = json.dumps(soil.recipe, sort_keys=True, indent=2) + "\n"
+            recipe = self.portable(soil.recipe)  # recorded and compared with portable paths
+            recipe_text = json.dumps(recipe, sort_keys=True, indent=2) + "\n"
             inputs_file = self.bed_inputs_file(soil)
             inputs = self.bed_inputs(soil)
             inputs_text = json.dumps(inputs, sort_keys=True, indent=2) + "\n"
             why = ""
             if restart.is_file() and Path(f"{restart}.vars").is_file():
                 changed = None
-                if recipe_file.is_file() and recipe_file.read_text() != recipe_text:
-                    changed = _prep_keys_changed(recipe_file, soil.recipe)
+                if recipe_file.is_file() and _recorded(recipe_file, self.portable) != recipe:
+                    changed = _prep_keys_changed(recipe_file, recipe, self.portable)
                     if changed is None:
                         raise RuntimeError(f"bed '{soil.label}': {restart} exists but was "
                                            f"prepared from another recipe ({recipe_file}); "
@@ -604,7 +675,7 @@ class Runner:
                              "files' hashes were recorded: not checked against them)")
                     self.check_bed_hold(soil, restart)
                     continue
-                elif _same_bed_inputs(inputs_file, inputs):
+                elif _same_bed_inputs(inputs_file, inputs, self.portable):
                     self.say(f"bed {soil.label}: reusing {restart}")
                     self.check_bed_hold(soil, restart)
                     continue
@@ -666,7 +737,7 @@ class Runner:
             done = json.loads(self.bed_hold_file(restart).read_text())
         except (OSError, ValueError):
             return None
-        return done if done.get("key") == self.bed_hold_key(soil, restart) else None
+        return done if self.portable(done.get("key")) == self.bed_hold_key(soil, restart) else None
 
     def check_bed_hold(self, soil, restart):
         """The bed-hold check (docs/soil-bins.md "The bed-hold check") of a recipe bed: the bed

@@ -683,9 +683,11 @@ def case_dem_soil_file(a, work):
     check("extra.in: included" in (pdir / "cosim" / "liggghts.log").read_text(),
           "the coupled run's LIGGGHTS did not include the deck's extra file")
     included = done.get("included_sha256", {})
-    for f in (extra, repo / "inputs" / "soilbin" / "resume.in",
-              repo / "inputs" / "soilbin" / "bed_fixes.in"):
-        check(str(f) in included, f"done.json's included_sha256 misses {f}: {sorted(included)}")
+    # keyed by path with the sweep file's directory and the checkout as <config> and <repo>
+    # (docs/sweeps.md "Resume semantics")
+    for f in (f"<config>/{extra.name}", "<repo>/inputs/soilbin/resume.in",
+              "<repo>/inputs/soilbin/bed_fixes.in"):
+        check(f in included, f"done.json's included_sha256 misses {f}: {sorted(included)}")
     r = subprocess.run(cmd + ["--dry-run"], capture_output=True, text=True, timeout=120)
     check("finished  test_small my_sand s=0.2" in r.stdout, f"not finished on a re-run:\n{r.stdout}")
     # a file the deck includes changed (same path): the point re-runs, the bed stays

@@ -241,11 +241,16 @@ def case_tiled_recipe(a, work):
             check(msg in str(e), f"{entry}: {e}")
     rec = work / "bed.recipe.json"
     rec.write_text('{"soil": "ci", "bin_length": 1.0, "tile_length": 0.25}')
-    got = runner._prep_keys_changed(rec, {"soil": "ci", "bin_length": 1.0, "tile_length": 0.2})
+
+    def same(value):  # no paths to make portable here
+        return value
+    got = runner._prep_keys_changed(rec, {"soil": "ci", "bin_length": 1.0, "tile_length": 0.2},
+                                    same)
     check(got == "tile_length 0.25 -> 0.2", f"changed tile_length: {got!r}")
-    got = runner._prep_keys_changed(rec, {"soil": "ci", "bin_length": 1.0})
+    got = runner._prep_keys_changed(rec, {"soil": "ci", "bin_length": 1.0}, same)
     check(got == "tile_length 0.25 -> unset", f"tile_length removed: {got!r}")
-    got = runner._prep_keys_changed(rec, {"soil": "ci", "bin_length": 2.0, "tile_length": 0.2})
+    got = runner._prep_keys_changed(rec, {"soil": "ci", "bin_length": 2.0, "tile_length": 0.2},
+                                    same)
     check(got is None, f"bin_length changed too: {got!r} (expected None: another bed)")
     # estimate: 1.0 m bin of 4 blocks (0.25 m), d_max 0.02 m, end zones 6 d_max = 0.12 m
     # (weight 0.24), check 0.02 s, max_settle 3 s, relax 0.1 s + bound 0.5 s, dt 1e-4 s:
@@ -992,6 +997,110 @@ def case_accept_change(a, work):
           "after accepting: expected the first point finished, the bed reused, the second to run")
 
 
+def case_moved_tree(a, work):
+    """Records that hold when directories move (docs/sweeps.md "Resume semantics"): two finished
+    DEM points (of three) and a recipe bed, recorded as wheel-sweep records them, in a project directory that
+    holds the sweep file, its deck, mesh and soil file (by path), the output and the build
+    directory; --dry-run finds both points finished and reuses the bed for the third, and still does
+    after the whole directory is renamed. A record in the form written before 2026-12-03
+    (absolute paths: the inputs hash, the included files' keys, the bed's soil_file) is accepted
+    where it was written and does not hold once moved (the bed's recipe names the soil file's old
+    path: refused, naming it, as before). portable / local on a checkout elsewhere: the
+    four directories become <out>, <config>, <build>, <repo> and back, a path outside them stays."""
+    import hashlib
+    from wheelsim_sweep import config, runner
+    repo = Path(a.sweep).resolve().parents[1]
+    first = work / "project"
+    build = first / "build"
+    _stand_in_rig(build, otherwise="exit 0\n")
+    (first / "wheel.stl").write_text("solid w\nendsolid w\n")
+    (first / "in.deck").write_text("# not run\n")
+    (first / "sand.in").write_text((repo / "inputs" / "soils" / "ci.in").read_text())
+    (first / "rig.toml").write_text('[run]\ndt = 1e-4\nduration = 0.5\n[motor]\nomega = 1.0\n'
+                                    '[terrain]\ntype = "dem"\n')
+    (first / "sweep.toml").write_text(
+        'terrain = "dem"\nbase = "rig.toml"\nwheels = ["wheel.stl"]\n'
+        'soils = [{ soil = "sand.in", bin_length = 0.3 }]\nslips = [0.1, 0.2, 0.3]\n'
+        '[dem]\nnp = 1\ndeck = "in.deck"\n')
+
+    def record(top, legacy=False):
+        """Writes the finished points' and the bed's records under `top` as the driver does (with
+        absolute paths, as before 2026-12-03, if legacy)."""
+        sw = config.load(top / "sweep.toml", repo, top / "build")
+        r = runner.Runner(sw, top / "out", repo, top / "build", 1)
+        same = (lambda v: v)
+        form = same if legacy else r.portable
+        for p in sw.points[:2]:  # the third is to run: the bed is checked for it
+            d = r.point_dir(p)
+            d.mkdir(parents=True, exist_ok=True)
+            (d / "run.h5").write_text("")
+            ident = r.inputs_ident(p)
+            included = {r.local(k): v for k, v in r.included_hashes(p).items()}
+            (d / "done.json").write_text(json.dumps(
+                {"exit_status": 0, "status": "done",
+                 "inputs_sha256": hashlib.sha256(json.dumps(
+                     form(ident), sort_keys=True).encode()).hexdigest(),
+                 "included_sha256": form(included)}, indent=2) + "\n")
+        soil = sw.points[0].soil
+        restart = r.bed_restart(soil)
+        restart.parent.mkdir(parents=True, exist_ok=True)
+        for f in (restart, Path(f"{restart}.vars")):
+            f.write_text("x")
+        inputs = r.bed_inputs(soil)
+        inputs = {**inputs, "soil_file": r.local(inputs["soil_file"]),
+                  "included_sha256": {r.local(k): v for k, v in
+                                      inputs["included_sha256"].items()}}
+        (restart.parent / f"{restart.name}.recipe.json").write_text(
+            json.dumps(form(soil.recipe), sort_keys=True, indent=2) + "\n")
+        r.bed_inputs_file(soil).write_text(json.dumps(form(inputs), sort_keys=True, indent=2)
+                                           + "\n")
+        return r, sw
+
+    def dry_run(top):
+        return _run(a, str(top / "sweep.toml"), "--out-dir", str(top / "out"), "--build-dir",
+                    str(top / "build"), "--bed-hold", "0", "--dry-run")
+
+    r, sw = record(first)
+    done = json.loads((r.point_dir(sw.points[0]) / "done.json").read_text())
+    ident = r.portable(r.inputs_ident(sw.points[0]))
+    bed = json.loads(r.bed_inputs_file(sw.points[0].soil).read_text())
+    check(ident["mesh"] == "<config>/wheel.stl" and ident["deck"] == "<config>/in.deck"
+          and ident["bed"].startswith("<out>/beds/") and bed["soil_file"] == "<config>/sand.in"
+          and done["included_sha256"] and
+          all(k.startswith("<repo>/inputs/") for k in done["included_sha256"]),
+          f"records name the directories as tokens: {ident}, {bed}, {done}")
+    for top, what in ((first, "where they were written"), (work / "moved", "after the move")):
+        if top != first:
+            first.rename(top)
+        res = dry_run(top)
+        check(res.returncode == 0 and "1 point(s) to run, 2 finished" in res.stdout
+              and "reusing" in res.stdout and "would prepare" not in res.stdout,
+              f"{what}: expected both points finished and the bed reused")
+    legacy = work / "legacy"
+    (work / "moved").rename(legacy)
+    shutil.rmtree(legacy / "out")
+    record(legacy, legacy=True)
+    res = dry_run(legacy)
+    check(res.returncode == 0 and "1 point(s) to run, 2 finished" in res.stdout
+          and "reusing" in res.stdout, "legacy records where they were written: expected finished")
+    legacy.rename(work / "legacy_moved")
+    res = dry_run(work / "legacy_moved")
+    check(res.returncode != 0 and "exists but was prepared from another recipe" in res.stderr
+          and "0 point(s) to run" not in res.stdout,
+          "legacy records moved: expected them not to hold (the bed's recipe names the soil "
+          "file's old path: refused, as before 2026-12-03)")
+    elsewhere = runner.Runner(sw, "/x/runs/out", Path("/x/repo"), Path("/x/repo/build"), 1)
+    cfg_dir = str(Path(sw.path).parent)
+    paths = {"/x/runs/out/beds/b.restart": "<out>/beds/b.restart",
+             "/x/repo/build/meshes/w.stl": "<build>/meshes/w.stl",
+             "/x/repo/inputs/in.soilbin": "<repo>/inputs/in.soilbin",
+             f"{cfg_dir}/in.deck": "<config>/in.deck", "/data/w.stl": "/data/w.stl"}
+    got = elsewhere.portable({"k": list(paths)})["k"]
+    check(got == list(paths.values()), f"portable: {got}")
+    back = [elsewhere.local(v) for v in got]
+    check(back == list(paths), f"local: {back}")
+
+
 def case_included_at_start(a, work):
     """A DEM point records the included files' hashes, and its inputs hash (the soil file's among
     them), as they were when it started, and an edit while the driver runs is seen (file_hash
@@ -1037,7 +1146,7 @@ def case_included_at_start(a, work):
     counter = {"started": 0, "finished": 0, "total": 1, "running": {}, "walls": []}
     r.run_point(p, counter)
     done = json.loads((r.point_dir(p) / runner.DONE_FILE).read_text())
-    got = done.get("included_sha256", {}).get(str(inc.resolve()))
+    got = done.get("included_sha256", {}).get(r.portable(str(inc.resolve())))
     check(done.get("exit_status") == 0, f"the stand-in point finished ({done})")
     check(got == v1, f"recorded hash of {inc.name} is the one at the start ({got} vs {v1})")
     check(done.get("inputs_sha256") == inputs_at_start,
