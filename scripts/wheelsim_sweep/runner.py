@@ -358,13 +358,13 @@ class Runner:
     def local(self, text):
         """A portable path (`portable`) as a path of this run: the tokens replaced by the
         directories they stand for."""
-        for path, token in reversed(self._anchors):  # the resolved form first, then as given
+        for path, token in reversed(self._anchors):  # a directory's shorter form, if two
             text = text.replace(token, path)
         return text
 
     def inputs_hash(self, p):
-        """The sha256 of `inputs_ident` with the output, build and checkout directories as tokens
-        (`portable`): what a finished point records (done.json inputs_sha256)."""
+        """The sha256 of `inputs_ident` with the directories it names as tokens (`portable`):
+        what a finished point records (done.json inputs_sha256)."""
         return _sha256_json(self.portable(self.inputs_ident(p)))
 
     def inputs_hashes(self, p):
