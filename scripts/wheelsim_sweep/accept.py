@@ -44,7 +44,8 @@ def _accept(record, now, files, reason, stamp, r):
         for k, old, new in accepted:
             recorded[k] = new
             record.setdefault("accepted_changes", []).append(
-                {"file": r.local(k), "old_sha256": old, "new_sha256": new, "reason": reason, "utc": stamp})
+                {"file": r.local(k), "old_sha256": old, "new_sha256": new, "reason": reason,
+                 "utc": stamp})
     return accepted, others
 
 

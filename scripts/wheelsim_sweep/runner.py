@@ -94,13 +94,9 @@ def _same_bed_inputs(inputs_file, inputs, portable):
     """True if a bed's recorded inputs (its .inputs.json) are `inputs` (Runner.bed_inputs), the
     record's paths made portable as `inputs`' are (records before 2026-12-03 named absolute
     paths). A record from before the included files were recorded is compared without them."""
-    try:
-        recorded = json.loads(inputs_file.read_text())
-    except (OSError, ValueError):
-        return False
+    recorded = _recorded(inputs_file, portable)
     if not isinstance(recorded, dict):
         return False
-    recorded = portable(recorded)
     recorded.pop("accepted_changes", None)  # wheel-sweep --accept-change's notes (accept.py)
     if "included_sha256" not in recorded:
         inputs = {k: v for k, v in inputs.items() if k != "included_sha256"}

@@ -999,15 +999,15 @@ def case_accept_change(a, work):
 
 def case_moved_tree(a, work):
     """Records that hold when directories move (docs/sweeps.md "Resume semantics"): two finished
-    DEM points (of three) and a recipe bed, recorded as wheel-sweep records them, in a project directory that
-    holds the sweep file, its deck, mesh and soil file (by path), the output and the build
-    directory; --dry-run finds both points finished and reuses the bed for the third, and still does
-    after the whole directory is renamed. A record in the form written before 2026-12-03
-    (absolute paths: the inputs hash, the included files' keys, the bed's soil_file) is accepted
-    where it was written and does not hold once moved (the bed's recipe names the soil file's old
-    path: refused, naming it, as before). portable / local on a checkout elsewhere: the
-    four directories become <out>, <config>, <build>, <repo> and back, a path outside them stays."""
-    import hashlib
+    DEM points (of three) and a recipe bed, recorded as wheel-sweep records them, in a project
+    directory that holds the sweep file, its deck, mesh and soil file (by path), the output and
+    the build directory; --dry-run finds both points finished and reuses the bed for the third,
+    and still does after the whole directory is renamed. A record in the form written before
+    2026-12-03 (absolute paths: the inputs hash, the included files' keys, the bed's soil_file) is
+    accepted where it was written and does not hold once moved (the bed's recipe names the soil
+    file's old path: refused, naming it, as before). portable / local on a checkout elsewhere:
+    the four directories become <out>, <config>, <build>, <repo> and back, a path outside them
+    stays."""
     from wheelsim_sweep import config, runner
     repo = Path(a.sweep).resolve().parents[1]
     first = work / "project"
@@ -1038,8 +1038,7 @@ def case_moved_tree(a, work):
             included = {r.local(k): v for k, v in r.included_hashes(p).items()}
             (d / "done.json").write_text(json.dumps(
                 {"exit_status": 0, "status": "done",
-                 "inputs_sha256": hashlib.sha256(json.dumps(
-                     form(ident), sort_keys=True).encode()).hexdigest(),
+                 "inputs_sha256": runner._sha256_json(form(ident)),
                  "included_sha256": form(included)}, indent=2) + "\n")
         soil = sw.points[0].soil
         restart = r.bed_restart(soil)

@@ -1,7 +1,7 @@
 #include "wheelsim/rig/scm_ground.h"
 
 #include "wheelsim/config_messages.h"
-#include "wheelsim/geometry/mesh_io.h"
+#include "wheelsim/geometry/triangle_mesh.h"
 #include "wheelsim/scm/soil_file.h"
 
 #include <cmath>
@@ -73,23 +73,14 @@ void check_domain(const RigConfig &config, const WheelProperties &wheel) {
   check_domain_length(config, wheel);
 }
 
-/// The wheel surface: the one resolve_wheel_properties loaded, or loaded here for properties
-/// built without it.
+/// The wheel surface: the one resolve_wheel_properties loaded (resolved again for properties
+/// built without it).
 std::shared_ptr<const geometry::TriangleMesh> wheel_mesh(const RigConfig &config,
                                                          const WheelProperties &wheel) {
   if (config.wheel.mesh.empty())
     throw RigConfigError(config.source + ": terrain.type = \"scm\" needs the wheel's surface: set "
                                          "wheel.mesh (OBJ, STL or PLY in the wheel frame)");
-  if (wheel.mesh)
-    return wheel.mesh;
-  try {
-    geometry::LoadOptions options;
-    options.scale = config.wheel.mesh_scale;
-    return std::make_shared<const geometry::TriangleMesh>(
-        geometry::load_mesh(config.wheel.mesh, options));
-  } catch (const std::exception &e) {
-    throw RigConfigError(config.source + ": wheel.mesh: " + e.what());
-  }
+  return wheel.mesh ? wheel.mesh : resolve_wheel_properties(config.wheel).mesh;
 }
 
 } // namespace
