@@ -8,10 +8,11 @@
 # then writes into this folder results.csv, curves.csv, prediction.png and provenance.toml (git
 # hash, command, machine, wall time). Many hours on 2 cores (README "Cost"): run it in the
 # background, nohup ... &
-# --sensitivity: afterwards also the travel (0.25 m on a 0.52 m bin), speed (0.05 m/s), bed-depth
+# --sensitivity: afterwards also the travel (0.25 m on a 0.52 m bin, all nine slips: the prediction
+#          at steady sinkage, README "The steady-state sweep"), speed (0.05 m/s), bed-depth
 #          (0.063 m; then ~0.155 m at s = 0.9 alone), time-step (half, at s = 0.9 alone) and
 #          grain-size sweeps (1.5 x the main size, 4.5-7.9 mm; then the calibrated 2-3.5 mm
-#          spheres), in that order, at 2 slips each but the deeper bed and the time step:
+#          spheres), in that order, at 2 slips each but the travel, the deeper bed and the time step:
 #          results_travel_0.25.csv, results_speed_0.05.csv, results_depth_0.06.csv,
 #          results_depth_0.15.csv, results_dt_0.5.csv, results_grain_2.25.csv,
 #          results_grain_1.0.csv and sensitivity.png here.
