@@ -6,6 +6,10 @@ The bin spans x in [0, bin_length], y in [-bin_width/2, bin_width/2]; the floor 
 column's surface is the largest z + r of the spheres whose centres lie in it. in.soilbin's bed
 depth is the mean of these column tops over its own grid (bed_grid); a profile along x is their
 mean across y in each column row (profile_x).
+
+The column tops lie about d_max/2 above the grains' mean level. The equivalent surface
+(equivalent_surface) is the level a bed packed throughout as its core would have to hold the
+same solid volume: a Gibbs dividing surface, independent of grain size on a flat bed.
 """
 
 import math
@@ -17,7 +21,7 @@ import numpy as np
 from .errors import PostError
 
 __all__ = ["Particles", "read_dump", "parse_deck_line", "bed_grid", "column_grid",
-           "column_tops", "profile_x"]
+           "column_tops", "profile_x", "volume_above", "EquivalentSurface", "equivalent_surface"]
 
 #: measure.in's grid: columns about 2 d_max wide, at most 20 along x and 10 across.
 BED_GRID_MAX = (20, 10)
@@ -142,3 +146,55 @@ def profile_x(tops, y_edges, y_band=None):
     with np.errstate(invalid="ignore"):
         mean = np.where(used > 0, np.nansum(band, axis=1) / np.maximum(used, 1), np.nan)
     return mean, used
+
+
+def volume_above(particles, level):
+    """Volume [m^3] of each sphere above the plane z = ``level``: the spherical cap of height
+    h = clip(z + r - level, 0, 2 r), pi h^2 (3 r - h) / 3."""
+    r = particles.radius
+    h = np.clip(particles.z + r - level, 0.0, 2.0 * r)
+    return math.pi * h * h * (3.0 * r - h) / 3.0
+
+
+@dataclass(frozen=True)
+class EquivalentSurface:
+    """The bed's equivalent surface ``level_m`` [m]: core_top_m + V / (A phi_core), with V the
+    solid volume above core_top_m and phi_core the solid fraction between core_bottom_m and
+    core_top_m, both over the area A of the interior (x, y) cell the spheres' centres are
+    counted in."""
+
+    level_m: float
+    core_solid_fraction: float
+    core_bottom_m: float
+    core_top_m: float
+    area_m2: float
+    spheres: int
+
+
+def equivalent_surface(particles, bin_length, bin_width, dmax, bed_depth):
+    """The equivalent surface of a bed (EquivalentSurface), over the interior cell in.soilbin
+    measures the core bulk density in (x in [d_max, L - d_max], |y| <= W/2 - d_max; soil-bins.md
+    "core_bulk_density"), with the core z in [d_max, bed_depth - 2 d_max]. Each sphere whose
+    centre lies in the cell counts whole in (x, y) and by its exact volume in z. The overlaps of
+    a multisphere clump's spheres count twice, in the core as above it (the ratio holds where
+    clumps are alike throughout). PostError when the bed is too small for a core (depth below
+    4 d_max, or no interior)."""
+    x_lo, x_hi = dmax, bin_length - dmax
+    y_hi = 0.5 * bin_width - dmax
+    bottom, top = dmax, bed_depth - 2.0 * dmax
+    if x_hi <= x_lo or y_hi <= 0.0 or top <= bottom:
+        raise PostError(f"bed {bin_length:g} x {bin_width:g} m, {bed_depth:g} m deep, is too small "
+                        f"for a core beyond d_max = {dmax:g} m of its walls and 2 d_max of its top "
+                        "(needs a depth of at least 4 d_max): no equivalent surface")
+    inside = ((particles.x >= x_lo) & (particles.x <= x_hi) & (np.abs(particles.y) <= y_hi))
+    cell = Particles(particles.step, particles.x[inside], particles.y[inside],
+                     particles.z[inside], particles.radius[inside])
+    area = (x_hi - x_lo) * 2.0 * y_hi
+    above_top = float(np.sum(volume_above(cell, top)))
+    core = float(np.sum(volume_above(cell, bottom))) - above_top
+    phi = core / (area * (top - bottom))
+    if not phi > 0.0:
+        raise PostError(f"no solid between z = {bottom:g} and {top:g} m in the bed's interior: "
+                        "no core to measure the equivalent surface against")
+    return EquivalentSurface(top + above_top / (area * phi), phi, bottom, top, area,
+                             int(np.count_nonzero(inside)))

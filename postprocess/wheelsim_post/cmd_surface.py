@@ -151,6 +151,21 @@ def stretches(x_centre, values, x_wheel, length):
     return out
 
 
+def equivalent_line(particles, deck):
+    """The summary's line on the bed's equivalent surface (bed_surface.equivalent_surface), or
+    why it has none."""
+    depth = deck["bed_depth"]
+    try:
+        eq = bed_surface.equivalent_surface(particles, deck["bin_length"], deck["bin_width"],
+                                            deck["soil_dmax"], depth)
+    except PostError as exc:
+        return f"  equivalent surface: none ({exc})"
+    return (f"  equivalent surface {eq.level_m:.6f} m ({(eq.level_m - depth) * 1e3:+.2f} mm from "
+            f"the bed depth): the level of a bed packed as its core (solid fraction "
+            f"{eq.core_solid_fraction:.4f} over z {eq.core_bottom_m:.4f}-{eq.core_top_m:.4f} m, "
+            f"{eq.spheres} spheres in the interior) that holds the same solid volume")
+
+
 def run(args):
     """Reads the restart(s), prints the summary, writes the CSV and PNG; returns 0."""
     if args.np < 1:
@@ -187,6 +202,8 @@ def run(args):
           + (f", y in [{band[0]:g}, {band[1]:g}] m" if band else ""))
     print(f"  mean surface {np.nanmean(surface):.6f} m; the bed depth recorded at preparation "
           f"(the runs' sinkage reference) {depth:.6f} m")
+    equivalent = equivalent_line(particles, deck)
+    print(equivalent)
     if change is not None:
         print(f"  mean change from the bed as prepared ({args.reference}): "
               f"{np.nanmean(change) * 1e3:+.2f} mm over the same columns")
@@ -220,7 +237,8 @@ def run(args):
             row.append(int(used[i]))
             rows.append(row)
         comments = [f"wheelsim-post {' '.join(args.argv)}",
-                    f"restart {args.restart} at step {deck['step']}; bed depth {depth!r} m"]
+                    f"restart {args.restart} at step {deck['step']}; bed depth {depth!r} m",
+                    equivalent.strip()]
         write_csv(args.csv, comments, header, rows)
     if args.png:
         plot(args.png, x_centre, surface - depth, change, x_wheel, args.restart)

@@ -91,6 +91,62 @@ class Profile(unittest.TestCase):
             bed_surface.profile_x(tops, y_edges, (0.35, 0.4))
 
 
+def lattice(nx, ny, nz, r, top_fill=0.0):
+    """A simple cubic packing of spheres of radius r touching their neighbours (solid fraction
+    pi/6) filling a bin nx 2r long and ny 2r wide to nz layers, floor at z = 0, centred on y = 0;
+    with ``top_fill`` = 0.5 a layer nz + 1 on every other site (a checkerboard)."""
+    i, j, k = np.meshgrid(np.arange(nx), np.arange(ny), np.arange(nz + 1), indexing="ij")
+    keep = k < nz
+    if top_fill == 0.5:
+        keep |= (k == nz) & ((i + j) % 2 == 0)
+    x, y, z = ((2 * i + 1) * r)[keep], ((2 * j + 1) * r - ny * r)[keep], ((2 * k + 1) * r)[keep]
+    return spheres(x, y, z, r=r)
+
+
+class Equivalent(unittest.TestCase):
+    R = 0.005
+
+    def test_cap_volumes_are_exact(self):
+        r = 0.01
+        p = spheres([0.0] * 4, [0.0] * 4, [0.0, 0.0, 0.0, 0.0], r=r)
+        full = 4.0 / 3.0 * np.pi * r ** 3
+        np.testing.assert_allclose(bed_surface.volume_above(p, -1.0), full, rtol=1e-14)
+        np.testing.assert_allclose(bed_surface.volume_above(p, 1.0), 0.0, atol=0)
+        np.testing.assert_allclose(bed_surface.volume_above(p, 0.0), full / 2, rtol=1e-14)
+        # against the integral of the slices' areas pi (r^2 - t^2) above t = 0.3 r
+        t = np.linspace(0.3 * r, r, 200001)
+        numeric = np.trapz(np.pi * (r * r - t * t), t)
+        self.assertAlmostEqual(bed_surface.volume_above(p, 0.3 * r)[0] / numeric, 1.0, places=9)
+
+    def test_a_lattice_s_equivalent_surface_is_its_top_plane(self):
+        r, n = self.R, 10
+        eq = bed_surface.equivalent_surface(lattice(n, n, 12, r), n * 2 * r, n * 2 * r, 2 * r,
+                                            12 * 2 * r)
+        self.assertAlmostEqual(eq.level_m, 12 * 2 * r, places=12)
+        self.assertAlmostEqual(eq.core_solid_fraction, np.pi / 6, places=12)
+        self.assertEqual(eq.spheres, (n - 2) ** 2 * 12)      # centres d_max from the walls
+        self.assertAlmostEqual(eq.area_m2, ((n - 2) * 2 * r) ** 2, places=15)
+
+    def test_a_half_filled_top_layer_raises_it_by_half_a_layer(self):
+        # the column tops of such a bed lie a whole layer up wherever a top sphere is; the
+        # equivalent surface counts the volume: half a layer
+        r, n = self.R, 10
+        eq = bed_surface.equivalent_surface(lattice(n, n, 12, r, top_fill=0.5), n * 2 * r,
+                                            n * 2 * r, 2 * r, 13 * 2 * r)
+        self.assertAlmostEqual(eq.level_m, 12 * 2 * r + r, places=12)
+        self.assertAlmostEqual(eq.core_solid_fraction, np.pi / 6, places=12)
+
+    def test_a_bed_too_small_for_a_core_is_an_error(self):
+        r = self.R
+        with self.assertRaisesRegex(PostError, r"too small for a core .* at least 4 d_max"):
+            bed_surface.equivalent_surface(lattice(10, 10, 3, r), 0.1, 0.1, 2 * r, 6 * r)
+        with self.assertRaisesRegex(PostError, r"too small for a core"):
+            bed_surface.equivalent_surface(lattice(2, 2, 12, r), 4 * r, 4 * r, 2 * r, 24 * r)
+        line = cmd_surface.equivalent_line(lattice(10, 10, 3, r), {
+            "bed_depth": 6 * r, "bin_length": 0.1, "bin_width": 0.1, "soil_dmax": 2 * r})
+        self.assertIn("equivalent surface: none (bed 0.1 x 0.1 m", line)
+
+
 DUMP = """ITEM: TIMESTEP
 120
 ITEM: NUMBER OF ATOMS
