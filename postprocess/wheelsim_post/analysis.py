@@ -9,7 +9,7 @@ from .health import (ACTIVE_ALLOWANCE_PARAMETER, BED_DEPTH_PARAMETER, BIN_LENGTH
                      WHEEL_WIDTH_PARAMETER, Health, postprocess_findings)
 from .metadata import read_metadata
 from .runfile import RunFile
-from .steady import steady_state
+from .steady import Stat, steady_state
 from .wheelinfo import lug_count
 
 
@@ -65,6 +65,24 @@ def analyse_run(path, window, lugs=None):
 def analyse_runs(paths, window, lugs=None):
     """RunResults of ``paths`` (in order); PostError on the first unusable file."""
     return [analyse_run(path, window, lugs) for path in paths]
+
+
+def offset_sinkage(results, offset_m):
+    """Reads every result's sinkage against a surface ``offset_m`` below the one its run recorded
+    (e.g. a DEM bed's equivalent surface, bed_surface.equivalent_surface): the mean less
+    ``offset_m``, std and SEM unchanged. The health findings keep the recorded surface (their
+    limits are geometry measured from it)."""
+    for r in results:
+        s = r.stats["sinkage"]
+        r.stats["sinkage"] = Stat(s.mean - offset_m, s.std, s.sem)
+
+
+def sinkage_offset_comment(offset_m):
+    """The tables' header line on a sinkage offset ([] for none)."""
+    if not offset_m:
+        return []
+    return [f"sinkage: read against a surface {offset_m:g} m below the one each run recorded "
+            "(--sinkage-offset); health findings keep the recorded one"]
 
 
 def group_label(metadata, group_by):

@@ -5,8 +5,10 @@ import textwrap
 
 import numpy as np
 
-from .analysis import analyse_runs, group_label, window_lines
+from .analysis import (analyse_runs, group_label, offset_sinkage, sinkage_offset_comment,
+                       window_lines)
 from .csvio import write_csv
+from .errors import PostError
 from .metadata import parse_group_by
 from .options import add_window_options, window_from_args
 from .plotting import panel_grid, save
@@ -61,6 +63,15 @@ def add_parser(subparsers):
     parser.add_argument("--csv", metavar="OUT.csv", help="write the table here")
     parser.add_argument("--png", metavar="OUT.png", help="write the plot here")
     parser.add_argument("--results", metavar="OUT.csv", help=RESULTS_HELP)
+    parser.add_argument(
+        "--sinkage-offset",
+        type=float,
+        default=0.0,
+        metavar="M",
+        help="read sinkage against a surface M metres below the one each run recorded, e.g. a "
+        "DEM bed's equivalent surface (wheelsim-post surface): every sinkage is M less "
+        "(default 0)",
+    )
     parser.add_argument(
         "--normalised",
         action="store_true",
@@ -209,8 +220,15 @@ def run(args):
     """Runs the subcommand; returns the exit status."""
     window = window_from_args(args)
     group_by = parse_group_by(args.group_by)
+    if not math.isfinite(args.sinkage_offset):
+        raise PostError(f"--sinkage-offset: expected a finite length [m], got "
+                        f"{args.sinkage_offset:g}")
     print(window.describe())
     results = analyse_runs(args.runs, window, args.lugs)
+    if args.sinkage_offset:
+        offset_sinkage(results, args.sinkage_offset)
+        print(f"sinkage read against a surface {args.sinkage_offset:g} m below the one each run "
+              "recorded (--sinkage-offset)")
     groups = sorted_groups(results, group_by)
     rows = []
     for label, members in groups.items():
@@ -240,7 +258,7 @@ def run(args):
             "units: see column suffixes (_N, _Nm, _m, _s; none = dimensionless); "
             "tractive_efficiency_of_means = DP_mean*v_mean/(T_mean*omega_mean) is plotted; "
             "dp_over_w = DP/W, torque_over_w_reff = T/(W*R_eff), W = vertical_load_N",
-        ]
+        ] + sinkage_offset_comment(args.sinkage_offset)
         footer = ["notes:"] + notes if notes else []
         write_csv(args.csv, comments, csv_header(), rows, footer)
         print(f"wrote {args.csv}")

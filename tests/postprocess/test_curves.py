@@ -103,6 +103,32 @@ class CurvesTest(TempDirTestCase):
         self.assertEqual(rows[0]["n_samples"], "101")
         self.assertAlmostEqual(float(rows[0]["window_start_s"]), 0.85, places=9)
 
+    def test_sinkage_offset_moves_the_sinkage_mean_only(self):
+        # read against a surface 5 mm lower: every sinkage mean 5 mm less, its std and SEM, the
+        # other quantities and the health as without; the tables say so in their header
+        plain, shifted = self.path("plain.csv"), self.path("shifted.csv")
+        results = self.path("results.csv")
+        self.assertEqual(run_cli("curves", *self.runs, "--csv", plain).returncode, 0)
+        result = run_cli("curves", *self.runs, "--csv", shifted, "--results", results,
+                         "--sinkage-offset", "0.005")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        _, before = read(plain)
+        comments, after = read(shifted)
+        self.assertEqual(len(before), len(after))
+        for b, a in zip(before, after):
+            self.assertAlmostEqual(float(a["sinkage_mean_m"]), float(b["sinkage_mean_m"]) - 0.005,
+                                   places=12)
+            for column in ("sinkage_std_m", "sinkage_sem_m", "drawbar_pull_mean_N", "health_codes"):
+                self.assertEqual(a[column], b[column], column)
+        self.assertTrue(any("surface 0.005 m below the one each run recorded" in c
+                            for c in comments))
+        comments, table = read(results)
+        self.assertTrue(any("(--sinkage-offset)" in c for c in comments))
+        self.assertEqual(sorted(float(r["sinkage_m"]) for r in table),
+                         sorted(float(r["sinkage_mean_m"]) for r in after))
+        result = run_cli("curves", self.runs[0], "--sinkage-offset", "inf")
+        self.assertOneLineError(result, "--sinkage-offset: expected a finite length [m], got inf")
+
 
 class NonFiniteWindowTest(TempDirTestCase):
     """A window in which an observable has no finite sample is an error, not a row of NaN."""
