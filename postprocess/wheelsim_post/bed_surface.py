@@ -7,7 +7,7 @@ column's surface is the largest z + r of the spheres whose centres lie in it. in
 depth is the mean of these column tops over its own grid (bed_grid); a profile along x is their
 mean across y in each column row (profile_x).
 
-The column tops lie above the grains' mean level (0.62-0.63 d_max on the validation beds). The
+The column tops lie above the grains' mean level (0.50-0.63 d_max on the validation beds). The
 equivalent surface (equivalent_surface) is the level a bed packed throughout as its core would
 have to hold the same solid volume: a Gibbs dividing surface, the level a continuum has.
 """
