@@ -227,8 +227,7 @@ def run(args):
     results = analyse_runs(args.runs, window, args.lugs)
     if args.sinkage_offset:
         offset_sinkage(results, args.sinkage_offset)
-        print(f"sinkage read against a surface {args.sinkage_offset:g} m below the one each run "
-              "recorded (--sinkage-offset)")
+        print(*sinkage_offset_comment(args.sinkage_offset))
     groups = sorted_groups(results, group_by)
     rows = []
     for label, members in groups.items():

@@ -222,7 +222,7 @@ def write_results(path, results, window, args):
         "std; normal_load_N = W (rig vertical load); traction_force_N = T/R_eff",
         "wall_s: the rig process's wall time; particles: LIGGGHTS atoms; np: LIGGGHTS MPI "
         "ranks (1 for SCM and the flat ground); blank where the run file does not record it",
-    ] + sinkage_offset_comment(getattr(args, "sinkage_offset", 0.0))
+    ] + sinkage_offset_comment(args.sinkage_offset)
     notes = [
         f"{r.path}: health {r.health.verdict} ({r.health.codes})"
         for r in results
