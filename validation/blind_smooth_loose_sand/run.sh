@@ -19,7 +19,9 @@
 # --scm:   only the SCM half (sweep_scm.toml: the same rig and slips on the SCM soil the soil lab
 #          fitted to the DEM soil, inputs/scm_soils/from_dem/loose_sand_1330.toml; ~1 min per
 #          point): results_scm.csv, comparison_scm.md/png (DEM against SCM) and
-#          provenance_scm.toml here. Not part of the blind prediction (README).
+#          provenance_scm.toml here; then the same at the steady-state sweep's travel
+#          (sweep_scm_travel.toml): results_scm_travel_0.25.csv and
+#          comparison_scm_travel_0.25.md. Not part of the blind prediction (README).
 # Finished points are kept in points/ (committed) and restored on the next run (README).
 # --smoke: the CI version (a tiny bin, its bed-hold check 0.05 s, slip -0.5, 0.05 s of test phase;
 #          minutes): same pipeline, outputs into --out-dir only (nothing in this folder changes).
@@ -86,6 +88,12 @@ if ((scm)); then
     "DEM (the prediction)=$here/results.csv" "SCM, fitted to the DEM soil=$here/results_scm.csv"
   "$python" "$root/validation/common/dem_vs_scm.py" "$here/results.csv" "$here/results_scm.csv" \
     --md "$here/comparison_scm.md"
+  # and at the steady-state sweep's travel and window (README "The steady-state sweep")
+  sweep scm_travel "$here/sweep_scm_travel.toml" 2.0 2.5 "$here/results_scm_travel_0.25.csv"
+  if [[ -f $here/results_travel_0.25.csv ]]; then
+    "$python" "$root/validation/common/dem_vs_scm.py" "$here/results_travel_0.25.csv" \
+      "$here/results_scm_travel_0.25.csv" --md "$here/comparison_scm_travel_0.25.md"
+  fi
   write_provenance "$here/provenance_scm.toml" validation/blind_smooth_loose_sand \
     "validation/blind_smooth_loose_sand/run.sh${args[*]:+ }${args[*]}" "$started_utc" "$start" "$out/scm"
   exit $status
