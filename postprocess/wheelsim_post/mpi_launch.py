@@ -44,16 +44,54 @@ def mpirun(np_):
     return cmd
 
 
+AUTOGROUP = "/proc/self/autogroup"
+
+
+def autogroup_nice(path=AUTOGROUP):
+    """The nice value of this process's scheduler autogroup (Linux with
+    kernel.sched_autogroup_enabled: `/autogroup-N nice K`), or None where there is none."""
+    try:
+        with open(path) as f:
+            return int(f.read().split()[-1])
+    except (OSError, ValueError, IndexError):
+        return None
+
+
+def session_nice():
+    """The autogroup nice a new session started from this process should have, so that it runs
+    as niced as this process (docs/dem-performance.md "Sharing the cores"): the larger of this
+    process's own nice and its autogroup's, or None when there is nothing to carry (both 0, or
+    no autogroups)."""
+    group = autogroup_nice()
+    if group is None:
+        return None
+    want = max(group, os.getpriority(os.PRIO_PROCESS, 0))
+    return want if want > 0 else None
+
+
 def die_with_parent(parent_pid, new_session=False, who="wheelsim"):
     """A preexec_fn: the child gets SIGKILL when the thread that started it dies
     (PR_SET_PDEATHSIG), also on SIGKILL; if the parent `parent_pid` died before prctl took effect,
     the child kills itself. new_session: also a session of its own (wheel-sweep's watchdog kills
-    whole sessions). libc is loaded here, in the parent, not in the forked child."""
+    whole sessions), whose scheduler autogroup gets this process's niceness (session_nice): a
+    new session is a new autogroup at nice 0, and under autogroups nice acts only within a group,
+    so a point of `nice -n 19 wheel-sweep` would otherwise take a core's share from a run beside
+    it as if it were not niced. libc is loaded here, in the parent, not in the forked child."""
     prctl = ctypes.CDLL(None, use_errno=True).prctl
+    carry = session_nice() if new_session else None
 
     def preexec():
         if new_session:
             os.setsid()
+            if carry is not None:
+                try:  # raising a group's nice needs no privilege; where it fails, run as is
+                    fd = os.open(AUTOGROUP, os.O_WRONLY)
+                    try:
+                        os.write(fd, str(carry).encode())
+                    finally:
+                        os.close(fd)
+                except OSError:
+                    pass
         if prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0) != 0:
             os.write(2, f"{who}: prctl(PR_SET_PDEATHSIG) failed\n".encode())
             os._exit(127)
