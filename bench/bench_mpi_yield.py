@@ -23,13 +23,14 @@ after. Not a test.
 """
 import argparse
 import os
-import re
 import statistics
 import subprocess
 import sys
 import time
 
-LOOP = re.compile(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
+from liggghts_log_path import loops  # puts postprocess/ on the path
+from wheelsim_post import mpi_launch  # noqa: E402  (the tools' own launch words)
+
 BUSY = "while True: pass"
 # name -> (extra Popen keywords, the busy process's own prologue)
 COMPETITORS = {
@@ -43,19 +44,17 @@ COMPETITORS = {
 
 def run(exe, inputs, bed, steps, yield_idle, work):
     """(ms per step, atoms) of one 2-rank resume of `bed` for `steps` steps."""
-    cmd = ["mpirun", "-np", "2", "--oversubscribe", "--bind-to", "none",
-           "--mca", "mpi_yield_when_idle", str(yield_idle)]
-    if os.geteuid() == 0:
-        cmd.append("--allow-run-as-root")
+    cmd = mpi_launch.mpirun(2) + ["--mca", "mpi_yield_when_idle", str(yield_idle)]
     cmd += [exe, "-in", os.path.join(inputs, "soilbin", "resume.in"), "-log", "none",
             "-var", "inputs_dir", inputs, "-var", "restart_file", bed,
             "-var", "resume_steps", str(steps), "-var", "resume_thermo", str(steps)]
     out = subprocess.run(cmd, cwd=work, capture_output=True, text=True)
-    m = LOOP.search(out.stdout)
-    if out.returncode != 0 or not m:
+    summary = loops(out.stdout)
+    if out.returncode != 0 or not summary:
         sys.exit(f"bench: {' '.join(cmd)} failed ({out.returncode}):\n{out.stdout[-2000:]}"
                  f"{out.stderr[-2000:]}")
-    return 1e3 * float(m.group(1)) / int(m.group(3)), int(m.group(4))
+    loop = summary[-1]
+    return 1e3 * loop.seconds / loop.steps, loop.atoms
 
 
 def main():
@@ -71,11 +70,8 @@ def main():
     if a.steps < 1 or a.repeats < 1:
         p.error("--steps and --repeats must be at least 1")
     exe, inputs = os.path.abspath(a.exe), os.path.abspath(a.inputs)
-    try:
-        with open("/proc/self/autogroup") as f:
-            group = f.read().strip()
-    except OSError:
-        group = "none (this kernel has no autogroups)"
+    group = mpi_launch.autogroup_nice()
+    group = "none (this kernel has none)" if group is None else f"nice {group}"
     print(f"bench_mpi_yield: load average before {os.getloadavg()[0]:.2f} on {os.cpu_count()} "
           f"cores; this benchmark's autogroup: {group}; {a.steps} steps per run, "
           f"{a.repeats} repeats")
