@@ -10,13 +10,14 @@
 // includes, derives from FixInsertStream without including its header.
 #include "fix_insert_stream.h"
 
-#include "contact_models.h"      // GranStyle, ContactModel
-#include "fix_wall_gran_base.h"  // Walls::Granular
-#include "granular_pair_style.h" // PairStyles::Factory
-#include "granular_wall.h"       // Walls::Factory
-#include "pair_gran_base.h"      // PairStyles::Granular
-#include "rolling_model_epsdt.h" // wheelsim's rolling_friction epsdt
-#include "rolling_model_krot.h"  // wheelsim's rolling_friction krot
+#include "contact_models.h"                    // GranStyle, ContactModel
+#include "fix_wall_gran_base.h"                // Walls::Granular
+#include "granular_pair_style.h"               // PairStyles::Factory
+#include "granular_wall.h"                     // Walls::Factory
+#include "pair_gran_base.h"                    // PairStyles::Granular
+#include "rolling_model_epsdt.h"               // wheelsim's rolling_friction epsdt
+#include "rolling_model_krot.h"                // wheelsim's rolling_friction krot
+#include "tangential_model_history_adhesive.h" // wheelsim's tangential history_adhesive
 
 #include <cstdlib>
 #include <cstring>
@@ -65,19 +66,26 @@ Combination combination(const char *keywords) {
 
 /// The combinations, each declared once here. A model named here must be listed in
 /// contact_model_styles/ (its id is declared there).
-/// Every combination with wheelsim's `rolling_friction krot` or `epsdt` must be here: LIGGGHTS'
-/// generic class does not know these models and stops with "Unknown rolling model".
+/// Every combination with wheelsim's `rolling_friction krot` or `epsdt`, or with `tangential
+/// history_adhesive`, must be here: LIGGGHTS' generic class does not know these models and stops
+/// with "Unknown rolling model" (or tangential model).
 std::vector<Combination> combinations() {
-  return {combination<HERTZ, TANGENTIAL_HISTORY, COHESION_SJKR, ROLLING_CDT, SURFACE_DEFAULT>(
-              "model hertz tangential history cohesion sjkr rolling_friction cdt"),
-          combination<HERTZ, TANGENTIAL_HISTORY, COHESION_OFF, ROLLING_KROT, SURFACE_DEFAULT>(
-              "model hertz tangential history rolling_friction krot"),
-          combination<HERTZ, TANGENTIAL_HISTORY, COHESION_SJKR, ROLLING_KROT, SURFACE_DEFAULT>(
-              "model hertz tangential history cohesion sjkr rolling_friction krot"),
-          combination<HERTZ, TANGENTIAL_HISTORY, COHESION_OFF, ROLLING_EPSDT, SURFACE_DEFAULT>(
-              "model hertz tangential history rolling_friction epsdt"),
-          combination<HERTZ, TANGENTIAL_HISTORY, COHESION_SJKR, ROLLING_EPSDT, SURFACE_DEFAULT>(
-              "model hertz tangential history cohesion sjkr rolling_friction epsdt")};
+  return {
+      combination<HERTZ, TANGENTIAL_HISTORY, COHESION_SJKR, ROLLING_CDT, SURFACE_DEFAULT>(
+          "model hertz tangential history cohesion sjkr rolling_friction cdt"),
+      combination<HERTZ, TANGENTIAL_HISTORY, COHESION_OFF, ROLLING_KROT, SURFACE_DEFAULT>(
+          "model hertz tangential history rolling_friction krot"),
+      combination<HERTZ, TANGENTIAL_HISTORY, COHESION_SJKR, ROLLING_KROT, SURFACE_DEFAULT>(
+          "model hertz tangential history cohesion sjkr rolling_friction krot"),
+      combination<HERTZ, TANGENTIAL_HISTORY, COHESION_OFF, ROLLING_EPSDT, SURFACE_DEFAULT>(
+          "model hertz tangential history rolling_friction epsdt"),
+      combination<HERTZ, TANGENTIAL_HISTORY, COHESION_SJKR, ROLLING_EPSDT, SURFACE_DEFAULT>(
+          "model hertz tangential history cohesion sjkr rolling_friction epsdt"),
+      combination<HERTZ, TANGENTIAL_HISTORY_ADHESIVE, COHESION_SJKR, ROLLING_CDT, SURFACE_DEFAULT>(
+          "model hertz tangential history_adhesive cohesion sjkr rolling_friction cdt"),
+      combination<HERTZ, TANGENTIAL_HISTORY_ADHESIVE, COHESION_SJKR, ROLLING_EPSDT,
+                  SURFACE_DEFAULT>(
+          "model hertz tangential history_adhesive cohesion sjkr rolling_friction epsdt")};
 }
 
 } // namespace
@@ -100,8 +108,12 @@ int register_precompiled_contact_models() {
                              "only) or 0 / unset (liggghts-wheel's precompiled combinations)");
   static_assert(ROLLING_KROT == kKrotRollingModelId, "rolling_model_krot.h: two ids");
   static_assert(ROLLING_EPSDT == kEpsdtRollingModelId, "rolling_model_epsdt.h: two ids");
+  static_assert(TANGENTIAL_HISTORY_ADHESIVE == kHistoryAdhesiveTangentialModelId,
+                "tangential_model_history_adhesive.h: two ids");
   ContactModels::Factory::instance().addRollingModel("krot", kKrotRollingModelId);
   ContactModels::Factory::instance().addRollingModel("epsdt", kEpsdtRollingModelId);
+  ContactModels::Factory::instance().addTangentialModel("history_adhesive",
+                                                        kHistoryAdhesiveTangentialModelId);
   PairStyles::Factory &pairs = PairStyles::Factory::instance();
   Walls::Factory &walls = Walls::Factory::instance();
   int registered = 0;

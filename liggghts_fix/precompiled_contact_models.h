@@ -12,7 +12,8 @@
 // physics is the same code (the model headers LIGGGHTS installs); docs/liggghts-wheel.md.
 //
 // The same mechanism adds wheelsim's own rolling models `rolling_friction krot` and `epsdt`
-// (rolling_model_krot.h, rolling_model_epsdt.h): their keywords and combinations exist only through
+// (rolling_model_krot.h, rolling_model_epsdt.h) and tangential model `tangential history_adhesive`
+// (tangential_model_history_adhesive.h): their keywords and combinations exist only through
 // this registration (with WHEELSIM_GENERIC_CONTACT_MODELS=1, LIGGGHTS rejects the keywords).
 #ifndef WHEELSIM_PRECOMPILED_CONTACT_MODELS_H
 #define WHEELSIM_PRECOMPILED_CONTACT_MODELS_H
@@ -30,7 +31,8 @@ inline constexpr const char *kGenericContactModelsEnv = "WHEELSIM_GENERIC_CONTAC
 /// history cohesion sjkr rolling_friction cdt"), in registration order.
 std::vector<std::string> precompiled_contact_model_names();
 
-/// Adds the keywords `krot` and `epsdt` to LIGGGHTS' rolling models and every combination to its
+/// Adds the keywords `krot` and `epsdt` to LIGGGHTS' rolling models, `history_adhesive` to its
+/// tangential models, and every combination to its
 /// pair and wall style factories, unless the environment variable above is "1" (a value other than
 /// "1", "0" or empty: std::runtime_error naming it). Returns the number registered (0 when switched
 /// off). Call before the input is read. Should a later LIGGGHTS build include one of them, its
