@@ -16,7 +16,9 @@
 // skeleton cannot hold itself (docs/soils.md "What friction and rolling resistance see in a
 // cohesive contact"). This cap is 2 μ F_po at zero load and grows at μ with the load. Without
 // cohesion (k_coh 0) it is μ max(0, Fn): `tangential history` for a compressed contact.
-// docs/liggghts-wheel.md, "tangential history_adhesive".
+// The cap's formulas are contact/adhesive_cap.h's, shared with the same model on the wheel contact
+// of fix wheel/cosim (contact/models/tangential_history_adhesive.h). docs/liggghts-wheel.md,
+// "tangential history_adhesive".
 //
 // Read like LIGGGHTS' own model headers, once with TANGENTIAL_MODEL defined (the id line, via
 // contact_model_styles/style_tangential_model.h) and once for the class. Only
@@ -31,12 +33,12 @@ TANGENTIAL_MODEL(TANGENTIAL_HISTORY_ADHESIVE, history_adhesive, 20)
 #ifndef WHEELSIM_TANGENTIAL_MODEL_HISTORY_ADHESIVE_H
 #define WHEELSIM_TANGENTIAL_MODEL_HISTORY_ADHESIVE_H
 
+#include "contact/adhesive_cap.h"
 #include "contact_models.h"
 #include "global_properties.h"
 #include "tangential_model_base.h"
 #include "update.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace LIGGGHTS {
@@ -46,31 +48,13 @@ namespace ContactModels {
 /// tangential models use 1-4). Must equal the TANGENTIAL_MODEL line above.
 constexpr int kHistoryAdhesiveTangentialModelId = 20;
 
-namespace adhesive_cap {
-
-/// Pull-off force [N] of a Hertz–SJKR contact of effective radius r_eff [m], cohesion energy
-/// density k_coh [J/m³] and effective modulus y_eff [Pa]: 4 C³ / (27 K²), C = 2π r_eff k_coh,
-/// K = 4/3 y_eff √r_eff.
-inline double pull_off_force(double r_eff, double k_coh, double y_eff) {
-  return 2.0 / 3.0 * M_PI * M_PI * M_PI * k_coh * k_coh * k_coh * r_eff * r_eff / (y_eff * y_eff);
-}
-
 /// SJKR's contact area [m²] as LIGGGHTS' cohesion sjkr takes it: the circle where the two spheres
 /// (radii ri, rj, centres r apart) or the sphere and the wall (centre r from it) intersect.
-inline double sjkr_area(bool is_wall, double r, double ri, double rj, double area_ratio) {
+inline double sjkr_contact_area(bool is_wall, double r, double ri, double rj, double area_ratio) {
   if (is_wall)
     return (ri * ri - r * r) * M_PI * area_ratio;
   return -M_PI / 4.0 * ((r - ri - rj) * (r + ri - rj) * (r - ri + rj) * (r + ri + rj)) / (r * r);
 }
-
-/// The cap μ max(0, F_net + 2 F_po) [N]. fn: LIGGGHTS' Fn as the tangential model sees it;
-/// pull_in_fn: whether SJKR's tangential_reduce has already added the (negative) pull to it.
-inline double cap(double mu, double fn, bool pull_in_fn, double pull, double f_po) {
-  const double net = pull_in_fn ? fn : fn - pull;
-  return mu * std::max(0.0, net + 2.0 * f_po);
-}
-
-} // namespace adhesive_cap
 
 template <> class TangentialModel<TANGENTIAL_HISTORY_ADHESIVE> : public TangentialModelBase {
 public:
@@ -118,10 +102,13 @@ public:
     const double k_coh = coh_energy_dens_[it][jt];
     const double r_eff =
         sidata.is_wall ? sidata.radi : sidata.radi * sidata.radj / (sidata.radi + sidata.radj);
-    const double pull = k_coh * adhesive_cap::sjkr_area(sidata.is_wall, sidata.r, sidata.radi,
-                                                        sidata.radj, sidata.area_ratio);
-    const double f_po = adhesive_cap::pull_off_force(r_eff, k_coh, y_eff_[it][jt]);
-    const double cap = adhesive_cap::cap(coeff_frict_[it][jt], sidata.Fn, pull_in_fn_, pull, f_po);
+    // F_net: LIGGGHTS' Fn, less the SJKR pull unless tangential_reduce has already taken it off
+    const double pull = k_coh * sjkr_contact_area(sidata.is_wall, sidata.r, sidata.radi,
+                                                  sidata.radj, sidata.area_ratio);
+    const double f_net = pull_in_fn_ ? sidata.Fn : sidata.Fn - pull;
+    const double cap = wheelsim::contact::adhesive_coulomb_cap(
+        coeff_frict_[it][jt], f_net,
+        wheelsim::contact::sjkr_pull_off_force(r_eff, k_coh, y_eff_[it][jt]));
 
     const double kt = sidata.kt;
     const double s_mag = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);

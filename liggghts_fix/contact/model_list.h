@@ -17,7 +17,8 @@
 /// `model ...`: the normal force law.
 #define WHEELSIM_NORMAL_MODELS(X) X(Hertz, normal_hertz) X(Eepa, normal_eepa)
 /// `tangential ...`: the tangential force law.
-#define WHEELSIM_TANGENTIAL_MODELS(X) X(History, tangential_history)
+#define WHEELSIM_TANGENTIAL_MODELS(X)                                                              \
+  X(History, tangential_history) X(HistoryAdhesive, tangential_history_adhesive)
 /// `cohesion ...`: a normal force added to the normal law's.
 #define WHEELSIM_COHESION_MODELS(X) X(Off, cohesion_off) X(Sjkr, cohesion_sjkr)
 /// `rolling_friction ...`: rolling resistance (a torque on the particle).
@@ -38,4 +39,5 @@
 #include "models/rolling_krot.h"
 #include "models/rolling_off.h"
 #include "models/tangential_history.h"
+#include "models/tangential_history_adhesive.h"
 #endif

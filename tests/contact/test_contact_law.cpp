@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace wc = wheelsim::contact;
@@ -256,6 +257,56 @@ TEST(Sjkr, WallCohesionIsEnergyDensityTimesContactArea) {
     EXPECT_NEAR(with.cohesionForce, expected, 1e-12 * std::fabs(expected));
     EXPECT_NEAR(with.force.z() - without.force.z(), expected, 1e-9 * std::fabs(expected));
     EXPECT_EQ(with.normalForce, without.normalForce); // tangential_reduce off by default
+  }
+}
+
+TEST(TangentialHistoryAdhesive, SlidesOnThorntonsCapWithAndWithoutTangentialReduce) {
+  // Held at overlap δ and sliding (no normal velocity, no damping): |Ft| = μ max(0, F_H − k_coh A
+  // + 2 F_po), F_po = (2/3) π³ k_coh³ R² / Y*² (the wheel is a wall: R* = R), whether SJKR's
+  // tangential_reduce has taken the pull off Fn or not; LIGGGHTS' history caps at μ F_H.
+  const double mu = 0.5, kcoh = 2.0e5, dt = 1e-6;
+  for (bool reduce : {false, true}) {
+    wc::PairMaterial pair;
+    pair.coefficientRestitution = 0.5;
+    pair.coefficientFriction = mu;
+    pair.cohesionEnergyDensity = kcoh;
+    wc::ContactSettings settings;
+    settings.cohesion = wc::CohesionModel::Sjkr;
+    settings.tangential = wc::TangentialModel::HistoryAdhesive;
+    settings.tangentialDamping = false;
+    settings.tangentialReduce = reduce;
+    const auto pc = constants(pair, settings);
+    const double fPo =
+        2.0 / 3.0 * std::pow(M_PI, 3) * std::pow(kcoh, 3) * kR * kR / (pc.Yeff * pc.Yeff);
+    const double kHertz = 4.0 / 3.0 * pc.Yeff * std::sqrt(kR);
+    const double zeroLoad = std::pow(2.0 * M_PI * kR * kcoh / kHertz, 2); // K δ^1.5 = C δ
+    for (double delta : {zeroLoad, 4.0 * zeroLoad}) {
+      const double fH = kHertz * std::pow(delta, 1.5);
+      const double r = kR - delta;
+      const double cap = mu * (fH - kcoh * M_PI * (kR * kR - r * r) + 2.0 * fPo);
+      wc::ContactHistory h{};
+      wc::ContactResult res;
+      for (int i = 0; i < 20000 && !res.sliding; ++i)
+        res = wc::evaluate(pc, state(delta, Vector3d(0.1, 0.0, 0.0)), dt, true, h);
+      ASSERT_TRUE(res.sliding) << "reduce " << reduce << " delta " << delta;
+      EXPECT_NEAR(std::hypot(res.force.x(), res.force.y()), cap, 1e-12 * cap)
+          << "reduce " << reduce << " delta " << delta;
+      EXPECT_LT(cap, mu * fH); // below history's cap: the test tells the two models apart
+    }
+  }
+}
+
+TEST(TangentialHistoryAdhesive, NeedsSjkrCohesion) {
+  wc::PairMaterial pair;
+  pair.coefficientFriction = 0.5;
+  wc::ContactSettings settings;
+  settings.tangential = wc::TangentialModel::HistoryAdhesive;
+  try {
+    constants(pair, settings);
+    FAIL() << "no error without cohesion sjkr";
+  } catch (const std::invalid_argument &e) {
+    EXPECT_NE(std::string(e.what()).find("history_adhesive needs cohesion sjkr"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -42,7 +42,7 @@ TEST(ContactModels, TableIsConsistent) {
 
 TEST(ContactModels, TableHoldsTheModelsOfTheFix) {
   EXPECT_EQ(wc::model_names(wc::ModelKind::Normal), "hertz, eepa (alias edinburgh)");
-  EXPECT_EQ(wc::model_names(wc::ModelKind::Tangential), "history");
+  EXPECT_EQ(wc::model_names(wc::ModelKind::Tangential), "history, history_adhesive");
   EXPECT_EQ(wc::model_names(wc::ModelKind::Cohesion), "off, sjkr");
   EXPECT_EQ(wc::model_names(wc::ModelKind::Rolling), "off, epsd2, cdt, krot, epsdt");
   EXPECT_EQ(wc::switch_keywords(),

@@ -20,7 +20,10 @@ constexpr ModelSpec spec{
     "history",   nullptr, "tangential spring with a Coulomb cap", "tangential_model_history.h",
     kProperties, {}};
 
-inline void apply(const ContactStep &c, const NormalPart &np, double Fn, ContactResult &out) {
+/// The spring with a given Coulomb cap FtCap [N] (>= 0): the history step of `tangential history`
+/// and of `tangential history_adhesive`, which differ only in the cap.
+inline void springWithCap(const ContactStep &c, const NormalPart &np, double FtCap,
+                          ContactResult &out) {
   const Eigen::Vector3d &n = c.state.normal;
   Eigen::Map<Eigen::Vector3d> shear(c.history.shear);
   if (c.updateHistory) {
@@ -30,7 +33,6 @@ inline void apply(const ContactStep &c, const NormalPart &np, double Fn, Contact
   const double shearMag = shear.norm();
   Eigen::Vector3d Ft = -np.kt * shear;
   const double FtSpring = np.kt * shearMag;
-  const double FtCap = c.pc.pair.coefficientFriction * std::fabs(Fn);
   if (FtSpring > FtCap) { // Coulomb cap, damping not included
     if (shearMag != 0.0) {
       Ft *= FtCap / FtSpring;
@@ -45,6 +47,11 @@ inline void apply(const ContactStep &c, const NormalPart &np, double Fn, Contact
   }
   out.force += Ft;
   out.torque = -c.cr * n.cross(Ft);
+}
+
+/// LIGGGHTS' cap μ |Fn|.
+inline void apply(const ContactStep &c, const NormalPart &np, double Fn, ContactResult &out) {
+  springWithCap(c, np, c.pc.pair.coefficientFriction * std::fabs(Fn), out);
 }
 
 } // namespace wheelsim::contact::tangential_history
