@@ -20,11 +20,12 @@ compressed contact without cohesion are history's).
 """
 import argparse
 import math
-import shlex
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
+
+sys.dont_write_bytecode = True  # keep the source tree clean
+from spin_deck import run_deck  # noqa: E402
 
 E, NU, R, MU, KCOH = 5e6, 0.3, 0.002, 0.5, 9.2e4
 Y_EFF = E / (2.0 * (1.0 - NU**2))
@@ -61,19 +62,7 @@ def write_data(path, d_w, d_p):
 def run(args, d_w, d_p, **variables):
     data = Path(args.work) / "adhesive_slide.data"
     write_data(data, d_w, d_p)
-    cmd = shlex.split(args.launch) + ["-in", args.deck, "-log", "none", "-echo", "none",
-                                      "-var", "data", str(data)]
-    for name, value in variables.items():
-        cmd += ["-var", name, str(value)]
-    out = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                         timeout=120)
-    if out.returncode != 0:
-        sys.exit(f"liggghts-wheel failed ({out.returncode}):\n{out.stdout[-4000:]}")
-    rows = [list(map(float, line.split()[1:])) for line in out.stdout.splitlines()
-            if line.startswith("adhesive_slide ")]
-    if len(rows) < 10:
-        sys.exit(f"only {len(rows)} adhesive_slide lines in the output:\n{out.stdout[-4000:]}")
-    return rows
+    return run_deck(args.launch, args.deck, str(data), "adhesive_slide", variables)
 
 
 def expected_caps(tangential, kcoh, d_w, d_p):
@@ -161,5 +150,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.dont_write_bytecode = True
     sys.exit(main())

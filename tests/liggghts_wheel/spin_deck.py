@@ -1,4 +1,4 @@
-"""What check_krot_spin.py and check_epsdt_spin.py share: the spheres of krot_spin.data (three
+"""What check_krot_spin.py and check_epsdt_spin.py share (and run_deck, check_adhesive_slide.py): the spheres of krot_spin.data (three
 spheres of R 2 mm, 2500 kg/m³, held with 0.1 mm overlaps, spinning at W0 about x) and the run of
 a deck that prints `<tag> t ω1 ω2 ω3` lines."""
 import math
@@ -12,9 +12,10 @@ INERTIA = 0.4 * MASS * R * R
 W0 = 10.0  # [rad/s] the initial spin of spheres 1 and 3
 
 
-def run_spin_deck(launch, deck, data, tag, variables):
+def run_deck(launch, deck, data, tag, variables):
     """Runs `launch` -in deck with the data file and -var NAME VALUE for each of `variables`;
-    returns the [t, ω1, ω2, ω3] rows of its `tag` lines, or exits naming what went wrong."""
+    returns the numbers after the tag of each of its `tag` lines, or exits naming what went
+    wrong (also used by check_adhesive_slide.py)."""
     cmd = shlex.split(launch) + ["-in", deck, "-log", "none", "-echo", "none", "-var", "data", data]
     for name, value in variables.items():
         cmd += ["-var", name, str(value)]
@@ -22,11 +23,16 @@ def run_spin_deck(launch, deck, data, tag, variables):
                          timeout=120)
     if run.returncode != 0:
         sys.exit(f"liggghts-wheel failed ({run.returncode}):\n{run.stdout[-4000:]}")
-    rows = [list(map(float, line.split()[1:5])) for line in run.stdout.splitlines()
+    rows = [list(map(float, line.split()[1:])) for line in run.stdout.splitlines()
             if line.startswith(tag + " ")]
     if len(rows) < 10:
         sys.exit(f"only {len(rows)} {tag} lines in the output:\n{run.stdout[-4000:]}")
     return rows
+
+
+def run_spin_deck(launch, deck, data, tag, variables):
+    """run_deck's [t, ω1, ω2, ω3] rows."""
+    return [row[:4] for row in run_deck(launch, deck, data, tag, variables)]
 
 
 def oscillator_error(rows, omega1, omega2):

@@ -14,16 +14,6 @@
 
 namespace wheelsim::contact::tangential_history_adhesive {
 
-constexpr PropertySpec kProperties[] = {
-    {"coefficientFriction",
-     PropertyStyle::PerTypePair,
-     "-",
-     "sliding friction coefficient μ",
-     {0.0, kInf, true, false},
-     nullptr,
-     &PairMaterial::coefficientFriction},
-};
-
 /// The pull-off force needs the SJKR cohesion (its cohesionEnergyDensity and pull).
 inline void check(const PairMaterial &, const ContactSettings &settings) {
   if (settings.cohesion != CohesionModel::Sjkr)
@@ -35,7 +25,7 @@ constexpr ModelSpec spec{"history_adhesive",
                          nullptr,
                          "tangential spring with Thornton's adhesive Coulomb cap",
                          "", // wheelsim's (liggghts_fix/tangential_model_history_adhesive.h)
-                         kProperties,
+                         tangential_history::kProperties, // μ, as history
                          {},
                          nullptr,
                          "",
