@@ -81,6 +81,8 @@ std::vector<Combination> combinations() {
           "model hertz tangential history rolling_friction epsdt"),
       combination<HERTZ, TANGENTIAL_HISTORY, COHESION_SJKR, ROLLING_EPSDT, SURFACE_DEFAULT>(
           "model hertz tangential history cohesion sjkr rolling_friction epsdt"),
+      combination<HERTZ, TANGENTIAL_HISTORY_ADHESIVE, COHESION_SJKR, ROLLING_OFF, SURFACE_DEFAULT>(
+          "model hertz tangential history_adhesive cohesion sjkr"),
       combination<HERTZ, TANGENTIAL_HISTORY_ADHESIVE, COHESION_SJKR, ROLLING_CDT, SURFACE_DEFAULT>(
           "model hertz tangential history_adhesive cohesion sjkr rolling_friction cdt"),
       combination<HERTZ, TANGENTIAL_HISTORY_ADHESIVE, COHESION_SJKR, ROLLING_EPSDT,

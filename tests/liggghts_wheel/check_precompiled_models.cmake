@@ -2,7 +2,7 @@
 # (liggghts_fix/precompiled_contact_models.cpp) against LIGGGHTS' generic class for the same
 # combination. A small dry_sand bin (hertz, tangential history, cohesion sjkr, rolling cdt: pair
 # and walls) is poured and settled for 2000+ steps twice:
-#   - with the registration: the banner counts 7 combinations and LIGGGHTS prints no "not located
+#   - with the registration: the banner counts 8 combinations and LIGGGHTS prints no "not located
 #     in any whitelist" warning (our class was chosen);
 #   - with WHEELSIM_GENERIC_CONTACT_MODELS=1: the banner says so and the warning appears (the
 #     library itself lacks the combination, so the comparison is against its generic class);
@@ -38,8 +38,8 @@ endfunction()
 run_bin(precompiled)
 run_bin(generic)
 
-if(NOT precompiled_out MATCHES "7 contact-model combination\\(s\\) precompiled")
-  message(FATAL_ERROR "precompiled run: banner does not count 7 combinations:\n${precompiled_out}")
+if(NOT precompiled_out MATCHES "8 contact-model combination\\(s\\) precompiled")
+  message(FATAL_ERROR "precompiled run: banner does not count 8 combinations:\n${precompiled_out}")
 endif()
 if(precompiled_out MATCHES "not located in any whitelist")
   message(FATAL_ERROR "precompiled run: LIGGGHTS still chose its generic class (whitelist warning)")

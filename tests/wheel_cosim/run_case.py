@@ -2,7 +2,7 @@
 """Driver of the tests/wheel_cosim integration tests (see CMakeLists.txt, docs/validation-fix.md).
 
   run_case.py bed     --launch "mpiexec;-n;1;liggghts-wheel" --inputs DIR --work DIR
-  run_case.py compare --launch ... --inputs DIR --work DIR --bed BED --mesh STL --model hertz|eepa|sjkr
+  run_case.py compare --launch ... --inputs DIR --work DIR --bed BED --mesh STL --model hertz|eepa|sjkr|adhesive
                       --steps N [--early-window S --early-tol X --floor N] [--window-from K --window-tol X]
   run_case.py restart --launch ... --bed BED --mesh STL --n N --m M --tol X
   run_case.py vtk     --launch ... --bed BED --mesh STL
@@ -32,6 +32,10 @@ MODELS = {
     "hertz": ("model hertz rolling_friction off", "model hertz tangential history", "props_none.in", 1.0),
     "sjkr": ("model hertz cohesion sjkr rolling_friction off",
              "model hertz tangential history cohesion sjkr", "props_sjkr.in", 1.0),
+    # wheelsim's tangential history_adhesive on both sides (the mesh wall: liggghts-wheel's
+    # LIGGGHTS-side model), with the sjkr case's soil-wheel adhesion
+    "adhesive": ("model hertz tangential history_adhesive cohesion sjkr rolling_friction off",
+                 "model hertz tangential history_adhesive cohesion sjkr", "props_sjkr.in", 1.0),
     # EEPA with n = 1 needs half the soil time step (props_eepa.in)
     "eepa": ("model eepa rolling_friction off", "model edinburgh tangential history",
              "props_eepa.in", 0.5),
