@@ -24,16 +24,18 @@ line = subprocess.run(["cat", "/proc/self/autogroup"], capture_output=True, text
                       preexec_fn=mpi_launch.die_with_parent(os.getpid(), new_session=new)).stdout
 print(line.strip())
 print(open("/proc/self/autogroup").read().strip())
+print(os.getpriority(os.PRIO_PROCESS, 0))
 """
 
 
 def run_parent(nice, new_session):
-    """(child's autogroup line, parent's autogroup line) of PARENT."""
+    """(child's autogroup line, parent's autogroup line, parent's own nice) of PARENT (its nice is
+    `nice` more than this test's: a suite run with `nice -n N` starts it at N)."""
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
     out = subprocess.run([sys.executable, "-c", PARENT, str(nice), "1" if new_session else "0"],
                          capture_output=True, text=True, env=env, check=True, timeout=60)
-    child, parent = out.stdout.splitlines()
-    return child, parent
+    child, parent, own = out.stdout.splitlines()
+    return child, parent, int(own)
 
 
 class AutogroupFileTest(unittest.TestCase):
@@ -60,18 +62,19 @@ class AutogroupFileTest(unittest.TestCase):
 @unittest.skipIf(mpi_launch.autogroup_nice() is None, "this kernel has no scheduler autogroups")
 class NewSessionTest(unittest.TestCase):
     def test_a_new_session_carries_the_parents_nice(self):
-        child, parent = run_parent(7, new_session=True)
+        child, parent, own = run_parent(7, new_session=True)
         self.assertNotEqual(child.split()[0], parent.split()[0], "a new session is a new group")
-        self.assertEqual(child.split()[-1], str(max(7, int(parent.split()[-1]))), child)
+        self.assertGreaterEqual(own, 7)
+        self.assertEqual(child.split()[-1], str(max(own, int(parent.split()[-1]))), child)
 
     def test_without_a_new_session_the_child_stays_in_the_group(self):
-        child, parent = run_parent(7, new_session=False)
+        child, parent, _ = run_parent(7, new_session=False)
         self.assertEqual(child, parent)
 
     def test_nothing_to_carry_at_nice_0(self):
-        if mpi_launch.autogroup_nice() != 0:
-            self.skipTest("this test's own autogroup is niced")
-        child, _ = run_parent(0, new_session=True)
+        if mpi_launch.autogroup_nice() != 0 or os.getpriority(os.PRIO_PROCESS, 0) != 0:
+            self.skipTest("this test runs niced (its process or its autogroup)")
+        child, _, _ = run_parent(0, new_session=True)
         self.assertEqual(child.split()[-1], "0")
 
 
