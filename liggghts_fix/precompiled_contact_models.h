@@ -32,9 +32,9 @@ inline constexpr const char *kGenericContactModelsEnv = "WHEELSIM_GENERIC_CONTAC
 std::vector<std::string> precompiled_contact_model_names();
 
 /// Adds the keywords `krot` and `epsdt` to LIGGGHTS' rolling models, `history_adhesive` to its
-/// tangential models, and every combination to its
-/// pair and wall style factories, unless the environment variable above is "1" (a value other than
-/// "1", "0" or empty: std::runtime_error naming it). Returns the number registered (0 when switched
+/// tangential models, and every combination to its pair and wall style factories, unless the
+/// environment variable above is "1" (a value other than "1", "0" or empty: std::runtime_error
+/// naming it). Returns the number registered (0 when switched
 /// off). Call before the input is read. Should a later LIGGGHTS build include one of them, its
 /// factory replaces the library's entry and prints "Style collision detected" on stderr.
 int register_precompiled_contact_models();

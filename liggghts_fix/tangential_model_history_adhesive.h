@@ -103,9 +103,10 @@ public:
     const double r_eff =
         sidata.is_wall ? sidata.radi : sidata.radi * sidata.radj / (sidata.radi + sidata.radj);
     // F_net: LIGGGHTS' Fn, less the SJKR pull unless tangential_reduce has already taken it off
-    const double pull = k_coh * sjkr_contact_area(sidata.is_wall, sidata.r, sidata.radi,
-                                                  sidata.radj, sidata.area_ratio);
-    const double f_net = pull_in_fn_ ? sidata.Fn : sidata.Fn - pull;
+    const double f_net =
+        pull_in_fn_ ? sidata.Fn
+                    : sidata.Fn - k_coh * sjkr_contact_area(sidata.is_wall, sidata.r, sidata.radi,
+                                                            sidata.radj, sidata.area_ratio);
     const double cap = wheelsim::contact::adhesive_coulomb_cap(
         coeff_frict_[it][jt], f_net,
         wheelsim::contact::sjkr_pull_off_force(r_eff, k_coh, y_eff_[it][jt]));
