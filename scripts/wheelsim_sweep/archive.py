@@ -7,14 +7,21 @@ same groups, datasets, values and attributes in about a third of the bytes) with
 beside them (the sha256 of the bed restart it ran on, the checkout's git commit, the time). At the
 start of a run, every archived point whose folder in the output directory has no done.json is
 copied back; the usual resume check (runner.finished: exit status, inputs hash, included files,
-run.h5) then decides whether it is finished. Checkpoints, LIGGGHTS logs and beds are not kept: a
-DEM bed is prepared again from its recipe, and an archived point whose bed hash differs from the
-bed now in place is named (docs/sweeps.md, "Keeping finished points").
+run.h5) then decides whether it is finished. LIGGGHTS logs and beds are not kept: a DEM bed is
+prepared again from its recipe, and an archived point whose bed hash differs from the bed now in
+place is named (docs/sweeps.md, "Keeping finished points").
+
+`wheel-sweep --park` keeps an unfinished DEM point's newest complete checkpoint pair with its
+partial run file in DIR/<WHEEL>/<SOIL>/<sSLIP>/parked/ (step_archive.park), and the next run
+copies it back into a point folder that has none, so that the point goes on from there on another
+machine (docs/sweeps.md, "Parking a stopped point").
 """
 import datetime
 import json
+import re
 import shutil
 import subprocess
+import time
 from pathlib import Path
 
 from wheelsim_post import step_archive
@@ -65,14 +72,91 @@ def _copy(src, dest):
     (compressed_copy if src.name == "run.h5" else shutil.copy2)(src, dest)
 
 
+def _utc_now():
+    return datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+
+
 def save(archive, point_dir, rel, bed_sha256, repo):
-    """Copies a finished point's kept files to archive/rel, with its archived.json record."""
+    """Copies a finished point's kept files to archive/rel, with its archived.json record; a
+    parked checkpoint of the point is removed."""
     dest = Path(archive) / rel
     kept = step_archive.keep(point_dir, dest, KEPT_FILES, copy=_copy)
     record = {"bed_sha256": bed_sha256, "git_commit": _git_commit(repo), "files": kept,
-              "archived_utc": datetime.datetime.now(datetime.timezone.utc)
-              .strftime("%Y-%m-%dT%H:%M:%SZ")}
+              "archived_utc": _utc_now()}
     (dest / RECORD).write_text(json.dumps(record, indent=1) + "\n")
+    step_archive.drop_parked(dest)
+
+
+# ---- parked checkpoints (wheel-sweep --park) -----------------------------------------------------
+CHECKPOINTS = Path("cosim") / "checkpoints"   # in a point folder (scripts/wheel-cosim --work cosim)
+LIGGGHTS_HALF = ("liggghts-{s}.restart", "liggghts-{s}.restart.wheel", "liggghts-{s}.restart.info")
+
+
+def newest_checkpoint(point_dir):
+    """The step of the newest complete checkpoint pair in a point's cosim/checkpoints (the rig's
+    rig-<s>.ckpt and LIGGGHTS' restart, .wheel and .info of the same step, as wheel-cosim --resume
+    pairs them), None without one."""
+    d = Path(point_dir) / CHECKPOINTS
+    if not d.is_dir():
+        return None
+    names = {f.name for f in d.iterdir()}
+    steps = {int(m.group(1)) for n in names if (m := re.fullmatch(r"rig-(\d+)\.ckpt", n))}
+    pairs = [s for s in steps if all(h.format(s=s) in names for h in LIGGGHTS_HALF)]
+    return max(pairs, default=None)
+
+
+def _checkpoint_info(point_dir, step):
+    """{key: value} of LIGGGHTS' liggghts-<step>.restart.info (step, time, inputs_hash, ranks)."""
+    text = (Path(point_dir) / CHECKPOINTS / f"liggghts-{step}.restart.info").read_text()
+    return dict(line.split(None, 1) for line in text.splitlines() if " " in line)
+
+
+def _snapshot_h5(src, dest, tries=5):
+    """Copies an HDF5 file the rig may be writing to and checks that the copy opens and reads;
+    retries (a copy taken across a write) up to `tries` times."""
+    import h5py  # only parking needs it
+
+    err = None
+    for _ in range(tries):
+        shutil.copy2(src, dest)
+        try:
+            with h5py.File(dest, "r") as f:
+                f.visititems(lambda name, obj: obj[()] if isinstance(obj, h5py.Dataset) else None)
+            return
+        except (OSError, ValueError, RuntimeError, KeyError) as e:
+            err = e
+            time.sleep(1.0)
+    raise OSError(f"{src}: no consistent copy in {tries} tries ({err})")
+
+
+def park(archive, point_dir, rel, part_file, bed_sha256, repo):
+    """Parks an unfinished point's newest complete checkpoint pair and partial run file in
+    archive/rel/parked/; returns (step, bytes written), (None, 0) without a checkpoint, or
+    (step, 0) when that step is parked there already."""
+    point_dir = Path(point_dir)
+    step = newest_checkpoint(point_dir)
+    if step is None or not (point_dir / part_file).is_file():
+        return None, 0
+    kept = Path(archive) / rel
+    before = step_archive.parked(kept)
+    if before is not None and before.get("step") == step:
+        return step, 0
+    info = _checkpoint_info(point_dir, step)
+    files = [part_file, str(CHECKPOINTS / f"rig-{step}.ckpt")] + [
+        str(CHECKPOINTS / h.format(s=step)) for h in LIGGGHTS_HALF]
+    record = {"step": step, "time_s": float(info.get("time", "nan")),
+              "inputs_hash": info.get("inputs_hash", "").strip(), "bed_sha256": bed_sha256,
+              "git_commit": _git_commit(repo), "parked_utc": _utc_now()}
+    written = step_archive.park(point_dir, kept, files, record, snapshot={part_file: _snapshot_h5})
+    return step, written
+
+
+def unpark(archive, point_dir, rel):
+    """Copies a parked checkpoint back into a point folder that has no checkpoint of its own
+    (a new machine); returns its record, else None."""
+    if newest_checkpoint(point_dir) is not None:
+        return None  # this machine's own checkpoints: at least as new as what was parked from them
+    return step_archive.unpark(Path(archive) / rel, point_dir)
 
 
 def archived_bed(archive, rel):

@@ -81,6 +81,12 @@ def main(argv=None):
                          "DIR (e.g. a folder committed to git) and restore them from there into "
                          "the output directory first (docs/sweeps.md, \"Keeping finished "
                          "points\")")
+    ap.add_argument("--park", action="store_true",
+                    help="with --archive: keep each unfinished DEM point's newest checkpoint "
+                         "(and its partial run file) in the archive too, xz-compressed, so that "
+                         "a later run on another machine goes on from it; runs nothing, and may "
+                         "run beside the sweep that writes the checkpoints (docs/sweeps.md, "
+                         "\"Parking a stopped point\")")
     ap.add_argument("--build-dir", metavar="D",
                     help="build directory (default: $WHEELSIM_BUILD_DIR, else <repo>/build)")
     cost = ap.add_argument_group("DEM cost estimate (docs/sweeps.md, \"Cost estimate\")")
@@ -128,6 +134,12 @@ def main(argv=None):
             ap.error(f"--accept-change {missing[0]}: no such file")
     elif a.reason is not None:
         ap.error("--reason goes with --accept-change")
+    if a.park:
+        if a.archive is None:
+            ap.error("--park keeps checkpoints in the archive: it needs --archive DIR")
+        if a.dry_run or a.estimate or a.beds_only or a.force or a.measure_rate:
+            ap.error("--park runs nothing: not with --dry-run, --estimate, --beds-only, --force "
+                     "or --measure-rate")
     build = Path(a.build_dir or os.environ.get("WHEELSIM_BUILD_DIR") or REPO / "build").resolve()
     liggghts = build / "bin" / "liggghts-wheel"
     if a.measure_rate:
@@ -179,6 +191,8 @@ def main(argv=None):
         return print_estimate(r, sweep, cost)
     if a.accept_change:
         return accept.accept_changes(r, a.accept_change, a.reason.strip())
+    if a.park:
+        return r.park()
     try:
         return r.run()
     except RuntimeError as e:

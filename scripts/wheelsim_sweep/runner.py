@@ -137,6 +137,7 @@ class Runner:
         # --archive DIR: finished points are kept there and restored from there (archive.py)
         self.archive = Path(archive_dir).resolve() if archive_dir is not None else None
         self.restored = []  # reldirs of the points restored from the archive by this run
+        self.unparked = {}  # reldir: parked record, the points whose checkpoint the archive gave
         self.beds_only = beds_only  # DEM: prepare the points' beds, run no point (cli --beds-only)
         # DEM cost check before running (cli.py): {"rate": callable -> estimate.Rate, "cores",
         # "budget_h" (None: no budget), "yes"}; None: no estimate line
@@ -845,6 +846,8 @@ class Runner:
             return 2
         if self.archive is not None:
             self._sync_archive()
+            if sw.terrain == "dem":
+                self.unparked = self._unpark(todo)
         if sw.path != (self.out / "sweep.toml").resolve():
             shutil.copyfile(sw.path, self.out / "sweep.toml")
         for sig in (signal.SIGINT, signal.SIGTERM):
@@ -870,6 +873,8 @@ class Runner:
                     return 1
             if self.restored and sw.terrain == "dem":
                 self._check_restored_beds()
+            if self.unparked:
+                self._check_unparked_beds()
             if self.beds_only:
                 self.say(f"wheel-sweep: --beds-only: the beds are ready; {len(todo)} point(s) "
                          "left to run")
@@ -913,6 +918,63 @@ class Runner:
                 added += 1
         if added:
             self.say(f"wheel-sweep: archived {added} finished point(s) the archive lacked")
+
+    def park(self):
+        """wheel-sweep --park: parks the newest checkpoint of every unfinished DEM point in the
+        archive (archive.park); reads the output directory only, so it may run beside the sweep
+        that writes the checkpoints. Returns the exit status."""
+        if self.sweep.terrain != "dem":
+            self.say(f"wheel-sweep: error: --park: {self.sweep.path.name} is an "
+                     f"{self.sweep.terrain.upper()} sweep; only DEM points have checkpoints")
+            return 2
+        parked = same = 0
+        for p in self.sweep.points:
+            d = self.point_dir(p)
+            if (d / DONE_FILE).exists():
+                continue
+            try:
+                step, written = archive.park(self.archive, d, p.reldir, PART_FILE,
+                                             self._bed_sha(p), self.repo)
+            except (OSError, ValueError, KeyError) as e:
+                self.say(f"wheel-sweep: error: could not park {p.reldir}: {e}")
+                return 1
+            if step is None:
+                continue
+            if written:
+                parked += 1
+                self.say(f"wheel-sweep: parked {p.reldir} at step {step} "
+                         f"({written / 1e6:.1f} MB in {self.archive / p.reldir / 'parked'})")
+            else:
+                same += 1
+                self.say(f"wheel-sweep: {p.reldir}: step {step} is parked already")
+        self.say(f"wheel-sweep: --park: {parked} point(s) parked, {same} unchanged"
+                 + ("" if parked or same else " (no unfinished point has a checkpoint)"))
+        return 0
+
+    def _unpark(self, todo):
+        """Copies back the parked checkpoints of the points to run that have none here (a new
+        machine); returns {reldir: parked record}."""
+        out = {}
+        for p, _ in todo:
+            record = archive.unpark(self.archive, self.point_dir(p), p.reldir)
+            if record is not None:
+                out[p.reldir] = record
+                self.say(f"wheel-sweep: {p.reldir}: its checkpoint at step {record['step']} "
+                         f"(t = {record['time_s']:g} s, parked {record['parked_utc']}) restored "
+                         "from the archive")
+        return out
+
+    def _check_unparked_beds(self):
+        """A point unparked onto another preparation of its bed cannot resume (the bed is one
+        of its checkpoint's inputs): its checkpoint is removed here, so it runs from scratch."""
+        for p in self.sweep.points:
+            record = self.unparked.get(p.reldir)
+            if record is None or record.get("bed_sha256") == self._bed_sha(p):
+                continue
+            shutil.rmtree(self.point_dir(p) / archive.CHECKPOINTS, ignore_errors=True)
+            self.say(f"wheel-sweep: warning: {p.reldir}: its parked checkpoint ran on another "
+                     f"preparation of its bed (sha256 {record.get('bed_sha256')} then, "
+                     f"{self._bed_sha(p)} now): it runs from scratch")
 
     def _check_restored_beds(self):
         """Names the restored points that ran on another preparation of their bed."""

@@ -92,6 +92,8 @@ def run_options(a):
                                      f"got '{item}'")
         k, v = item.split("=", 1)
         bed_vars[k] = v
+    if a.park and a.archive is None:
+        raise plan.LabInputError("--park keeps checkpoints in the archive: it needs --archive DIR")
     if a.checkpoints < 0:
         raise plan.LabInputError(f"--checkpoints: expected a number >= 0 (0: none), got "
                                  f"{a.checkpoints}")
@@ -126,6 +128,8 @@ def _run(a):
     soil = lab.soil_info(soil_file)
     p = plan.make_plan(soil, tests, a.preset, bed_vars=bed_vars, speed_check=a.speed_check,
                        **options)
+    if a.park:
+        return lab.park(p)
     # The soil file as the checkout names it (inputs/soils/x.in), so results do not carry the
     # path of the machine that ran them; a file outside the checkout keeps its absolute path.
     soil_path = Path(soil.file).resolve()
@@ -276,6 +280,12 @@ def main(argv=None):
                    help="keep each finished test run's files (CSV or dump, log, done.json) in "
                         "DIR/<run>/ (e.g. a folder committed to git) and restore them from there "
                         "first: a lab can span sessions whose output directory does not survive")
+    r.add_argument("--park", action="store_true",
+                   help="with --archive: keep each unfinished plate or shear run's newest "
+                        "checkpoint (and its CSV) in DIR/<run>/parked/ too, xz-compressed, so that "
+                        "the lab goes on from it on another machine; runs nothing, and may run "
+                        "beside the lab that writes the checkpoints (docs/soil-lab.md, "
+                        "\"Parking a stopped run\")")
     r.add_argument("--checkpoints", type=int, default=runner.DEFAULT_CHECKPOINTS, metavar="N",
                    help="restart files written over each plate and shear run, from which a "
                         f"stopped lab goes on (default {runner.DEFAULT_CHECKPOINTS}; 0: none)")

@@ -26,7 +26,7 @@ from typing import NamedTuple
 from wheelsim_post import bed_hold, liggghts_log, mpi_launch, step_archive
 from wheelsim_post.deck_files import deck_includes
 
-from .checkpoints import Checkpoints
+from .checkpoints import STATE, Checkpoints
 from .plan import LabInputError, SoilInfo
 
 DECKS = Path(__file__).resolve().parent.parent / "decks"
@@ -35,6 +35,8 @@ DECKS = Path(__file__).resolve().parent.parent / "decks"
 # one dump at the end).
 CHECKPOINTED_TESTS = ("plate", "shear")
 SHEAR_START_FILE = "shear_start_step.txt"  # in.lab_shear's record of the step its shear began
+OUTPUTS = {"plate": {"out_csv": "plate.csv"}, "shear": {"out_csv": "shear.csv"},
+           "repose": {"out_dump": "repose.dump"}}  # each test's deck output, in its run folder
 DEFAULT_CHECKPOINTS = 10  # restart files over a plate or shear run: at most 10 % of it is redone
 
 
@@ -204,9 +206,60 @@ class Lab:
 
     def _keep_step(self, directory, name):
         """Copies a finished step's files (its CSV or dump, log, done.json) to the archive, unless
-        it holds that record already."""
+        it holds that record already; a parked checkpoint of it is removed."""
         if not step_archive.holds(self.archive / name, directory):
             step_archive.keep(directory, self.archive / name)
+        step_archive.drop_parked(self.archive / name)
+
+    # ---- parked checkpoints (soil-lab run --park; docs/soil-lab.md "Parking a stopped run") -----
+    @staticmethod
+    def _checkpoints(d, run, dt_s, key=None):
+        return Checkpoints(d / "checkpoints", d / OUTPUTS[run.test]["out_csv"], dt_s, key)
+
+    def park(self, plan):
+        """Keeps the newest complete checkpoint of every unfinished plate and shear run (with its
+        CSV, checkpoints/state.json and the shear's start record) in ARCHIVE/<run>/parked/,
+        xz-compressed, so that the lab goes on from it on another machine; runs nothing, and may
+        run beside the lab that writes the checkpoints. Returns the exit status."""
+        parked = same = 0
+        for run in plan.runs:
+            d = self.out / run.name
+            if run.test not in CHECKPOINTED_TESTS or (d / "done.json").exists():
+                continue
+            ckpt = self._checkpoints(d, run, plan.soil.dt_s)
+            c = ckpt.newest_complete()
+            if c is None:
+                continue
+            start, step, path = c
+            kept = self.archive / run.name
+            before = step_archive.parked(kept)
+            if before is not None and before.get("step") == step:
+                same += 1
+                self.say(f"{run.name}: step {step} is parked already")
+                continue
+            files = [str(path.relative_to(d)), f"checkpoints/{STATE}",
+                     OUTPUTS[run.test]["out_csv"]]
+            if (d / SHEAR_START_FILE).is_file():
+                files.append(SHEAR_START_FILE)
+            written = step_archive.park(d, kept, files, {
+                "step": step, "start_step": start, "time_s": (step - start) * plan.soil.dt_s,
+                "parked_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())})
+            parked += 1
+            self.say(f"{run.name}: parked at step {step} ({step - start} steps into the run; "
+                     f"{written / 1e6:.1f} MB in {kept / step_archive.PARKED})")
+        self.say(f"--park: {parked} run(s) parked, {same} unchanged"
+                 + ("" if parked or same else " (no unfinished run has a complete checkpoint)"))
+        return 0
+
+    def _unpark(self, d, run, dt_s):
+        """Copies a parked checkpoint back into a run folder that has no complete checkpoint of
+        its own (a new machine); Checkpoints.prepare then takes it if the inputs are the same."""
+        if self._checkpoints(d, run, dt_s).newest_complete() is not None:
+            return
+        record = step_archive.unpark(self.archive / run.name, d)
+        if record is not None:
+            self.say(f"{run.name}: its checkpoint at step {record['step']} (parked "
+                     f"{record['parked_utc']}) restored from the archive {self.archive}")
 
     def _key(self, *parts, files=(), named=None):
         """The StepKey of `parts` (settings), `named` ({name: settings}, each told apart when it
@@ -325,8 +378,7 @@ class Lab:
         d.mkdir(parents=True, exist_ok=True)
         base = run.meta.get("half_of", run.name)  # a half-speed run uses its model's meshes
         meshes = {var: str(self.mesh(f"{base}_{var}", args)) for var, args in run.meshes.items()}
-        outputs = {"plate": {"out_csv": "plate.csv"}, "shear": {"out_csv": "shear.csv"},
-                   "repose": {"out_dump": "repose.dump"}}[run.test]
+        outputs = OUTPUTS[run.test]
         variables = {"restart_file": restart, **meshes, **run.variables,
                      **{k: str(d / v) for k, v in outputs.items()}}
         deck = DECKS / run.deck
@@ -335,6 +387,8 @@ class Lab:
                         files=(deck, soil.file, *meshes.values()))
         restored = self.archive is not None and self._restore_step(d, run.name)
         done = self._done(d, key)
+        if done is None and self.archive is not None and run.test in CHECKPOINTED_TESTS:
+            self._unpark(d, run, soil.dt_s)
         if done is None and restored:
             self.say(f"{progress}{run.name}: the archived record does not match this lab's inputs "
                      f"(changed: {', '.join(self.changed_inputs(d, key)) or 'unknown'}): runs again")

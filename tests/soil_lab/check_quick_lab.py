@@ -4,7 +4,10 @@
   soil-lab run ci --preset quick --speed-check --plate-hold 0.05 --plate-hold-stages 2
                  --bed-hold 0.05
                                   -> SIGKILLed in its first shear box once it has consolidated
-                                     and has two checkpoints; the same command resumes that box
+                                     and has two checkpoints; --archive A --park keeps the
+                                     newest; the box's checkpoints, CSV and start record
+                                     removed (a new machine); the same command with --archive A
+                                     takes them back and resumes that box
                                      from its newest complete checkpoint (done.json:
                                      resumed_at_step; the CSV's rows evenly spaced to the end, no
                                      gap, no repeat, one change from consolidation to shear, at
@@ -145,7 +148,21 @@ def main():
           f"{shear_start}) and two checkpoints "
           f"({time.monotonic() - t0:.0f} s; log {Path(a.work) / 'killed_lab.log'})")
     time.sleep(1.0)  # mpirun and the rank die with the lab (soil_lab.kill_kill)
-    r = lab(*command, env=env)
+    # parked (--park), and the box's checkpoint, CSV and start record then lost as on a new
+    # machine: the resumed lab takes them back from the archive
+    arch = Path(a.work) / "archive"
+    shutil.rmtree(arch, ignore_errors=True)
+    r = lab(*command, "--archive", str(arch), "--park", env=env)
+    parked = arch / "shear_s3000" / "parked" / "parked.json"
+    record = json.loads(parked.read_text()) if parked.is_file() else {}
+    names = sorted(f["path"] for f in record.get("files", []))
+    check(r.returncode == 0 and "shear_s3000: parked at step" in r.stdout and len(names) == 4
+          and {"checkpoints/state.json", "shear.csv", "shear_start_step.txt"} < set(names),
+          f"--park kept the killed box's newest checkpoint, state, CSV and start record ({names}; "
+          f"{r.stdout[-500:]} {r.stderr[-500:]})")
+    for f in names:
+        (box / f).unlink()
+    r = lab(*command, "--archive", str(arch), env=env)
     print(r.stdout[-4000:], r.stderr[-2000:])
     check(r.returncode == 0, f"soil-lab run exit 0 (got {r.returncode}, {time.monotonic() - t0:.0f} s)")
     for f in ("soil.toml", "results.toml", "results.csv", "plate.png", "plate_holds.png",
@@ -154,8 +171,12 @@ def main():
               "plate_b0.032/plate.csv", "shear_s3000/shear.csv", "shear_s6000/shear.csv",
               "shear_s9000/shear.csv", "repose/repose.dump"):
         check((out / f).is_file(), f"{f} written")
-    check("shear_s3000: resuming from its checkpoint at step" in r.stdout,
-          "the killed box resumed from a checkpoint")
+    check(f"shear_s3000: its checkpoint at step {record.get('step')} (parked" in r.stdout and
+          "shear_s3000: resuming from its checkpoint at step" in r.stdout,
+          "the killed box resumed from its parked checkpoint")
+    check(not (arch / "shear_s3000" / "parked").exists() and
+          (arch / "shear_s3000" / "done.json").is_file(),
+          "the finished box's archive folder holds its results, not its parked checkpoint")
     eta = re.search(r"~([0-9.]+) min left\] shear_s3000: resuming", r.stdout)
     check(eta is not None and float(eta.group(1)) > 0,
           f"the resumed lab's ETA counts the runs skipped as done at their own wall time "

@@ -93,6 +93,7 @@ class RunChecksFirst(unittest.TestCase):
             ("--tests", ""): "--tests: expected a comma-separated list, got ''",
             ("--tests", "plate,sheer"): "--tests: unknown test 'sheer' (did you mean 'shear'?)",
             ("--checkpoints", "-1"): "--checkpoints: expected a number >= 0",
+            ("--park",): "--park keeps checkpoints in the archive: it needs --archive DIR",
         }
         for args, message in cases.items():
             with self.subTest(" ".join(args)):

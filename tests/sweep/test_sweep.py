@@ -1217,13 +1217,10 @@ def case_dem_archive_bed(a, work):
           "of its bed" in r.stdout, "a point restored onto a different bed file is not named")
 
 
-def case_dem_resume(a, work):
-    """A DEM point stopped by SIGKILL of the driver after its first checkpoint
-    (dem.checkpoint_every_steps = 300) is resumed by the same command: it says "resuming from its
-    checkpoint", its run file records /parameters/resume/1, and done.json's wall_time_s is the
-    run's (/parameters/run/wall_time: the stopped attempt up to its checkpoint plus the last
-    one; the driver's clock for this attempt beside it). test_small at 20 % on the ci bed of
-    tests/wheel_cosim (0.05 s of test phase), 1 rank; ~1 min."""
+def resume_config(a, work):
+    """(config, its one point's folder under OUT) of the checkpointed DEM point: test_small at
+    20 % on the ci bed of tests/wheel_cosim, 0.05 s of test phase, checkpoints every 300 steps,
+    1 rank."""
     repo = dem_repo(a)
     bed = Path(a.build_dir) / "tests" / "wheel_cosim" / "bed" / "soilbin_ci.restart"
     if not bed.is_file():
@@ -1243,10 +1240,13 @@ deck = "{repo}/inputs/examples/in.wheel_coupled"
 liggghts_args = ["-var", "output_every", "0"]
 checkpoint_every_steps = 300
 """)
-    out = work / "out"
-    point = out / "test_small" / "soilbin_ci" / "s0.200"
-    ckpt = point / "cosim" / "checkpoints"
-    cmd = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--out-dir", str(out)]
+    return cfg, Path("test_small") / "soilbin_ci" / "s0.200"
+
+
+def kill_after_checkpoint(cmd, ckpt):
+    """Runs the sweep `cmd` until `ckpt` holds a checkpoint pair, lets it go on 2 s, SIGKILLs the
+    driver (its children die with it) and checks that nothing is left; returns (the pairs' steps,
+    seconds until the kill)."""
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                          start_new_session=True)
     t0 = time.monotonic()
@@ -1276,6 +1276,21 @@ checkpoint_every_steps = 300
     finally:
         if p.poll() is None:
             os.killpg(p.pid, signal.SIGKILL)
+    return pairs, first
+
+
+def case_dem_resume(a, work):
+    """A DEM point stopped by SIGKILL of the driver after its first checkpoint
+    (dem.checkpoint_every_steps = 300) is resumed by the same command: it says "resuming from its
+    checkpoint", its run file records /parameters/resume/1, and done.json's wall_time_s is the
+    run's (/parameters/run/wall_time: the stopped attempt up to its checkpoint plus the last
+    one; the driver's clock for this attempt beside it). test_small at 20 % on the ci bed of
+    tests/wheel_cosim (0.05 s of test phase), 1 rank; ~1 min."""
+    cfg, rel = resume_config(a, work)
+    out = work / "out"
+    point = out / rel
+    cmd = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--out-dir", str(out)]
+    pairs, first = kill_after_checkpoint(cmd, point / "cosim" / "checkpoints")
     print(f"first attempt killed after {first:.1f} s, checkpoints at steps {pairs}")
     check(not (point / "done.json").exists(), "the killed point has a done.json")
     r = run_sweep(a, cfg, "--out-dir", str(out), timeout=600)
@@ -1299,6 +1314,58 @@ checkpoint_every_steps = 300
     check(done["wall_time_s_this_attempt"] > 0, "done.json lacks this attempt's wall time")
     check(r.stdout.count("in this attempt, resumed from its checkpoint") == 1,
           "the progress line does not give both wall times")
+
+
+def case_dem_park(a, work):
+    """--park on a new machine: the point of dem_resume is SIGKILLed after a checkpoint;
+    `--archive ARCH --park` keeps its newest checkpoint pair and partial run file there
+    (xz-compressed, parked.json last; a second --park changes nothing); a sweep into a new,
+    empty output directory with the same archive restores the checkpoint, resumes from it
+    (the run file records the parked step) and finishes, and the finished point's archive folder
+    then holds no parked copy. A parked record naming another bed: --beds-only removes the
+    restored checkpoint with a warning (the point would run from scratch). ~1 min."""
+    cfg, rel = resume_config(a, work)
+    out1, out2, out3, arch = work / "out1", work / "out2", work / "out3", work / "archive"
+    base = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--archive", str(arch)]
+    kill_after_checkpoint(base + ["--out-dir", str(out1)], out1 / rel / "cosim" / "checkpoints")
+    r = run_sweep(a, cfg, "--out-dir", str(out1), "--archive", str(arch), "--park", timeout=120)
+    check(r.returncode == 0 and f"parked {rel} at step" in r.stdout, "--park did not park the point")
+    record = json.loads((arch / rel / "parked" / "parked.json").read_text())
+    step = record["step"]
+    names = sorted(f["path"] for f in record["files"])
+    want = sorted(["run.part.h5", f"cosim/checkpoints/rig-{step}.ckpt"]
+                  + [f"cosim/checkpoints/liggghts-{step}.restart{x}" for x in ("", ".wheel", ".info")])
+    check(names == want, f"parked files {names}, expected {want}")
+    for f in record["files"]:
+        check((arch / rel / "parked" / f"{f['path']}.xz").is_file(), f"{f['path']}.xz missing")
+    check(record["inputs_hash"] and record["bed_sha256"], f"parked.json {record}")
+    r = run_sweep(a, cfg, "--out-dir", str(out1), "--archive", str(arch), "--park", timeout=120)
+    check(r.returncode == 0 and f"step {step} is parked already" in r.stdout,
+          "a second --park re-parked the same step")
+    # a new machine: nothing of out1
+    r = run_sweep(a, cfg, "--out-dir", str(out2), "--archive", str(arch), timeout=600)
+    check(r.returncode == 0, "the sweep resumed from the parked checkpoint failed")
+    check(f"its checkpoint at step {step}" in r.stdout and "restored from the archive" in r.stdout
+          and "resuming from its checkpoint" in r.stdout, "the parked checkpoint was not resumed")
+    with h5py.File(out2 / rel / "run.h5", "r") as f:
+        got = int(f["parameters/resume/1/step"][()])
+    check(got == step, f"resumed at step {got}, parked {step}")
+    check((arch / rel / "done.json").is_file() and not (arch / rel / "parked").exists(),
+          "the finished point's archive folder still holds its parked copy (or no done.json)")
+    # parked again from out1 (still stopped), then restored onto a 'different' bed
+    shutil.rmtree(arch / rel)
+    r = run_sweep(a, cfg, "--out-dir", str(out1), "--archive", str(arch), "--park", timeout=120)
+    check(r.returncode == 0, "--park failed")
+    pj = arch / rel / "parked" / "parked.json"
+    record = json.loads(pj.read_text())
+    record["bed_sha256"] = {k: "0" * 64 for k in record["bed_sha256"]}
+    pj.write_text(json.dumps(record))
+    r = run_sweep(a, cfg, "--out-dir", str(out3), "--archive", str(arch), "--beds-only",
+                  timeout=120)
+    check(r.returncode == 0 and "ran on another preparation of its bed" in r.stdout
+          and "it runs from scratch" in r.stdout
+          and not (out3 / rel / "cosim" / "checkpoints").exists(),
+          "a checkpoint parked on another bed was not refused")
 
 
 def case_point_archive(a, work):

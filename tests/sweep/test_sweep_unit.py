@@ -119,6 +119,12 @@ def case_cli(a, work):
               f"{args}: stderr does not name '{flag}' and '{near}' in one line: {r.stderr!r}")
     r = _run(a, str(cfg), "--jobs", "0")
     check(r.returncode == 2 and "--jobs must be >= 1" in r.stderr, "--jobs 0: expected exit 2")
+    r = _run(a, str(cfg), "--park")
+    check(r.returncode == 2 and "--park keeps checkpoints in the archive: it needs --archive DIR"
+          in r.stderr, "--park without --archive: expected exit 2 naming --archive")
+    r = _run(a, str(cfg), "--park", "--archive", str(work / "a"), "--force")
+    check(r.returncode == 2 and "--park runs nothing: not with" in r.stderr,
+          "--park --force: expected exit 2")
     r = _run(a)
     check(r.returncode == 2 and "config" in r.stderr, "no config: expected exit 2")
     r = _run(a, str(cfg), "--beds-only", "--dry-run")
