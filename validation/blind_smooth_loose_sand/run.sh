@@ -3,19 +3,22 @@
 #
 #   validation/blind_smooth_loose_sand/run.sh [--smoke | --sensitivity | --scm] [--out-dir DIR] [--jobs N] [--force]
 #
-# Full case: prepares the ~74 000-sphere bin once, runs the 9 slips (signed convention, each set
-# by the wheel speed at 0.1 m/s) through wheel-sweep (resumable: a re-run skips finished points),
-# then writes into this folder results.csv, curves.csv, prediction.png and provenance.toml (git
-# hash, command, machine, wall time). Many hours on 2 cores (README "Cost"): run it in the
-# background, nohup ... &
-# --sensitivity: afterwards also the travel (0.25 m on a 0.52 m bin, all nine slips: the prediction
-#          at steady sinkage, README "The steady-state sweep"), speed (0.05 m/s), bed-depth
-#          (0.063 m; then ~0.155 m at s = 0.9 alone), time-step (half, at s = 0.9 alone) and
-#          grain-size sweeps (1.5 x the main size, 4.5-7.9 mm; then the calibrated 2-3.5 mm
-#          spheres), in that order, at 2 slips each but the travel, the deeper bed and the time step:
-#          results_travel_0.25.csv, results_speed_0.05.csv, results_depth_0.06.csv,
-#          results_depth_0.15.csv, results_dt_0.5.csv, results_grain_2.25.csv,
-#          results_grain_1.0.csv and sensitivity.png here.
+# Full case: prepares the ~74 000-sphere bin once and runs the 9 slips (signed convention, each set
+# by the wheel speed at 0.1 m/s; 0.12 m of test travel) through wheel-sweep (resumable: a re-run
+# skips finished points), then the same 9 slips at steady sinkage (0.25 m of travel on a 0.52 m
+# bin, README "The steady-state sweep"), and writes into this folder results.csv, curves.csv,
+# prediction.png, results_travel_0.25.csv and provenance.toml (git hash, command, machine, wall
+# time). results.csv is the steady-state sweep's table (sinkage against the long bed's equivalent
+# surface, surface_loose_1330_long.csv) once all its nine slips are in, with the 0.12 m windows
+# then in results_window_0.12.csv; until then the 0.12 m windows' table. Many hours on 2 cores
+# (README "Cost"): run it in the background, nohup ... &; a point that cannot finish before the
+# machine goes is parked (README "Resuming across sessions").
+# --sensitivity: afterwards also the speed (0.05 m/s), bed-depth (0.063 m; then ~0.155 m at
+#          s = 0.9 alone), time-step (half, at s = 0.9 alone) and grain-size sweeps (1.5 x the
+#          main size, 4.5-7.9 mm; then the calibrated 2-3.5 mm spheres), in that order, at 2
+#          slips each but the deeper bed and the time step: results_speed_0.05.csv,
+#          results_depth_0.06.csv, results_depth_0.15.csv, results_dt_0.5.csv,
+#          results_grain_2.25.csv, results_grain_1.0.csv and sensitivity.png here.
 # --scm:   only the SCM half (sweep_scm.toml: the same rig and slips on the SCM soil the soil lab
 #          fitted to the DEM soil, inputs/scm_soils/from_dem/loose_sand_1330.toml; ~1 min per
 #          point): results_scm.csv, comparison_scm.md/png (DEM against SCM) and
@@ -103,15 +106,42 @@ if ((smoke)); then
   sweep main "$here/sweep_smoke.toml" 0.025 0.05 "$dest/results.csv"
 else
   dest=$here
-  sweep main "$here/sweep.toml" 0.7 1.2 "$dest/results.csv"
-  cp "$out/main/curves.csv" "$dest/curves.csv"
+  # The prediction is the steady-state sweep once its nine slips are in (README "The steady-state
+  # sweep", decided 2026-12-03): results.csv from its runs, with sinkage read against the long
+  # bed's equivalent surface; the main sweep's 0.12 m windows then go to results_window_0.12.csv.
+  # Until then results.csv is the main sweep's table, as before.
+  sweep main "$here/sweep.toml" 0.7 1.2 "$out/main/results.csv"
+  sweep travel_0.25 "$here/sweep_travel.toml" 2.0 2.5 "$dest/results_travel_0.25.csv"
+  n_slips=$("$python" -c 'import sys, tomllib; print(len(tomllib.load(open(sys.argv[1], "rb"))["slips"]))' "$here/sweep_travel.toml")
+  if (($(grep -cv '^#\|^slip,' "$dest/results_travel_0.25.csv") == n_slips)); then
+    # the offset: bed depth minus equivalent surface, from the header of the surface profile
+    offset=$("$python" - "$here/surface_loose_1330_long.csv" <<'PY'
+import re, sys
+head = open(sys.argv[1]).read()
+depth = float(re.search(r"bed depth ([0-9.e+-]+) m", head).group(1))
+surface = float(re.search(r"equivalent surface ([0-9.e+-]+) m", head).group(1))
+print(f"{depth - surface:.6f}")
+PY
+)
+    mapfile -t runs < <(finished_runs "$out/travel_0.25" "$here/points/travel_0.25")
+    "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start 2.0 --window-end 2.5 \
+      --sinkage-offset "$offset" --results "$dest/results.csv.new" --csv "$out/prediction_curves.csv"
+    keep_table "$dest/results.csv.new" "$dest/results.csv"
+    cp "$out/prediction_curves.csv" "$dest/curves.csv"
+    cp "$out/main/results.csv" "$dest/results_window_0.12.csv.new"
+    keep_table "$dest/results_window_0.12.csv.new" "$dest/results_window_0.12.csv"
+    echo "run.sh: results.csv: the steady-state sweep (0.25 m of travel; sinkage against the equivalent surface, offset $offset m); the 0.12 m windows in results_window_0.12.csv"
+  else
+    cp "$out/main/results.csv" "$dest/results.csv.new"
+    keep_table "$dest/results.csv.new" "$dest/results.csv"
+    cp "$out/main/curves.csv" "$dest/curves.csv"
+    echo "run.sh: results.csv: the main sweep (0.12 m windows); the steady-state sweep has $(grep -cv '^#\|^slip,' "$dest/results_travel_0.25.csv") of its $n_slips slips"
+  fi
 fi
 "$python" "$here/plot.py" --png "$dest/prediction.png" "$dest/results.csv"
 if ((sensitivity)); then
-  # the order is the order of what each tells: travel first (every main point warns of a trend:
-  # how far from steady are they), then speed (the quasi-static question), depth, time step,
-  # grain (dearest)
-  sweep travel_0.25 "$here/sweep_travel.toml" 2.0 2.5 "$dest/results_travel_0.25.csv"
+  # the order is the order of what each tells: speed (the quasi-static question), depth, time
+  # step, grain (dearest); travel ran above (the prediction's sweep)
   sweep speed_0.05 "$here/sweep_speed.toml" 1.4 2.4 "$dest/results_speed_0.05.csv"
   sweep depth_0.06 "$here/sweep_depth.toml" 0.7 1.2 "$dest/results_depth_0.06.csv"
   sweep depth_0.15 "$here/sweep_depth_deep.toml" 0.7 1.2 "$dest/results_depth_0.15.csv"
