@@ -21,7 +21,6 @@ import json
 import re
 import shutil
 import subprocess
-import time
 from pathlib import Path
 
 from wheelsim_post import step_archive
@@ -111,22 +110,18 @@ def _checkpoint_info(point_dir, step):
     return dict(line.split(None, 1) for line in text.splitlines() if " " in line)
 
 
-def _snapshot_h5(src, dest, tries=5):
-    """Copies an HDF5 file the rig may be writing to and checks that the copy opens and reads;
-    retries (a copy taken across a write) up to `tries` times."""
+def _snapshot_h5(src, dest):
+    """Copies a run file the rig may be committing to: each commit replaces it by rename(2)
+    (docs/hdf5-layout.md), so the copy read from one open file is one complete commit; checked
+    to open and read (every dataset)."""
     import h5py  # only parking needs it
 
-    err = None
-    for _ in range(tries):
-        shutil.copy2(src, dest)
-        try:
-            with h5py.File(dest, "r") as f:
-                f.visititems(lambda name, obj: obj[()] if isinstance(obj, h5py.Dataset) else None)
-            return
-        except (OSError, ValueError, RuntimeError, KeyError) as e:
-            err = e
-            time.sleep(1.0)
-    raise OSError(f"{src}: no consistent copy in {tries} tries ({err})")
+    shutil.copy2(src, dest)
+    try:
+        with h5py.File(dest, "r") as f:
+            f.visititems(lambda name, obj: obj[()] if isinstance(obj, h5py.Dataset) else None)
+    except (OSError, ValueError, RuntimeError, KeyError) as e:
+        raise OSError(f"{src}: its copy does not read back ({e})") from None
 
 
 def park(archive, point_dir, rel, part_file, bed_sha256, repo):
