@@ -77,9 +77,10 @@ def parked(kept):
 def park(step, kept, relpaths, record, snapshot=None):
     """Copies the files `relpaths` (relative to `step`) of an unfinished step into KEPT/parked/,
     each xz-compressed (name + ".xz"), with parked.json (`record` plus the file list, their sizes
-    and modification times, given back on unparking) written last; an earlier parked copy is replaced only once the new one is complete.
-    `snapshot` maps a relpath to `copy(src, dest)`, which takes a file that may change while it is
-    read (a run file being written) to a consistent copy first. Returns the bytes written."""
+    and modification times, given back on unparking) written last; an earlier parked copy is
+    replaced only once the new one is complete. `snapshot` maps a relpath to `copy(src, dest)`,
+    which takes a file that may change while it is read (a run file being committed) to a
+    consistent copy first. Returns the bytes written."""
     step, kept = Path(step), Path(kept)
     tmp, final = kept / f"{PARKED}.part", kept / PARKED
     shutil.rmtree(tmp, ignore_errors=True)
