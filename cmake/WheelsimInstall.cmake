@@ -2,13 +2,13 @@
 #
 #   P/bin/                 the executables (wheel-rig, wong-reece, wheel-mesh, scm-soil,
 #                          liggghts-wheel) and links to the Python and shell tools (wheel-cosim,
-#                          wheel-sweep, wheelsim-post, soil-lab) in share/wheelsim
+#                          wheel-sweep, park-running, wheelsim-post, soil-lab) in share/wheelsim
 #   P/share/wheelsim/      the parts of the source tree the tools and the shipped configs use, at
 #                          the same relative places as in a checkout, so that the tools' own
 #                          lookups (<root>/inputs, <root>/build/bin, <root>/build/meshes) and the
 #                          configs' relative paths (../../build/meshes/wheel2.obj) work unchanged:
 #                            inputs/, wheel_dynamics/examples/, meshes/catalog.toml,
-#                            scripts/ (wheel-cosim, wheel-sweep, wheelsim_sweep/),
+#                            scripts/ (wheel-cosim, wheel-sweep, park-running, wheelsim_sweep/),
 #                            postprocess/ (wheelsim-post, wheelsim_post/),
 #                            soil_lab/ (soil-lab, soil_lab_py/, decks/),
 #                            build/meshes/ (the generated wheels), build/bin -> ../../../bin,
@@ -26,7 +26,7 @@ install(TARGETS wheel-mesh RUNTIME DESTINATION bin)
 
 # --- the Python and shell tools, at their source-tree places under share/wheelsim ---
 install(PROGRAMS "${_src}/scripts/wheel-cosim" "${_src}/scripts/wheel-sweep"
-        DESTINATION ${_share}/scripts)
+                 "${_src}/scripts/park-running" DESTINATION ${_share}/scripts)
 install(DIRECTORY "${_src}/scripts/wheelsim_sweep" DESTINATION ${_share}/scripts ${_no_cache})
 install(PROGRAMS "${_src}/postprocess/wheelsim-post" DESTINATION ${_share}/postprocess)
 install(DIRECTORY "${_src}/postprocess/wheelsim_post" DESTINATION ${_share}/postprocess
@@ -53,8 +53,8 @@ install(DIRECTORY "${_src}/docs" DESTINATION share/doc/wheelsim)
 install(CODE [[
   set(_p "$ENV{DESTDIR}${CMAKE_INSTALL_PREFIX}")
   file(MAKE_DIRECTORY "${_p}/bin" "${_p}/share/wheelsim/build")
-  foreach(_tool scripts/wheel-cosim scripts/wheel-sweep postprocess/wheelsim-post
-                soil_lab/soil-lab)
+  foreach(_tool scripts/wheel-cosim scripts/wheel-sweep scripts/park-running
+                postprocess/wheelsim-post soil_lab/soil-lab)
     get_filename_component(_name "${_tool}" NAME)
     file(REMOVE "${_p}/bin/${_name}")
     file(CREATE_LINK "../share/wheelsim/${_tool}" "${_p}/bin/${_name}" SYMBOLIC)

@@ -74,31 +74,57 @@ def parked(kept):
         return None
 
 
+def _stage(step, relpaths, snapshot):
+    """Takes the files to park into STEP/.parking/ at once: hard links (a file the running step
+    removes meanwhile, an older checkpoint, stays readable there), else copies, and the
+    `snapshot` files by their copy function. Returns the staging directory."""
+    stage = step / ".parking"
+    shutil.rmtree(stage, ignore_errors=True)
+    for rel in relpaths:
+        dest = stage / rel
+        dest.parent.mkdir(parents=True, exist_ok=True)
+        if snapshot and rel in snapshot:
+            continue  # after the links: they are the checkpoint the snapshot must not predate
+        try:
+            os.link(step / rel, dest)
+        except FileNotFoundError:
+            shutil.rmtree(stage, ignore_errors=True)
+            raise
+        except OSError:
+            shutil.copy2(step / rel, dest)  # a filesystem without hard links
+    for rel in relpaths:
+        if snapshot and rel in snapshot:
+            snapshot[rel](step / rel, stage / rel)
+            shutil.copystat(step / rel, stage / rel)
+    return stage
+
+
 def park(step, kept, relpaths, record, snapshot=None):
     """Copies the files `relpaths` (relative to `step`) of an unfinished step into KEPT/parked/,
     each xz-compressed (name + ".xz"), with parked.json (`record` plus the file list, their sizes
     and modification times, given back on unparking) written last; an earlier parked copy is
-    replaced only once the new one is complete. `snapshot` maps a relpath to `copy(src, dest)`,
-    which takes a file that may change while it is read (a run file being committed) to a
-    consistent copy first. Returns the bytes written."""
+    replaced only once the new one is complete. The files are first hard-linked together
+    (_stage), so that a running step removing one meanwhile does not matter; `snapshot` maps a
+    relpath to `copy(src, dest)`, which takes a file that may change while it is read (a run file
+    being committed) to a consistent copy, after the others. FileNotFoundError: a file was gone
+    before it could be linked (the caller picks the newest checkpoint again). Returns the bytes
+    written."""
     step, kept = Path(step), Path(kept)
+    stage = _stage(step, relpaths, snapshot)
     tmp, final = kept / f"{PARKED}.part", kept / PARKED
     shutil.rmtree(tmp, ignore_errors=True)
     files, written = [], 0
-    for rel in relpaths:
-        src, dest = step / rel, tmp / f"{rel}.xz"
-        dest.parent.mkdir(parents=True, exist_ok=True)
-        if snapshot and rel in snapshot:
-            snap = tmp / f"{rel}.snapshot"
-            snapshot[rel](src, snap)
-            _xz(snap, dest)
-            snap.unlink()
-        else:
-            _xz(src, dest)
-        st = (step / rel).stat()
-        files.append({"path": rel, "bytes": st.st_size, "xz_bytes": dest.stat().st_size,
-                      "mtime_unix": st.st_mtime})
-        written += dest.stat().st_size
+    try:
+        for rel in relpaths:
+            dest = tmp / f"{rel}.xz"
+            dest.parent.mkdir(parents=True, exist_ok=True)
+            _xz(stage / rel, dest)
+            st = (stage / rel).stat()
+            files.append({"path": rel, "bytes": st.st_size, "xz_bytes": dest.stat().st_size,
+                          "mtime_unix": st.st_mtime})
+            written += dest.stat().st_size
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
     (tmp / PARKED_RECORD).write_text(json.dumps({**record, "files": files}, indent=1) + "\n")
     old = kept / f"{PARKED}.old"
     shutil.rmtree(old, ignore_errors=True)

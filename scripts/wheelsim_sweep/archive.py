@@ -124,26 +124,36 @@ def _snapshot_h5(src, dest):
         raise OSError(f"{src}: its copy does not read back ({e})") from None
 
 
-def park(archive, point_dir, rel, part_file, bed_sha256, repo):
+def park(archive, point_dir, rel, part_file, bed_sha256, repo, tries=5):
     """Parks an unfinished point's newest complete checkpoint pair and partial run file in
     archive/rel/parked/; returns (step, bytes written), (None, 0) without a checkpoint, or
-    (step, 0) when that step is parked there already."""
+    (step, 0) when that step is parked there already. The point may be running: when a file of
+    the pair is removed meanwhile (each side keeps its newest two), the newest pair is taken
+    again, up to `tries` times."""
     point_dir = Path(point_dir)
-    step = newest_checkpoint(point_dir)
-    if step is None or not (point_dir / part_file).is_file():
-        return None, 0
     kept = Path(archive) / rel
-    before = step_archive.parked(kept)
-    if before is not None and before.get("step") == step:
-        return step, 0
-    info = _checkpoint_info(point_dir, step)
-    files = [part_file, str(CHECKPOINTS / f"rig-{step}.ckpt")] + [
-        str(CHECKPOINTS / h.format(s=step)) for h in LIGGGHTS_HALF]
-    record = {"step": step, "time_s": float(info.get("time", "nan")),
-              "inputs_hash": info.get("inputs_hash", "").strip(), "bed_sha256": bed_sha256,
-              "git_commit": _git_commit(repo), "parked_utc": _utc_now()}
-    written = step_archive.park(point_dir, kept, files, record, snapshot={part_file: _snapshot_h5})
-    return step, written
+    for attempt in range(tries):
+        step = newest_checkpoint(point_dir)
+        if step is None or not (point_dir / part_file).is_file():
+            return None, 0
+        before = step_archive.parked(kept)
+        if before is not None and before.get("step") == step:
+            return step, 0
+        files = [part_file, str(CHECKPOINTS / f"rig-{step}.ckpt")] + [
+            str(CHECKPOINTS / h.format(s=step)) for h in LIGGGHTS_HALF]
+        try:
+            info = _checkpoint_info(point_dir, step)
+            record = {"step": step, "time_s": float(info.get("time", "nan")),
+                      "inputs_hash": info.get("inputs_hash", "").strip(),
+                      "bed_sha256": bed_sha256, "git_commit": _git_commit(repo),
+                      "parked_utc": _utc_now()}
+            written = step_archive.park(point_dir, kept, files, record,
+                                        snapshot={part_file: _snapshot_h5})
+            return step, written
+        except FileNotFoundError:
+            if attempt == tries - 1:
+                raise
+    return None, 0
 
 
 def unpark(archive, point_dir, rel):

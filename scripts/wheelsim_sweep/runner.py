@@ -924,9 +924,10 @@ class Runner:
         archive (archive.park); reads the output directory only, so it may run beside the sweep
         that writes the checkpoints. Returns the exit status."""
         if self.sweep.terrain != "dem":
-            self.say(f"wheel-sweep: error: --park: {self.sweep.path.name} is an "
-                     f"{self.sweep.terrain.upper()} sweep; only DEM points have checkpoints")
-            return 2
+            self.say(f"wheel-sweep: --park: {self.sweep.path.name} is an "
+                     f"{self.sweep.terrain.upper()} sweep: its points have no checkpoints, "
+                     "nothing to park")
+            return 0
         parked = same = 0
         for p in self.sweep.points:
             d = self.point_dir(p)

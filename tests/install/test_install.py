@@ -110,7 +110,7 @@ def main():
                          f"expected '{tool} {a.version} ...'")
             print(f"ok: {out}")
         # The Python tools run from share/wheelsim, not from the source tree.
-        for tool in ("wheelsim-post", "wheel-sweep", "soil-lab", "wheel-cosim"):
+        for tool in ("wheelsim-post", "wheel-sweep", "park-running", "soil-lab", "wheel-cosim"):
             if tool in tools and share not in Path(os.path.realpath(prefix / "bin" / tool)).parents:
                 sys.exit(f"FAIL: {prefix / 'bin' / tool} does not lead into {share}")
 

@@ -1243,10 +1243,10 @@ checkpoint_every_steps = 300
     return cfg, Path("test_small") / "soilbin_ci" / "s0.200"
 
 
-def kill_after_checkpoint(cmd, ckpt):
-    """Runs the sweep `cmd` until `ckpt` holds a checkpoint pair, lets it go on 2 s, SIGKILLs the
-    driver (its children die with it) and checks that nothing is left; returns (the pairs' steps,
-    seconds until the kill)."""
+def kill_after_checkpoint(cmd, ckpt, before_kill=None):
+    """Runs the sweep `cmd` until `ckpt` holds a checkpoint pair, lets it go on 2 s (calls
+    before_kill(pid of the driver) then, if given), SIGKILLs the driver (its children die with it)
+    and checks that nothing is left; returns (the pairs' steps, seconds until the kill)."""
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                          start_new_session=True)
     t0 = time.monotonic()
@@ -1265,6 +1265,8 @@ def kill_after_checkpoint(cmd, ckpt):
         check(pairs, f"no checkpoint pair in {ckpt} after {time.monotonic() - t0:.0f} s "
               f"(driver exit {p.poll()})")
         time.sleep(2.0)  # the attempt goes on past its checkpoint: that part is redone
+        if before_kill is not None:
+            before_kill(p.pid)
         tree = descendants(p.pid)
         p.kill()  # SIGKILL: the driver's children die with it (PR_SET_PDEATHSIG)
         first = time.monotonic() - t0
@@ -1317,9 +1319,10 @@ def case_dem_resume(a, work):
 
 
 def case_dem_park(a, work):
-    """--park on a new machine: the point of dem_resume is SIGKILLed after a checkpoint;
-    `--archive ARCH --park` keeps its newest checkpoint pair and partial run file there
-    (xz-compressed, parked.json last; a second --park changes nothing); a sweep into a new,
+    """--park on a new machine: the point of dem_resume, run with --archive ARCH, is parked while
+    it runs (scripts/park-running PID: its command line with --park) and SIGKILLed after a
+    checkpoint; `--archive ARCH --park` keeps its newest checkpoint pair and partial run file
+    there (xz-compressed, parked.json last; a second --park changes nothing); a sweep into a new,
     empty output directory with the same archive restores the checkpoint, resumes from it
     (the run file records the parked step) and finishes, and the finished point's archive folder
     then holds no parked copy. A parked record naming another bed: --beds-only removes the
@@ -1327,9 +1330,21 @@ def case_dem_park(a, work):
     cfg, rel = resume_config(a, work)
     out1, out2, out3, arch = work / "out1", work / "out2", work / "out3", work / "archive"
     base = [a.sweep, str(cfg), "--build-dir", a.build_dir, "--archive", str(arch)]
-    kill_after_checkpoint(base + ["--out-dir", str(out1)], out1 / rel / "cosim" / "checkpoints")
+    park_running = Path(a.sweep).resolve().parent / "park-running"
+
+    def park_while_running(pid):
+        r = subprocess.run([str(park_running), str(pid)], capture_output=True, text=True,
+                           timeout=120)
+        print(r.stdout, r.stderr)
+        check(r.returncode == 0 and f"parked {rel} at step" in r.stdout
+              and "--park" in r.stdout, "park-running PID did not park the running point")
+
+    kill_after_checkpoint(base + ["--out-dir", str(out1)], out1 / rel / "cosim" / "checkpoints",
+                          before_kill=park_while_running)
+    # after the kill: a newer checkpoint (written after park-running's) is parked, or none is
     r = run_sweep(a, cfg, "--out-dir", str(out1), "--archive", str(arch), "--park", timeout=120)
-    check(r.returncode == 0 and f"parked {rel} at step" in r.stdout, "--park did not park the point")
+    check(r.returncode == 0 and (f"parked {rel} at step" in r.stdout
+                                 or "is parked already" in r.stdout), "--park failed")
     record = json.loads((arch / rel / "parked" / "parked.json").read_text())
     step = record["step"]
     names = sorted(f["path"] for f in record["files"])
