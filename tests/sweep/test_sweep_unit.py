@@ -125,6 +125,12 @@ def case_cli(a, work):
     r = _run(a, str(cfg), "--park", "--archive", str(work / "a"), "--force")
     check(r.returncode == 2 and "--park runs nothing: not with" in r.stderr,
           "--park --force: expected exit 2")
+    # scripts/park-running: a PID that is no sweep or lab run is refused, naming it
+    park_running = Path(a.sweep).resolve().parent / "park-running"
+    r = subprocess.run([str(park_running), str(os.getpid())], capture_output=True, text=True,
+                       timeout=30)
+    check(r.returncode == 2 and f"PID {os.getpid()} is not a running wheel-sweep or soil-lab run"
+          in r.stderr, f"park-running with this test's PID: exit {r.returncode}, {r.stderr!r}")
     r = _run(a)
     check(r.returncode == 2 and "config" in r.stderr, "no config: expected exit 2")
     r = _run(a, str(cfg), "--beds-only", "--dry-run")
