@@ -9,6 +9,7 @@ An unfinished step can be *parked* too: the files it needs to go on from its new
 so that a step hours long can go on on another machine (docs/sweeps.md "Parking a stopped point").
 Whether the restored checkpoint is taken is again the caller's resume check's decision."""
 
+import datetime
 import json
 import lzma
 import os
@@ -101,8 +102,8 @@ def _stage(step, relpaths, snapshot):
 
 def park(step, kept, relpaths, record, snapshot=None):
     """Copies the files `relpaths` (relative to `step`) of an unfinished step into KEPT/parked/,
-    each xz-compressed (name + ".xz"), with parked.json (`record` plus the file list, their sizes
-    and modification times, given back on unparking) written last; an earlier parked copy is
+    each xz-compressed (name + ".xz"), with parked.json (`record` plus the time and the file list, their
+    sizes and modification times, given back on unparking) written last; an earlier parked copy is
     replaced only once the new one is complete. The files are first hard-linked together
     (_stage), so that a running step removing one meanwhile does not matter; `snapshot` maps a
     relpath to `copy(src, dest)`, which takes a file that may change while it is read (a run file
@@ -125,7 +126,9 @@ def park(step, kept, relpaths, record, snapshot=None):
             written += dest.stat().st_size
     finally:
         shutil.rmtree(stage, ignore_errors=True)
-    (tmp / PARKED_RECORD).write_text(json.dumps({**record, "files": files}, indent=1) + "\n")
+    parked_utc = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    (tmp / PARKED_RECORD).write_text(
+        json.dumps({**record, "parked_utc": parked_utc, "files": files}, indent=1) + "\n")
     old = kept / f"{PARKED}.old"
     shutil.rmtree(old, ignore_errors=True)
     if final.exists():

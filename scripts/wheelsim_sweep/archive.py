@@ -145,15 +145,13 @@ def park(archive, point_dir, rel, part_file, bed_sha256, repo, tries=5):
             info = _checkpoint_info(point_dir, step)
             record = {"step": step, "time_s": float(info.get("time", "nan")),
                       "inputs_hash": info.get("inputs_hash", "").strip(),
-                      "bed_sha256": bed_sha256, "git_commit": _git_commit(repo),
-                      "parked_utc": _utc_now()}
+                      "bed_sha256": bed_sha256, "git_commit": _git_commit(repo)}
             written = step_archive.park(point_dir, kept, files, record,
                                         snapshot={part_file: _snapshot_h5})
             return step, written
         except FileNotFoundError:
             if attempt == tries - 1:
                 raise
-    return None, 0
 
 
 def unpark(archive, point_dir, rel):

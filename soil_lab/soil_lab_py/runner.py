@@ -242,8 +242,7 @@ class Lab:
             if (d / SHEAR_START_FILE).is_file():
                 files.append(SHEAR_START_FILE)
             written = step_archive.park(d, kept, files, {
-                "step": step, "start_step": start, "time_s": (step - start) * plan.soil.dt_s,
-                "parked_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())})
+                "step": step, "start_step": start, "time_s": (step - start) * plan.soil.dt_s})
             parked += 1
             self.say(f"{run.name}: parked at step {step} ({step - start} steps into the run; "
                      f"{written / 1e6:.1f} MB in {kept / step_archive.PARKED})")

@@ -113,7 +113,8 @@ else
   sweep main "$here/sweep.toml" 0.7 1.2 "$out/main/results.csv"
   sweep travel_0.25 "$here/sweep_travel.toml" 2.0 2.5 "$dest/results_travel_0.25.csv"
   n_slips=$("$python" -c 'import sys, tomllib; print(len(tomllib.load(open(sys.argv[1], "rb"))["slips"]))' "$here/sweep_travel.toml")
-  if (($(grep -cv '^#\|^slip,' "$dest/results_travel_0.25.csv") == n_slips)); then
+  n_travel=$(grep -cv '^#\|^slip,' "$dest/results_travel_0.25.csv")
+  if ((n_travel == n_slips)); then
     # the offset: bed depth minus equivalent surface, from the header of the surface profile
     offset=$("$python" - "$here/surface_loose_1330_long.csv" <<'PY'
 import re, sys
@@ -135,7 +136,7 @@ PY
     cp "$out/main/results.csv" "$dest/results.csv.new"
     keep_table "$dest/results.csv.new" "$dest/results.csv"
     cp "$out/main/curves.csv" "$dest/curves.csv"
-    echo "run.sh: results.csv: the main sweep (0.12 m windows); the steady-state sweep has $(grep -cv '^#\|^slip,' "$dest/results_travel_0.25.csv") of its $n_slips slips"
+    echo "run.sh: results.csv: the main sweep (0.12 m windows); the steady-state sweep has $n_travel of its $n_slips slips"
   fi
 fi
 "$python" "$here/plot.py" --png "$dest/prediction.png" "$dest/results.csv"
