@@ -18,12 +18,11 @@ machine (docs/sweeps.md, "Parking a stopped point").
 """
 import datetime
 import json
-import re
 import shutil
 import subprocess
 from pathlib import Path
 
-from wheelsim_post import step_archive
+from wheelsim_post import cosim_checkpoint, step_archive
 
 KEPT_FILES = ("done.json", "run.h5", "rig.toml", "run.log")
 RECORD = "archived.json"
@@ -88,26 +87,11 @@ def save(archive, point_dir, rel, bed_sha256, repo):
 
 # ---- parked checkpoints (wheel-sweep --park) -----------------------------------------------------
 CHECKPOINTS = Path("cosim") / "checkpoints"   # in a point folder (scripts/wheel-cosim --work cosim)
-LIGGGHTS_HALF = ("liggghts-{s}.restart", "liggghts-{s}.restart.wheel", "liggghts-{s}.restart.info")
 
 
 def newest_checkpoint(point_dir):
-    """The step of the newest complete checkpoint pair in a point's cosim/checkpoints (the rig's
-    rig-<s>.ckpt and LIGGGHTS' restart, .wheel and .info of the same step, as wheel-cosim --resume
-    pairs them), None without one."""
-    d = Path(point_dir) / CHECKPOINTS
-    if not d.is_dir():
-        return None
-    names = {f.name for f in d.iterdir()}
-    steps = {int(m.group(1)) for n in names if (m := re.fullmatch(r"rig-(\d+)\.ckpt", n))}
-    pairs = [s for s in steps if all(h.format(s=s) in names for h in LIGGGHTS_HALF)]
-    return max(pairs, default=None)
-
-
-def _checkpoint_info(point_dir, step):
-    """{key: value} of LIGGGHTS' liggghts-<step>.restart.info (step, time, inputs_hash, ranks)."""
-    text = (Path(point_dir) / CHECKPOINTS / f"liggghts-{step}.restart.info").read_text()
-    return dict(line.split(None, 1) for line in text.splitlines() if " " in line)
+    """The step of the newest complete checkpoint in a point's cosim/checkpoints (None: none)."""
+    return cosim_checkpoint.newest(Path(point_dir) / CHECKPOINTS)
 
 
 def _snapshot_h5(src, dest):
@@ -139,12 +123,12 @@ def park(archive, point_dir, rel, part_file, bed_sha256, repo, tries=5):
         before = step_archive.parked(kept)
         if before is not None and before.get("step") == step:
             return step, 0
-        files = [part_file, str(CHECKPOINTS / f"rig-{step}.ckpt")] + [
-            str(CHECKPOINTS / h.format(s=step)) for h in LIGGGHTS_HALF]
+        files = [part_file] + [str(CHECKPOINTS / h.format(s=step))
+                               for h in (cosim_checkpoint.RIG,) + cosim_checkpoint.LIGGGHTS]
         try:
-            info = _checkpoint_info(point_dir, step)
+            info = cosim_checkpoint.info(point_dir / CHECKPOINTS, step)
             record = {"step": step, "time_s": float(info.get("time", "nan")),
-                      "inputs_hash": info.get("inputs_hash", "").strip(),
+                      "inputs_hash": info.get("inputs_hash", ""),
                       "bed_sha256": bed_sha256, "git_commit": _git_commit(repo)}
             written = step_archive.park(point_dir, kept, files, record,
                                         snapshot={part_file: _snapshot_h5})
