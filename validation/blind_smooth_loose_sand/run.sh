@@ -84,12 +84,15 @@ sweep() {
 }
 
 if ((scm)); then
-  # the main sweep's window; the DEM half's prediction (results.csv) is not touched
+  # the main sweep's window, against the DEM table of the same window (results.csv until the
+  # steady-state sweep replaces it, results_window_0.12.csv after); no DEM table is touched
+  dem=$here/results.csv dem_label="DEM (the prediction)"
+  [[ -f $here/results_window_0.12.csv ]] && dem=$here/results_window_0.12.csv dem_label="DEM (0.12 m windows)"
   sweep scm "$here/sweep_scm.toml" 0.7 1.2 "$here/results_scm.csv"
   "$python" "$here/plot.py" --png "$here/comparison_scm.png" \
     --title "DEM and SCM on the same soil (loose_sand_1330; SCM: the soil lab's fit)" \
-    "DEM (the prediction)=$here/results.csv" "SCM, fitted to the DEM soil=$here/results_scm.csv"
-  "$python" "$root/validation/common/dem_vs_scm.py" "$here/results.csv" "$here/results_scm.csv" \
+    "$dem_label=$dem" "SCM, fitted to the DEM soil=$here/results_scm.csv"
+  "$python" "$root/validation/common/dem_vs_scm.py" "$dem" "$here/results_scm.csv" \
     --md "$here/comparison_scm.md"
   # and at the steady-state sweep's travel and window (README "The steady-state sweep")
   sweep scm_travel "$here/sweep_scm_travel.toml" 2.0 2.5 "$here/results_scm_travel_0.25.csv"
@@ -149,9 +152,13 @@ if ((sensitivity)); then
   sweep dt_0.5 "$here/sweep_dt.toml" 0.7 1.2 "$dest/results_dt_0.5.csv"
   sweep grain_2.25 "$here/sweep_grain_2.25.toml" 0.7 1.2 "$dest/results_grain_2.25.csv"
   sweep grain_1.0 "$here/sweep_grain.toml" 0.7 1.2 "$dest/results_grain_1.0.csv"
+  # the sensitivity sweeps average 0.12 m windows: their baseline is the main sweep's table
+  # (results_window_0.12.csv once results.csv is the steady-state sweep's)
+  baseline=$dest/results.csv
+  [[ -f $dest/results_window_0.12.csv ]] && baseline=$dest/results_window_0.12.csv
   "$python" "$here/plot.py" --png "$dest/sensitivity.png" \
     --title "sensitivity: speed, grain size, bed depth, travel, time step (smooth wheel, loose sand 1330)" \
-    "main: 0.1 m/s, d50 4.1 mm, bed 0.105 m=$dest/results.csv" \
+    "main: 0.1 m/s, d50 4.1 mm, bed 0.105 m=$baseline" \
     "0.05 m/s=$dest/results_speed_0.05.csv" "d50 6.2 mm=$dest/results_grain_2.25.csv" \
     "d50 2.75 mm=$dest/results_grain_1.0.csv" \
     "bed 0.063 m=$dest/results_depth_0.06.csv" "bed 0.155 m=$dest/results_depth_0.15.csv" \
