@@ -1,7 +1,7 @@
 """`soil-lab report` and `soil-lab scm`: read a lab directory's outputs, fit, summarise, plot.
 
 What is read (runner.py writes it): soil.toml; beds/plate/done.json (bulk density, porosity);
-beds/*/hold/done.json (the bed-hold check);
+beds/shear/done.json (the sample's mass); beds/*/hold/done.json (the bed-hold check);
 plate_b*/plate.csv; shear_s*/shear.csv; repose/repose.dump; each run's done.json (cost).
 What is written by write_report: results.toml, results.csv, plate.png, shear_curves.png,
 mohr_coulomb.png, repose.png (for the tests that ran). docs/soil-lab.md, "Outputs".
@@ -47,6 +47,7 @@ class Results:
     costs: List[dict] = field(default_factory=list)
     bed_costs: Dict[str, float] = field(default_factory=dict)  # bed name -> wall time [s]
     bed_holds: Dict[str, dict] = field(default_factory=dict)  # bed name -> bed-hold check result
+    shear_bed_bulk_density: Optional[float] = None  # beds/shear as poured (in.soilbin's measure)
 
     @property
     def janosi_K_m(self):
@@ -446,6 +447,46 @@ def read_shear(run, done):
             "done": done}
 
 
+
+def shear_sample_density(shears, bed_dir):
+    """The sample's bulk density in each box when its shear began and when it ended [kg/m³]: the
+    shear bed's particle mass (beds/shear/done.json: the whole bed is the sample) over the box's
+    area times the lid's height above the floor, less the particles lost by then; None for a box
+    whose side is not the bed's. The lid rests on the highest grains, so this reads a few % below
+    in.soilbin's measure of the same bed (its mean column top); the bed's own is returned beside
+    it. Returns (bed bulk density, [(start, end) per box]), (None, []) without the bed's record."""
+    done = _done(bed_dir)
+    res = done.get("result") if done else None
+    if not isinstance(res, dict):
+        return None, []
+    where = Path(bed_dir) / "done.json"
+    mass = _number(where, res, "particle_mass", "the bed's particle mass > 0 [kg]",
+                   lambda v: v > 0, text=True, required=False, prefix="result.")
+    dims = [_number(where, res, k, "a size > 0 [m]", lambda v: v > 0, text=True,
+                    required=False, prefix="result.") for k in ("bin_length", "bin_width")]
+    bed_rho = _number(where, res, "bulk_density", "a density > 0 [kg/m3]", lambda v: v > 0,
+                      text=True, required=False, prefix="result.")
+    spheres = _number(where, res, "spheres", "a count > 0", lambda v: v > 0, text=True,
+                      required=False, prefix="result.")
+    if mass is None or None in dims:
+        return bed_rho, []
+    out = []
+    for s in shears:
+        c, box = s.get("consolidation"), (s.get("done") or {}).get("meta", {}).get("box_m")
+        if c is None or not isinstance(box, (int, float)) or any(
+                abs(box - L) > 1e-9 * L for L in dims):
+            out.append(None)
+            continue
+        # the particles still in the box (the thermo's sphere counts) carry the bed's mean mass
+        loss = s.get("loss")
+        kept = 1.0 if loss is None or not spheres else min(1.0, loss["particles"] / spheres)
+        kept_end = kept * (1.0 - loss["lost_at_end"]) if loss is not None else 1.0
+        area, h = dims[0] * dims[1], c["lid_z_start_m"]
+        start = mass * kept / (area * h)
+        end = mass * kept_end / (area * (h + c["lid_travel_m"]))
+        out.append((float(start), float(end)))
+    return bed_rho, out
+
 # A shear box whose smoothed shear stress falls below -UNSTABLE_SHEAR_FRACTION x its peak pulls
 # the soil backwards: not a quasi-static test (nakanishi_2020 at its own time step, E 5e5 Pa:
 # -2.4 kPa against a 1.2 kPa peak), so its peak and fits are no soil property.
@@ -656,6 +697,11 @@ def analyse(directory):
     for run, done in _runs(d, "shear_s*"):
         r.shears.append(read_shear(run, done))
     r.shears.sort(key=lambda s: s["sigma_Pa"])
+    r.shear_bed_bulk_density, densities = shear_sample_density(r.shears, d / "beds" / "shear")
+    for s, rho in zip(r.shears, densities):
+        if rho is not None:
+            s["consolidation"]["sample_bulk_density_kg_m3"] = rho[0]
+            s["consolidation"]["sample_bulk_density_end_kg_m3"] = rho[1]
     if len(r.shears) >= 3:
         sig = [s["sigma_Pa"] for s in r.shears]
         r.mc_peak = fits.fit_mohr_coulomb(sig, [s["peak"].tau_peak_Pa for s in r.shears])
@@ -776,7 +822,10 @@ def summary(r: Results):
                  "consolidation_s": s["consolidation"]["consolidation_s"],
                  "sigma_start_ratio": s["consolidation"]["sigma_start_ratio"],
                  "sample_height_m": s["consolidation"]["lid_z_start_m"],
-                 "lid_travel_m": s["consolidation"]["lid_travel_m"]}),
+                 "lid_travel_m": s["consolidation"]["lid_travel_m"],
+                 **{k: s["consolidation"][k] for k in ("sample_bulk_density_kg_m3",
+                                                       "sample_bulk_density_end_kg_m3")
+                    if k in s["consolidation"]}}),
              **({} if s.get("loss") is None else {
                  "particles": s["loss"]["particles"],
                  "particles_lost_by_peak": s["loss"]["lost_by_peak"],
@@ -786,6 +835,8 @@ def summary(r: Results):
                     + shear_loss_warnings(r.shears))
         if warnings:
             out["shear"]["warnings"] = warnings
+        if r.shear_bed_bulk_density is not None:
+            out["shear"]["bed_bulk_density_kg_m3"] = r.shear_bed_bulk_density
         if r.mc_peak:
             out["shear"].update({
                 "cohesion_Pa": r.mc_peak.cohesion_Pa, "friction_deg": r.mc_peak.friction_deg,

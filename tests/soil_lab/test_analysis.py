@@ -378,6 +378,40 @@ class Analysis(unittest.TestCase):
         self.assertIn("still settled when the shear began", warn[1])
         self.assertIn("its lid moved -2 mm over the shear (sample 200 mm high)", warn[1])
 
+    def test_the_samples_density_under_the_lid(self):
+        # Two synthetic boxes (box 0.1 m, lid 0.05 m above the floor throughout) on a bed of
+        # 0.4 kg in a 0.1 x 0.1 m bin: 0.4 / (0.01 * 0.05) = 800 kg/m3; a lab without the bed's
+        # record, and a box of another side, get none.
+        d = Path(tempfile.mkdtemp())
+        (d / "soil.toml").write_text('name = "synthetic"\npreset = "standard"\ndmax_m = 0.004\n')
+        for sigma in (5e3, 1e4, 2e4):
+            syn.shear_run(d, sigma)
+        r = analysis.analyse(d)
+        self.assertIsNone(r.shear_bed_bulk_density)
+        self.assertNotIn("sample_bulk_density_kg_m3", r.shears[0]["consolidation"])
+        bed = d / "beds" / "shear"
+        bed.mkdir(parents=True)
+        (bed / "done.json").write_text(json.dumps({"result": {
+            "particle_mass": "0.4", "bin_length": "0.1", "bin_width": "0.1", "spheres": "500",
+            "bulk_density": "760.5"}}))
+        r = analysis.analyse(d)
+        self.assertEqual(r.shear_bed_bulk_density, 760.5)
+        for s in r.shears:
+            self.assertAlmostEqual(s["consolidation"]["sample_bulk_density_kg_m3"], 800.0)
+            self.assertAlmostEqual(s["consolidation"]["sample_bulk_density_end_kg_m3"], 800.0)
+        s = analysis.summary(r)["shear"]
+        self.assertEqual(s["bed_bulk_density_kg_m3"], 760.5)
+        self.assertAlmostEqual(s["stresses"][1]["sample_bulk_density_kg_m3"], 800.0)
+        # the lid rises 5 mm over the shear and 10 % of 500 particles (450 at the start) leave
+        c = {"lid_z_start_m": 0.05, "lid_travel_m": 0.005}
+        box = {"consolidation": c, "done": {"meta": {"box_m": 0.1}},
+               "loss": {"particles": 450, "lost_by_peak": 0.0, "lost_at_end": 0.1}}
+        other = {"consolidation": c, "done": {"meta": {"box_m": 0.2}}}
+        rho, boxes = analysis.shear_sample_density([box, other], bed)
+        self.assertAlmostEqual(boxes[0][0], 0.4 * 0.9 / (0.01 * 0.05))
+        self.assertAlmostEqual(boxes[0][1], 0.4 * 0.9 * 0.9 / (0.01 * 0.055))
+        self.assertIsNone(boxes[1])
+
     def test_shear_thermo_blocks_of_the_consolidation_checks_are_all_read(self):
         # in.lab_shear runs its consolidation in checks: one thermo block per LIGGGHTS run.
         head = "    Step    Atoms              j            tau          sigma          lid_z \n"
