@@ -447,7 +447,6 @@ def read_shear(run, done):
             "done": done}
 
 
-
 def shear_sample_density(shears, bed_dir):
     """The sample's bulk density in each box when its shear began and when it ended [kg/m³]: the
     shear bed's particle mass (beds/shear/done.json: the whole bed is the sample) over the box's
@@ -486,6 +485,7 @@ def shear_sample_density(shears, bed_dir):
         end = mass * kept_end / (area * (h + c["lid_travel_m"]))
         out.append((float(start), float(end)))
     return bed_rho, out
+
 
 # A shear box whose smoothed shear stress falls below -UNSTABLE_SHEAR_FRACTION x its peak pulls
 # the soil backwards: not a quasi-static test (nakanishi_2020 at its own time step, E 5e5 Pa:
