@@ -5,6 +5,7 @@
                     [--stall-timeout MIN] [--build-dir D]
   soil-lab report DIR
   soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB] [--relaxed]
+  soil-lab compare LABEL=DIR [LABEL=DIR ...] [--at MM,MM,...] [--md FILE] [--png FILE]
 
 Exit status: 0 done; 1 a LIGGGHTS or wheel-mesh run failed, or a fit failed; 2 bad command
 line, unknown soil or test, or a test size the lab rejects.
@@ -17,7 +18,7 @@ from pathlib import Path
 from wheelsim_post import bed_hold, mpi_launch
 from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 
-from . import analysis, plan, runner, scm_file
+from . import analysis, compare, plan, runner, scm_file
 from ._inputs import FitInputError
 
 REPO = Path(__file__).resolve().parents[2]  # the source tree, or <prefix>/share/wheelsim
@@ -212,6 +213,24 @@ def _report(directory, quiet=False):
     return 0
 
 
+def _compare(a):
+    at = _numbers(a.at, "--at", "shear displacements > 0 [mm]")
+    if any(v <= 0 for v in at):
+        raise plan.LabInputError(f"--at: expected shear displacements > 0 [mm], got '{a.at}'")
+    sources = [compare.parse_source(s) for s in a.sources]
+    text = compare.table(sources, at)
+    print(text, end="")
+    for option, path, write in (("--md", a.md, lambda p: Path(p).write_text(text)),
+                                ("--png", a.png, lambda p: compare.plot(p, sources))):
+        if path:
+            try:
+                write(path)
+            except OSError as e:
+                raise plan.LabInputError(f"{option} {path}: cannot write it: {e.strerror}") from None
+            print(f"soil-lab: wrote {path}")
+    return 0
+
+
 def _scm_out(path):
     """A LabInputError unless `soil-lab scm --out` names a file in an existing directory."""
     p = Path(path)
@@ -309,6 +328,15 @@ def main(argv=None):
     s.add_argument("--relaxed", action="store_true",
                    help="fit Bekker to the pressures at the ends of the plates' holds (a lab run "
                         "with --plate-hold and --plate-hold-stages >= 2) instead of the loading")
+    c = sub.add_parser("compare", help="the shear boxes of several labs side by side (trials)")
+    c.add_argument("sources", nargs="+", metavar="LABEL=DIR",
+                   help="a lab directory or a folder of finished boxes (shear_s<stress>/), with "
+                        "the label its rows get")
+    c.add_argument("--at", default=",".join(f"{v:g}" for v in compare.DEFAULT_AT_MM),
+                   metavar="MM,MM,...", help="shear displacements to read tau at [mm] (default "
+                                             "%(default)s)")
+    c.add_argument("--md", metavar="FILE", help="also write the tables to FILE (Markdown)")
+    c.add_argument("--png", metavar="FILE", help="plot tau(j) of every source, a panel per stress")
     a = ap.parse_args(argv)
     if getattr(a, "np", 1) < 1:
         ap.error(f"--np must be >= 1, got {a.np}")
@@ -317,6 +345,8 @@ def main(argv=None):
             return _run(a)
         if a.command == "report":
             return _report(a.dir, a.quiet)
+        if a.command == "compare":
+            return _compare(a)
         _scm_out(a.out)  # before the analysis
         r = analysis.analyse(a.dir)
         shear = (analysis.shear_strength_from(a.shear_from, r.soil.get("name"))

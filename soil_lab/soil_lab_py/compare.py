@@ -1,0 +1,101 @@
+"""`soil-lab compare`: the shear boxes of several labs (or archived boxes) side by side, at equal
+normal stress and equal shear displacement, as a calibration trial is judged (docs/soil-lab.md
+"Comparing trials").
+
+A source is LABEL=DIR, DIR a lab directory or a folder of finished boxes (shear_s<σ>/ with its
+shear.csv and done.json, e.g. `soil-lab run --archive`'s). Boxes are matched by their target
+normal stress (done.json meta.normal_stress_Pa). Per box: τ at each displacement asked (the mean
+over ±AT_HALF_WIDTH_M of it), the lab's peak (5 % running mean) and where, the normal stress on the
+plane, the lid's travel over the shear and, where DIR/beds/shear/done.json is there, the sample's
+bulk density when the shear began (analysis.shear_sample_density).
+"""
+from pathlib import Path
+
+import numpy as np
+
+from . import analysis, plan, report
+
+AT_HALF_WIDTH_M = 0.25e-3  # τ at j: the mean of the samples within ± this of j
+DEFAULT_AT_MM = (5, 10, 20, 30, 40, 50, 59)
+
+
+def parse_source(text):
+    """(label, Path) of LABEL=DIR; a LabInputError naming it otherwise."""
+    label, sep, directory = text.partition("=")
+    if not sep or not label.strip() or not directory.strip():
+        raise plan.LabInputError(f"'{text}': expected LABEL=DIR (a lab directory or a folder of "
+                                 "shear_s<stress>/ boxes)")
+    d = Path(directory.strip())
+    if not d.is_dir():
+        raise plan.LabInputError(f"'{text}': {d} is not a directory")
+    return label.strip(), d
+
+
+def boxes(directory):
+    """{target normal stress [Pa]: box} of the finished boxes in `directory` (read_shear's
+    records, with the sample density when the bed's record is there)."""
+    d = Path(directory)
+    found = [analysis.read_shear(run, done) for run, done in analysis._runs(d, "shear_s*")]
+    if not found:
+        raise plan.LabInputError(f"{d}: no finished shear box (shear_s*/ with done.json): expected "
+                                 "a lab directory or a folder of archived boxes")
+    _, densities = analysis.shear_sample_density(found, d / "beds" / "shear")
+    for box, rho in zip(found, densities or [None] * len(found)):
+        box["sample_bulk_density_kg_m3"] = None if rho is None else rho[0]
+    return {b["sigma_target_Pa"]: b for b in found}
+
+
+def tau_at(box, j_m):
+    """The mean τ [Pa] of the box's samples within AT_HALF_WIDTH_M of j_m; None beyond them."""
+    j, tau = np.asarray(box["j"], float), np.asarray(box["tau"], float)
+    near = np.abs(j - j_m) <= AT_HALF_WIDTH_M
+    return float(tau[near].mean()) if near.any() else None
+
+
+def table(sources, at_mm=DEFAULT_AT_MM):
+    """Markdown: a table per target normal stress, a row per source that has that box."""
+    labs = [(label, boxes(d)) for label, d in sources]
+    stresses = sorted({s for _, bs in labs for s in bs})
+    lines = []
+    for sigma in stresses:
+        lines += [f"### Box at {sigma / 1e3:g} kPa", "",
+                  "| source | σ on the plane [kPa] | "
+                  + " | ".join(f"τ at {a:g} mm" for a in at_mm)
+                  + " | peak [kPa] (at j [mm]) | lid over the shear [mm] | sample density [kg/m³] |",
+                  "|---" * (len(at_mm) + 5) + "|"]
+        for label, bs in labs:
+            b = bs.get(sigma)
+            if b is None:
+                continue
+            taus = [tau_at(b, a * 1e-3) for a in at_mm]
+            rho = b["sample_bulk_density_kg_m3"]
+            lines.append(
+                f"| {label} | {b['sigma_Pa'] / 1e3:.2f} | "
+                + " | ".join("–" if t is None else f"{t / 1e3:.2f}" for t in taus)
+                + f" | {b['peak'].tau_peak_Pa / 1e3:.2f} ({b['peak'].j_peak_m * 1e3:.1f}) | "
+                f"{b['consolidation']['lid_travel_m'] * 1e3:+.1f} | "
+                + ("–" if rho is None else f"{rho:.0f}") + " |")
+        lines.append("")
+    lines.append(f"τ at j: the mean over ±{AT_HALF_WIDTH_M * 1e3:g} mm of j ('–': the box did not "
+                 "travel that far); peak: the lab's (a running mean over 5 % of the samples); "
+                 "sample density: the bed's mass over box area × lid height when the shear began "
+                 "('–': the lab's bed record is not in that directory).")
+    return "\n".join(lines) + "\n"
+
+
+def plot(path, sources):
+    """τ(j) of every source, a panel per target normal stress (PNG)."""
+    labs = [(label, boxes(d)) for label, d in sources]
+    stresses = sorted({s for _, bs in labs for s in bs})
+    fig = report._figure(figsize=(6.5, 3.2 * len(stresses)))
+    axes = fig.subplots(len(stresses), 1, squeeze=False)[:, 0]
+    for ax, sigma in zip(axes, stresses):
+        for k, (label, bs) in enumerate(labs):
+            b = bs.get(sigma)
+            if b is not None:
+                ax.plot(np.asarray(b["j"]) * 1e3, np.asarray(b["tau"]) / 1e3, "-", lw=0.8,
+                        color=f"C{k}", label=f"{label} (σn {b['sigma_Pa'] / 1e3:.3g} kPa)")
+        report._axes(ax, "shear displacement j [mm]", "shear stress τ [kPa]",
+                     f"direct shear, box at {sigma / 1e3:g} kPa")
+    report._save(fig, path)
+    return path

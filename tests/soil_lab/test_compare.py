@@ -1,0 +1,105 @@
+"""soil-lab compare (soil_lab_py.compare): two synthetic labs of Janosi boxes with known answers.
+τ at a displacement is the curve's value there (mean over ±0.25 mm), '–' past the box's travel;
+boxes are matched by target normal stress, a box one lab lacks gives no row; the sample density
+appears only where the lab's shear-bed record is; bad sources and --at values are named; the
+command writes its Markdown and PNG."""
+
+import contextlib
+import io
+import json
+import re
+import tempfile
+import unittest
+from pathlib import Path
+
+import numpy as np
+
+import synthetic as syn
+from soil_lab_py import cli, compare, plan
+
+K_M = 1e-3  # synthetic.shear_run's Janosi K
+
+
+def janosi(sigma, c, phi_deg, j_m, scale=1.0):
+    return scale * (c + sigma * np.tan(np.radians(phi_deg))) * -np.expm1(-j_m / K_M)
+
+
+class Compare(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        root = Path(self.tmp.name)
+        self.a, self.b = root / "lab_a", root / "boxes_b"
+        for sigma in (5e3, 1e4, 2e4):
+            syn.shear_run(self.a, sigma, c=1e3, phi_deg=30.0)
+        for sigma in (5e3, 1e4):  # an archive-like folder: boxes only, no 20 kPa box
+            syn.shear_run(self.b, sigma, c=2e3, phi_deg=25.0)
+        bed = self.a / "beds" / "shear"
+        bed.mkdir(parents=True)
+        # box 0.1 m, lid 0.05 m above the floor: 0.4 kg / (0.01 x 0.05 m^3) = 800 kg/m3
+        (bed / "done.json").write_text(json.dumps({"result": {
+            "particle_mass": "0.4", "bin_length": "0.1", "bin_width": "0.1", "spheres": "500",
+            "bulk_density": "760"}}))
+        self.sources = [("A", self.a), ("B", self.b)]
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def rows(self, text, sigma_kpa):
+        block = text.split(f"### Box at {sigma_kpa:g} kPa")[1].split("###")[0]
+        return {cells[0]: cells[1:] for line in block.splitlines() if line.startswith("| ")
+                and not line.startswith("| source")
+                for cells in [[c.strip() for c in line.strip("|").split("|")]]}
+
+    def test_tau_at_displacements_and_matching_by_stress(self):
+        text = compare.table(self.sources, at_mm=(2, 5, 20))
+        self.assertEqual(re.findall(r"### Box at (\S+) kPa", text), ["5", "10", "20"])
+        at5 = self.rows(text, 5)
+        self.assertEqual(set(at5), {"A", "B"})
+        self.assertEqual(set(self.rows(text, 20)), {"A"})
+        for label, c, phi in (("A", 1e3, 30.0), ("B", 2e3, 25.0)):
+            row = at5[label]
+            self.assertEqual(float(row[0]), 5.0)  # sigma on the plane [kPa]
+            for cell, j_mm in zip(row[1:3], (2, 5)):
+                self.assertAlmostEqual(float(cell), janosi(5e3, c, phi, j_mm * 1e-3) / 1e3,
+                                       delta=0.01 * janosi(5e3, c, phi, j_mm * 1e-3) / 1e3 + 0.005)
+            self.assertEqual(row[3], "–")  # the synthetic boxes travel 10 mm
+        self.assertEqual(at5["A"][-1], "800")
+        self.assertEqual(at5["B"][-1], "–")
+        box = compare.boxes(self.a)[5e3]
+        self.assertIsNone(compare.tau_at(box, 0.02))
+        self.assertAlmostEqual(compare.tau_at(box, 0.005),
+                               np.mean(box["tau"][np.abs(box["j"] - 0.005) <= 0.25e-3]))
+
+    def test_bad_sources_are_named(self):
+        for text, msg in (("lab_a", "expected LABEL=DIR"), ("=x", "expected LABEL=DIR"),
+                          (f"A={self.a}/absent", "is not a directory")):
+            with self.assertRaisesRegex(plan.LabInputError, msg):
+                compare.parse_source(text)
+        empty = Path(self.tmp.name) / "empty"
+        empty.mkdir()
+        with self.assertRaisesRegex(plan.LabInputError, "no finished shear box"):
+            compare.boxes(empty)
+
+    def test_the_command(self):
+        md, png = Path(self.tmp.name) / "cmp.md", Path(self.tmp.name) / "cmp.png"
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            rc = cli.main(["compare", f"A={self.a}", f"B={self.b}", "--at", "5,8",
+                           "--md", str(md), "--png", str(png)])
+        self.assertEqual(rc, 0)
+        self.assertIn("| τ at 5 mm | τ at 8 mm |", md.read_text())
+        self.assertTrue(out.getvalue().startswith(md.read_text()))
+        self.assertGreater(png.stat().st_size, 10000)
+        for args, msg in ((["--at", "0,5"], "--at: expected shear displacements > 0"),
+                          (["--at", "x"], "--at: expected"),
+                          (["--md", str(Path(self.tmp.name) / "no" / "x.md")], "--md .*cannot write")):
+            err = io.StringIO()
+            with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+                rc = cli.main(["compare", f"A={self.a}", *args])
+            self.assertEqual(rc, 2, args)
+            self.assertRegex(err.getvalue(), msg)
+            self.assertEqual(len(err.getvalue().strip().splitlines()), 1)
+
+
+if __name__ == "__main__":
+    unittest.main()
