@@ -487,6 +487,20 @@ def shear_sample_density(shears, bed_dir):
     return bed_rho, out
 
 
+def read_shears(d):
+    """The finished shear boxes in `d` (read_shear's records, by normal stress on the plane; each
+    consolidation record with the sample's densities where d/beds/shear/done.json is there) and
+    the shear bed's bulk density as poured (None without its record)."""
+    shears = sorted((read_shear(run, done) for run, done in _runs(Path(d), "shear_s*")),
+                    key=lambda s: s["sigma_Pa"])
+    bed_rho, densities = shear_sample_density(shears, Path(d) / "beds" / "shear")
+    for s, rho in zip(shears, densities):
+        if rho is not None:
+            s["consolidation"]["sample_bulk_density_kg_m3"] = rho[0]
+            s["consolidation"]["sample_bulk_density_end_kg_m3"] = rho[1]
+    return shears, bed_rho
+
+
 # A shear box whose smoothed shear stress falls below -UNSTABLE_SHEAR_FRACTION x its peak pulls
 # the soil backwards: not a quasi-static test (nakanishi_2020 at its own time step, E 5e5 Pa:
 # -2.4 kPa against a 1.2 kPa peak), so its peak and fits are no soil property.
@@ -694,14 +708,7 @@ def analyse(directory):
                 [(b, [h["z_m"] for h in hs], [h["p_end_Pa"] for h in hs])
                  for b, hs in r.holds.items()])
 
-    for run, done in _runs(d, "shear_s*"):
-        r.shears.append(read_shear(run, done))
-    r.shears.sort(key=lambda s: s["sigma_Pa"])
-    r.shear_bed_bulk_density, densities = shear_sample_density(r.shears, d / "beds" / "shear")
-    for s, rho in zip(r.shears, densities):
-        if rho is not None:
-            s["consolidation"]["sample_bulk_density_kg_m3"] = rho[0]
-            s["consolidation"]["sample_bulk_density_end_kg_m3"] = rho[1]
+    r.shears, r.shear_bed_bulk_density = read_shears(d)
     if len(r.shears) >= 3:
         sig = [s["sigma_Pa"] for s in r.shears]
         r.mc_peak = fits.fit_mohr_coulomb(sig, [s["peak"].tau_peak_Pa for s in r.shears])

@@ -217,11 +217,11 @@ def _compare(a):
     at = _numbers(a.at, "--at", "shear displacements > 0 [mm]")
     if any(v <= 0 for v in at):
         raise plan.LabInputError(f"--at: expected shear displacements > 0 [mm], got '{a.at}'")
-    sources = [compare.parse_source(s) for s in a.sources]
-    text = compare.table(sources, at)
+    labs = compare.load([compare.parse_source(s) for s in a.sources])
+    text = compare.table(labs, at)
     print(text, end="")
     for option, path, write in (("--md", a.md, lambda p: Path(p).write_text(text)),
-                                ("--png", a.png, lambda p: compare.plot(p, sources))):
+                                ("--png", a.png, lambda p: compare.plot(p, labs))):
         if path:
             try:
                 write(path)

@@ -32,17 +32,18 @@ def parse_source(text):
 
 
 def boxes(directory):
-    """{target normal stress [Pa]: box} of the finished boxes in `directory` (read_shear's
-    records, with the sample density when the bed's record is there)."""
-    d = Path(directory)
-    found = [analysis.read_shear(run, done) for run, done in analysis._runs(d, "shear_s*")]
+    """{target normal stress [Pa]: box} of the finished boxes in `directory` (analysis.read_shears'
+    records)."""
+    found, _ = analysis.read_shears(directory)
     if not found:
-        raise plan.LabInputError(f"{d}: no finished shear box (shear_s*/ with done.json): expected "
-                                 "a lab directory or a folder of archived boxes")
-    _, densities = analysis.shear_sample_density(found, d / "beds" / "shear")
-    for box, rho in zip(found, densities or [None] * len(found)):
-        box["sample_bulk_density_kg_m3"] = None if rho is None else rho[0]
+        raise plan.LabInputError(f"{directory}: no finished shear box (shear_s*/ with done.json): "
+                                 "expected a lab directory or a folder of archived boxes")
     return {b["sigma_target_Pa"]: b for b in found}
+
+
+def load(sources):
+    """[(label, boxes)] of the (label, directory) sources, each read once."""
+    return [(label, boxes(d)) for label, d in sources]
 
 
 def tau_at(box, j_m):
@@ -52,9 +53,8 @@ def tau_at(box, j_m):
     return float(tau[near].mean()) if near.any() else None
 
 
-def table(sources, at_mm=DEFAULT_AT_MM):
-    """Markdown: a table per target normal stress, a row per source that has that box."""
-    labs = [(label, boxes(d)) for label, d in sources]
+def table(labs, at_mm=DEFAULT_AT_MM):
+    """Markdown: a table per target normal stress, a row per source (load's) that has that box."""
     stresses = sorted({s for _, bs in labs for s in bs})
     lines = []
     for sigma in stresses:
@@ -68,7 +68,7 @@ def table(sources, at_mm=DEFAULT_AT_MM):
             if b is None:
                 continue
             taus = [tau_at(b, a * 1e-3) for a in at_mm]
-            rho = b["sample_bulk_density_kg_m3"]
+            rho = b["consolidation"].get("sample_bulk_density_kg_m3")
             lines.append(
                 f"| {label} | {b['sigma_Pa'] / 1e3:.2f} | "
                 + " | ".join("–" if t is None else f"{t / 1e3:.2f}" for t in taus)
@@ -83,9 +83,8 @@ def table(sources, at_mm=DEFAULT_AT_MM):
     return "\n".join(lines) + "\n"
 
 
-def plot(path, sources):
-    """τ(j) of every source, a panel per target normal stress (PNG)."""
-    labs = [(label, boxes(d)) for label, d in sources]
+def plot(path, labs):
+    """τ(j) of every source (load's), a panel per target normal stress (PNG)."""
     stresses = sorted({s for _, bs in labs for s in bs})
     fig = report._figure(figsize=(6.5, 3.2 * len(stresses)))
     axes = fig.subplots(len(stresses), 1, squeeze=False)[:, 0]

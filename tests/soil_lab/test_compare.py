@@ -51,7 +51,7 @@ class Compare(unittest.TestCase):
                 for cells in [[c.strip() for c in line.strip("|").split("|")]]}
 
     def test_tau_at_displacements_and_matching_by_stress(self):
-        text = compare.table(self.sources, at_mm=(2, 5, 20))
+        text = compare.table(compare.load(self.sources), at_mm=(2, 5, 20))
         self.assertEqual(re.findall(r"### Box at (\S+) kPa", text), ["5", "10", "20"])
         at5 = self.rows(text, 5)
         self.assertEqual(set(at5), {"A", "B"})
