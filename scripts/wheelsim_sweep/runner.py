@@ -748,7 +748,9 @@ class Runner:
         log = restart.parent / "bedhold.log"
         deck = self.repo / "inputs" / bed_hold.DECK
         done = self.bed_hold_record(soil, restart)
+        when = "checked before, in "  # the record's wall time, not this run's
         if done is None:
+            when = ""
             if self.dry_run:
                 self.say(f"bed {soil.label}: would leave it alone {self.bed_hold_s:g} s under the "
                          f"soil's test settings (the bed-hold check)")
@@ -785,7 +787,7 @@ class Runner:
         if error:
             raise RuntimeError(error)
         self.say(f"bed {soil.label}: {bed_hold.verdict(r)} under the soil's test settings: "
-                 f"{bed_hold.describe(r)} ({estimate.fmt_time(done['wall_s'])})")
+                 f"{bed_hold.describe(r)} ({when}{estimate.fmt_time(done['wall_s'])})")
 
     # ---- the sweep ------------------------------------------------------------------------------
     def write_manifest(self):

@@ -348,7 +348,9 @@ class Lab:
                         files=(deck, soil.file))
         log = d / "liggghts.log"
         done = self._done(d, key)
+        when = "checked before, in "  # the record's wall time, not this run's
         if done is None:
+            when = ""
             t0 = time.monotonic()
             text = self._liggghts(deck, {"restart_file": restart, "hold_s": self.bed_hold_s},
                                   log, d)
@@ -365,7 +367,7 @@ class Lab:
         if error:
             raise LabRunError(error)
         self.say(f"bed '{name}': {bed_hold.verdict(r)} under the test settings: "
-                 f"{bed_hold.describe(r)} ({done['wall_s']} s)")
+                 f"{bed_hold.describe(r)} ({when}{done['wall_s']} s)")
         return r
 
     def run(self, soil, run, bed, progress=""):
