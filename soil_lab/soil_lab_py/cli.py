@@ -2,7 +2,7 @@
 
   soil-lab run SOIL [--tests bulk,plate,shear,repose] [--out DIR] [--np N] [--preset P]
                     [--normal-stresses S1,S2,S3] [--bed-var NAME=VALUE ...] [--archive DIR]
-                    [--stall-timeout MIN] [--build-dir D]
+                    [--accept-change FILE --reason TEXT] [--stall-timeout MIN] [--build-dir D]
   soil-lab report DIR
   soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB] [--relaxed]
   soil-lab compare LABEL=DIR [LABEL=DIR ...] [--at MM,MM,...] [--md FILE] [--png FILE]
@@ -16,6 +16,7 @@ import sys
 from pathlib import Path
 
 from wheelsim_post import bed_hold, mpi_launch
+from wheelsim_post.deck_files import deck_includes
 from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 
 from . import analysis, compare, plan, runner, scm_file
@@ -95,6 +96,17 @@ def run_options(a):
         bed_vars[k] = v
     if a.park and a.archive is None:
         raise plan.LabInputError("--park keeps checkpoints in the archive: it needs --archive DIR")
+    if a.accept_change and not (a.reason or "").strip():
+        raise plan.LabInputError("--accept-change needs --reason TEXT: why the edit changes no "
+                                 "result")
+    if a.reason is not None and not a.accept_change:
+        raise plan.LabInputError("--reason goes with --accept-change")
+    if a.accept_change and a.park:
+        raise plan.LabInputError("--accept-change keeps finished steps of a lab that runs: not "
+                                 "with --park")
+    for f in a.accept_change or []:
+        if not Path(f).is_file():
+            raise plan.LabInputError(f"--accept-change {f}: no such file")
     if a.checkpoints < 0:
         raise plan.LabInputError(f"--checkpoints: expected a number >= 0 (0: none), got "
                                  f"{a.checkpoints}")
@@ -117,10 +129,15 @@ def _run(a):
     # make_plan then checks what needs the soil's sizes (in.lab_soilinfo, a LIGGGHTS run).
     tests, options, bed_vars = run_options(a)
     soil_file = runner.resolve_soil_file(a.soil, REPO / "inputs")
+    accept = None
+    if a.accept_change:
+        _check_includable(a.accept_change, soil_file)
+        accept = (a.accept_change, a.reason.strip())
     out = Path(a.out or RUNS / "soil_lab" / Path(soil_file).stem).resolve()
     lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet, archive=a.archive,
                      checkpoints=a.checkpoints, bed_hold_s=a.bed_hold,
-                     stall_s=mpi_launch.stall_seconds(a.stall_timeout))  # checks the build
+                     stall_s=mpi_launch.stall_seconds(a.stall_timeout),
+                     accept=accept)  # checks the build
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as e:
@@ -146,7 +163,33 @@ def _run(a):
             f"{soil.dt_s:.4g} s; tests {', '.join(p.tests)} ({a.preset}); {len(p.beds)} beds, "
             f"{len(p.runs)} runs on {a.np} rank(s) into {out}")
     lab.run_plan(p)
+    if accept:
+        kept = {f for files in lab.accepted.values() for f in files}
+        lab.say(f"--accept-change: {len(lab.accepted)} finished step(s) kept across the edit "
+                f"(reason: {accept[1]})")
+        for f in a.accept_change:
+            if str(Path(f).resolve()) not in {str(Path(k).resolve()) for k in kept}:
+                lab.say(f"--accept-change {f}: no finished step had recorded another version "
+                        "of it (nothing to keep)")
     return _report(out, a.quiet)
+
+
+def _check_includable(files, soil_file):
+    """--accept-change takes only files that the soil file, in.soilbin, in.bedhold or the lab's
+    decks include in turn (a LabInputError otherwise): an edit of the soil file or of a deck is
+    part of every step's inputs hash and always re-runs."""
+    variables = {"inputs_dir": str(REPO / "inputs")}
+    tops = [Path(soil_file), REPO / "inputs" / "in.soilbin", REPO / "inputs" / bed_hold.DECK,
+            *sorted(runner.DECKS.glob("in.*"))]
+    included = {str(Path(g).resolve()) for t in tops for g in deck_includes(t, variables)}
+    shown = sorted(str(Path(g).relative_to(REPO.resolve())) if Path(g).is_relative_to(
+        REPO.resolve()) else g for g in included)
+    for f in files:
+        if str(Path(f).resolve()) not in included:
+            raise plan.LabInputError(
+                f"--accept-change {f}: not a file the soil file or the lab's decks include "
+                "(only included files can be accepted: an edit of the soil file itself or of a "
+                f"deck always re-runs; included: {', '.join(shown)})")
 
 
 def _report(directory, quiet=False):
@@ -305,6 +348,15 @@ def main(argv=None):
                         "the lab goes on from it on another machine; runs nothing, and may run "
                         "beside the lab that writes the checkpoints (docs/soil-lab.md, "
                         "\"Parking a stopped run\")")
+    r.add_argument("--accept-change", action="append", metavar="FILE",
+                   help="an edit of FILE (a file the soil file or the lab's decks include, e.g. "
+                        "the base soil of a variant) changes no result: finished steps whose "
+                        "records differ from this lab's inputs only by FILE are kept, their "
+                        "records updated and annotated, instead of run again; needs --reason "
+                        "(repeatable; docs/soil-lab.md \"Accepting an edit that changes no "
+                        "result\")")
+    r.add_argument("--reason", metavar="TEXT",
+                   help="why the --accept-change edit changes no result (recorded)")
     r.add_argument("--checkpoints", type=int, default=runner.DEFAULT_CHECKPOINTS, metavar="N",
                    help="restart files written over each plate and shear run, from which a "
                         f"stopped lab goes on (default {runner.DEFAULT_CHECKPOINTS}; 0: none)")

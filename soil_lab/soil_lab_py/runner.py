@@ -14,6 +14,7 @@ or shear run that was stopped goes on from its last checkpoint (<run>/checkpoint
 lab-<start step>-<step>.restart, soil_lab/decks/lab_run.in), not from its start.
 """
 
+import datetime
 import hashlib
 import json
 import os
@@ -49,6 +50,7 @@ class StepKey(NamedTuple):
     inputs: str  #: hash of the settings and the files' contents
     included: dict  #: {path: sha256} of the files the LIGGGHTS inputs include in turn
     parts: dict  #: {"settings": sha256, path: sha256 per file}: which of them changed (done.json)
+    made_from: tuple = ()  #: Lab._key's (parts, files, named): rebuilt with accepted files' old hashes
 
 
 class Bed(NamedTuple):
@@ -65,6 +67,17 @@ def _sha256(path):
         for block in iter(lambda: f.read(1 << 20), b""):
             h.update(block)
     return h.hexdigest()
+
+
+def _with_hashes(value, hashes):
+    """`value` (settings: dicts, lists, strings) with each dict entry whose key is a path of
+    `hashes` set to that hash: a bed recipe as it was before an accepted edit (Lab._accept)."""
+    if isinstance(value, dict):
+        return {k: hashes[k] if k in hashes and isinstance(v, str) else _with_hashes(v, hashes)
+                for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return type(value)(_with_hashes(v, hashes) for v in value)
+    return value
 
 
 def resolve_soil_file(soil, inputs_dir):
@@ -85,7 +98,7 @@ def resolve_soil_file(soil, inputs_dir):
 class Lab:
     def __init__(self, repo, build_dir, out_dir, np=1, quiet=False, archive=None,
                  checkpoints=DEFAULT_CHECKPOINTS, bed_hold_s=bed_hold.DEFAULT_HOLD_S,
-                 stall_s=60.0 * mpi_launch.DEFAULT_STALL_MIN):
+                 stall_s=60.0 * mpi_launch.DEFAULT_STALL_MIN, accept=None):
         self.repo = Path(repo)
         self.build = Path(build_dir)
         self.out = Path(out_dir)
@@ -98,6 +111,11 @@ class Lab:
         # [s] a LIGGGHTS run whose log stays unchanged this long is killed (0: never); not part
         # of any step's inputs
         self.stall_s = stall_s
+        # --accept-change FILE ... --reason TEXT: ({resolved path}, reason); docs/soil-lab.md
+        # "Accepting an edit that changes no result"
+        self.accept_files, self.accept_reason = (
+            ({str(Path(f).resolve()) for f in accept[0]}, accept[1]) if accept else (set(), ""))
+        self.accepted = {}  # {step directory: [accepted files]} of this invocation
         self.quiet = quiet
         self.inputs = self.repo / "inputs"
         self.liggghts = self.build / "bin" / "liggghts-wheel"
@@ -165,11 +183,41 @@ class Lab:
             done = json.loads(f.read_text())
         except ValueError:
             return None
-        if done.get("inputs") != key.inputs:
+        if done.get("inputs") == key.inputs and (
+                # a record from before the included files were recorded is compared without them
+                "included_sha256" not in done or done["included_sha256"] == key.included):
+            return done
+        return self._accept(f, done, key)
+
+    def _accept(self, record_file, done, key):
+        """The record `done` (of `record_file`) kept across the accepted edits (--accept-change),
+        or None: only when it matches `key` rebuilt with the accepted files' recorded hashes, i.e.
+        nothing but those files changed. The record then takes the new hashes and an
+        `accepted_changes` entry {file, old_sha256, new_sha256, reason, utc}, written back."""
+        recorded = done.get("included_sha256")
+        if not self.accept_files or not key.made_from or not isinstance(recorded, dict):
             return None
-        # a record from before the included files were recorded is compared without them
-        if "included_sha256" in done and done["included_sha256"] != key.included:
+        old = {f: h for f, h in recorded.items() if f in key.included and h != key.included[f]
+               and str(Path(f).resolve()) in self.accept_files}
+        if not old:
             return None
+        parts, files, named = key.made_from
+        then = self._key(*parts, files=files, named=_with_hashes(named, old), hashes=old)
+        if then.inputs != done.get("inputs") or then.included != recorded:
+            return None
+        utc = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+        done.update(inputs=key.inputs, included_sha256=key.included, inputs_parts=key.parts)
+        done.setdefault("accepted_changes", []).extend(
+            {"file": f, "old_sha256": old[f], "new_sha256": key.included[f],
+             "reason": self.accept_reason, "utc": utc} for f in sorted(old))
+        tmp = record_file.with_name(record_file.name + ".tmp")
+        tmp.write_text(json.dumps(done, indent=1) + "\n")
+        os.replace(tmp, record_file)
+        self.accepted[str(record_file.parent)] = sorted(old)
+        step = record_file.parent
+        self.say(f"{step.relative_to(self.out) if step.is_relative_to(self.out) else step}: "
+                 f"finished before, kept across the edit of "
+                 f"{', '.join(Path(f).name for f in sorted(old))} (--accept-change)")
         return done
 
     @staticmethod
@@ -260,11 +308,12 @@ class Lab:
             self.say(f"{run.name}: its checkpoint at step {record['step']} (parked "
                      f"{record['parked_utc']}) restored from the archive {self.archive}")
 
-    def _key(self, *parts, files=(), named=None):
+    def _key(self, *parts, files=(), named=None, hashes=None):
         """The StepKey of `parts` (settings), `named` ({name: settings}, each told apart when it
         changes, e.g. the bed's recipe) and the contents of `files`: a hash of all, the
         {path: sha256} of the files the LIGGGHTS inputs among `files` (decks, soil files) include
-        in turn (e.g. a soil file's base soil), and each part's hash."""
+        in turn (e.g. a soil file's base soil), and each part's hash. `hashes` ({path: sha256})
+        stands in for included files' contents (_accept: the key as it was before an edit)."""
         h = hashlib.sha256()
         settings = hashlib.sha256()
         for p in parts:
@@ -283,8 +332,8 @@ class Lab:
             name = Path(f).name
             if name.endswith(".in") or name.startswith("in."):
                 for g in deck_includes(f, {"inputs_dir": str(self.inputs)}):
-                    included[str(g)] = _sha256(g)
-        return StepKey(h.hexdigest()[:16], included, components)
+                    included[str(g)] = (hashes or {}).get(str(g)) or _sha256(g)
+        return StepKey(h.hexdigest()[:16], included, components, (parts, tuple(files), named))
 
     def mesh(self, name, args):
         """The tool mesh wheel-mesh tool ARGS, as meshes/<name>.obj (made once)."""

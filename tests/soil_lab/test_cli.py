@@ -26,7 +26,8 @@ from soil_lab_py import cli, runner
 from synthetic import shear_run
 from test_analysis import plate_run
 
-SOIL_LAB = Path(__file__).resolve().parents[2] / "soil_lab" / "soil-lab"
+REPO = Path(__file__).resolve().parents[2]
+SOIL_LAB = REPO / "soil_lab" / "soil-lab"
 
 
 def main(*args):
@@ -94,10 +95,25 @@ class RunChecksFirst(unittest.TestCase):
             ("--tests", "plate,sheer"): "--tests: unknown test 'sheer' (did you mean 'shear'?)",
             ("--checkpoints", "-1"): "--checkpoints: expected a number >= 0",
             ("--park",): "--park keeps checkpoints in the archive: it needs --archive DIR",
+            ("--accept-change", "inputs/soils/common/derived.in"):
+                "--accept-change needs --reason TEXT",
+            ("--reason", "comment"): "--reason goes with --accept-change",
+            ("--accept-change", "no/such.in", "--reason", "x"):
+                "--accept-change no/such.in: no such file",
+            # the soil file itself is part of every step's inputs hash: it always re-runs
+            ("--accept-change", f"{REPO}/inputs/soils/ci.in", "--reason", "x"):
+                f"--accept-change {REPO}/inputs/soils/ci.in: not a file the soil file or the "
+                "lab's decks include",
         }
         for args, message in cases.items():
             with self.subTest(" ".join(args)):
                 self.assertRefusedFirst(("ci", *args), message)
+
+    def test_an_included_file_can_be_accepted(self):
+        # the control of the refusals above: a file ci.in includes gets as far as the soil
+        rc, err, _ = self.run_lab("ci", "--accept-change", REPO / "inputs/soils/common/derived.in",
+                                  "--reason", "comment only", soil_info=runner.LabRunError("stub"))
+        self.assertEqual((rc, err), (1, "soil-lab: error: stub\n"))
 
     def test_a_soil_file_that_does_not_exist_is_refused_before_anything_starts(self):
         missing = self.root / "no_such_soil.in"

@@ -100,10 +100,8 @@ class Resume(unittest.TestCase):
                          [str(self.variant), str(self.base)])
 
 
-class BedIdentity(unittest.TestCase):
-    """A test run names its bed by the bed's recipe, not by the restart's bytes: a multisphere
-    bed's restart holds memory addresses (fix multisphere), so preparing the same recipe again
-    writes another file, and an archived run must still count (docs/soil-lab.md)."""
+class LabWithBed(unittest.TestCase):
+    """A Lab whose LIGGGHTS runs (a bed, a repose-like test run) are faked."""
 
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
@@ -154,6 +152,12 @@ class BedIdentity(unittest.TestCase):
             self.lab.run(soil, run, bed)
         return bool(ran)
 
+
+class BedIdentity(LabWithBed):
+    """A test run names its bed by the bed's recipe, not by the restart's bytes: a multisphere
+    bed's restart holds memory addresses (fix multisphere), so preparing the same recipe again
+    writes another file, and an archived run must still count (docs/soil-lab.md)."""
+
     def test_an_archived_run_counts_on_a_bed_of_the_same_recipe(self):
         first = self.prepare_bed(b"bodies at 0x7f5ddb5f1ce0")
         self.assertTrue(self.run_on(first))
@@ -176,6 +180,87 @@ class BedIdentity(unittest.TestCase):
         self.assertTrue(self.run_on(other))
         self.assertTrue(any("does not match" in m and f"changed: {self.soil}, bed recipe" in m
                             for m in self.messages), self.messages)
+
+
+class AcceptChange(LabWithBed):
+    """soil-lab run --accept-change FILE --reason TEXT: a finished bed and test run whose records
+    differ from the lab's inputs only by an included file (the variant's base soil) are kept, their
+    records updated and annotated, the archive's too; another change still re-runs them."""
+
+    def setUp(self):
+        super().setUp()
+        soils = self.root / "repo" / "inputs" / "soils"
+        soils.mkdir()
+        self.base = soils / "base_sand.in"
+        self.base.write_text("variable soil_rho equal 2147.0\n")
+        self.soil.write_text("variable soil_rho index 1836.0\n"
+                             "include ${inputs_dir}/soils/base_sand.in\n")
+
+    def accepting(self, *files):
+        self.lab.accept_files = {str(Path(f).resolve()) for f in files}
+        self.lab.accept_reason = "equal -> index, same value"
+
+    def test_an_accepted_edit_keeps_the_bed_and_the_run(self):
+        first = self.prepare_bed(b"bed")
+        self.assertTrue(self.run_on(first))
+        old = runner._sha256(self.base)
+        self.base.write_text("variable soil_rho index 2147.0\n")  # the value unchanged
+        self.accepting(self.base)
+        again = self.prepare_bed_if_needed()
+        self.assertIsNone(again["prepared"], "the bed was prepared again")
+        self.assertFalse(self.run_on(again["bed"]), "the test run was run again")
+        for record in (self.root / "out" / "beds" / "b" / "done.json",
+                       self.root / "out" / "repose" / "done.json",
+                       self.root / "arch" / "repose" / "done.json"):
+            done = json.loads(record.read_text())
+            self.assertEqual(done["included_sha256"][str(self.base)], runner._sha256(self.base))
+            entry, = done["accepted_changes"]
+            self.assertEqual((entry["file"], entry["old_sha256"], entry["new_sha256"],
+                              entry["reason"]),
+                             (str(self.base), old, runner._sha256(self.base),
+                              "equal -> index, same value"))
+        self.assertEqual(len(self.lab.accepted), 2, self.lab.accepted)
+        # kept once: the next lab finds the records valid as they are
+        self.lab.accepted.clear()
+        self.assertFalse(self.run_on(self.prepare_bed_if_needed()["bed"]))
+        self.assertEqual(self.lab.accepted, {})
+
+    def test_without_accepting_or_with_another_change_they_run_again(self):
+        first = self.prepare_bed(b"bed")
+        self.assertTrue(self.run_on(first))
+        self.base.write_text("variable soil_rho index 2147.0\n")
+        self.assertIsNotNone(self.prepare_bed_if_needed()["prepared"], "nothing accepted")
+        self.setUp_records_again()
+        # the soil file changed too: not only the accepted file, so the bed is prepared again
+        self.soil.write_text("variable soil_rho index 1800.0\n"
+                             "include ${inputs_dir}/soils/base_sand.in\n")
+        self.accepting(self.base)
+        self.assertIsNotNone(self.prepare_bed_if_needed()["prepared"])
+        # and a file that was not edited accepts nothing
+        self.assertEqual(self.lab.accepted, {})
+
+    def setUp_records_again(self):
+        """Fresh records made with the base soil as it is now."""
+        shutil.rmtree(self.root / "out")
+        shutil.rmtree(self.root / "arch")
+        self.base.write_text("variable soil_rho equal 2147.0\n")
+        self.assertTrue(self.run_on(self.prepare_bed(b"bed")))
+        self.base.write_text("variable soil_rho index 2147.0\n")
+
+    def prepare_bed_if_needed(self):
+        """Lab.bed with a fake LIGGGHTS that records whether it prepared the bed."""
+        restart = self.root / "out" / "beds" / "b" / "bed.restart"
+        prepared = []
+
+        def fake_liggghts(deck, variables, log, cwd, while_running=None):
+            prepared.append(deck)
+            restart.write_bytes(b"bed")
+            return f"soilbin: restart = {restart}\nsoilbin: spheres = 10\n"
+        spec = mock.Mock(length_m=0.2, width_m=0.2, fill_height_m=0.1, extra_vars={})
+        spec.name = "b"
+        with mock.patch.object(self.lab, "_liggghts", side_effect=fake_liggghts):
+            bed = self.lab.bed(mock.Mock(file=str(self.soil)), spec)
+        return {"bed": bed, "prepared": prepared[0] if prepared else None}
 
 
 class Provenance(unittest.TestCase):
