@@ -7,7 +7,8 @@ shear.csv and done.json, e.g. `soil-lab run --archive`'s). Boxes are matched by 
 normal stress (done.json meta.normal_stress_Pa). Per box: τ at each displacement asked (the mean
 over ±AT_HALF_WIDTH_M of it), the lab's peak (5 % running mean) and where, the normal stress on the
 plane, the lid's travel over the shear and, where DIR/beds/shear/done.json is there, the sample's
-bulk density when the shear began (analysis.shear_sample_density).
+bulk density when the shear began (analysis.shear_sample_density) and, with DIR/soil.toml, its
+solid fraction (that over the particle density).
 """
 from pathlib import Path
 
@@ -33,12 +34,14 @@ def parse_source(text):
 
 def boxes(directory):
     """{target normal stress [Pa]: box} of the finished boxes in `directory` (analysis.read_shears'
-    records)."""
+    records), each with `particle_density_kg_m3` from the lab's soil.toml (None without it)."""
     found, _ = analysis.read_shears(directory)
     if not found:
         raise plan.LabInputError(f"{directory}: no finished shear box (shear_s*/ with done.json): "
                                  "expected a lab directory or a folder of archived boxes")
-    return {b["sigma_target_Pa"]: b for b in found}
+    soil_toml = Path(directory) / "soil.toml"
+    rho_p = analysis.read_soil(soil_toml).get("density_kg_m3") if soil_toml.is_file() else None
+    return {b["sigma_target_Pa"]: {**b, "particle_density_kg_m3": rho_p} for b in found}
 
 
 def load(sources):
@@ -61,25 +64,30 @@ def table(labs, at_mm=DEFAULT_AT_MM):
         lines += [f"### Box at {sigma / 1e3:g} kPa", "",
                   "| source | σ on the plane [kPa] | "
                   + " | ".join(f"τ at {a:g} mm" for a in at_mm)
-                  + " | peak [kPa] (at j [mm]) | lid over the shear [mm] | sample density [kg/m³] |",
-                  "|---" * (len(at_mm) + 5) + "|"]
+                  + " | peak [kPa] (at j [mm]) | lid over the shear [mm] | sample density [kg/m³] "
+                  "| solid fraction |",
+                  "|---" * (len(at_mm) + 6) + "|"]
         for label, bs in labs:
             b = bs.get(sigma)
             if b is None:
                 continue
             taus = [tau_at(b, a * 1e-3) for a in at_mm]
             rho = b["consolidation"].get("sample_bulk_density_kg_m3")
+            rho_p = b["particle_density_kg_m3"]
             lines.append(
                 f"| {label} | {b['sigma_Pa'] / 1e3:.2f} | "
                 + " | ".join("–" if t is None else f"{t / 1e3:.2f}" for t in taus)
                 + f" | {b['peak'].tau_peak_Pa / 1e3:.2f} ({b['peak'].j_peak_m * 1e3:.1f}) | "
                 f"{b['consolidation']['lid_travel_m'] * 1e3:+.1f} | "
-                + ("–" if rho is None else f"{rho:.0f}") + " |")
+                + ("–" if rho is None else f"{rho:.0f}") + " | "
+                + ("–" if rho is None or rho_p is None else f"{rho / rho_p:.3f}") + " |")
         lines.append("")
     lines.append(f"τ at j: the mean over ±{AT_HALF_WIDTH_M * 1e3:g} mm of j ('–': the box did not "
                  "travel that far); peak: the lab's (a running mean over 5 % of the samples); "
                  "sample density: the bed's mass over box area × lid height when the shear began "
-                 "('–': the lab's bed record is not in that directory).")
+                 "('–': the lab's bed record is not in that directory); solid fraction: that over "
+                 "the particle density of the lab's soil.toml (trials that move the particle "
+                 "density compare by it).")
     return "\n".join(lines) + "\n"
 
 

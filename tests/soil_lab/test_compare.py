@@ -1,7 +1,7 @@
 """soil-lab compare (soil_lab_py.compare): two synthetic labs of Janosi boxes with known answers.
 τ at a displacement is the curve's value there (mean over ±0.25 mm), '–' past the box's travel;
 boxes are matched by target normal stress, a box one lab lacks gives no row; the sample density
-appears only where the lab's shear-bed record is; bad sources and --at values are named; the
+appears only where the lab's shear-bed record is, its solid fraction where soil.toml is too; bad sources and --at values are named; the
 command writes its Markdown and PNG."""
 
 import contextlib
@@ -39,6 +39,7 @@ class Compare(unittest.TestCase):
         (bed / "done.json").write_text(json.dumps({"result": {
             "particle_mass": "0.4", "bin_length": "0.1", "bin_width": "0.1", "spheres": "500",
             "bulk_density": "760"}}))
+        (self.a / "soil.toml").write_text('name = "a"\ndmax_m = 0.01\ndensity_kg_m3 = 2000.0\n')
         self.sources = [("A", self.a), ("B", self.b)]
 
     def tearDown(self):
@@ -63,8 +64,8 @@ class Compare(unittest.TestCase):
                 self.assertAlmostEqual(float(cell), janosi(5e3, c, phi, j_mm * 1e-3) / 1e3,
                                        delta=0.01 * janosi(5e3, c, phi, j_mm * 1e-3) / 1e3 + 0.005)
             self.assertEqual(row[3], "–")  # the synthetic boxes travel 10 mm
-        self.assertEqual(at5["A"][-1], "800")
-        self.assertEqual(at5["B"][-1], "–")
+        self.assertEqual(at5["A"][-2:], ["800", "0.400"])  # 800 / 2000 kg/m3
+        self.assertEqual(at5["B"][-2:], ["–", "–"])
         box = compare.boxes(self.a)[5e3]
         self.assertIsNone(compare.tau_at(box, 0.02))
         self.assertAlmostEqual(compare.tau_at(box, 0.005),
