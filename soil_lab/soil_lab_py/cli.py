@@ -164,11 +164,11 @@ def _run(a):
             f"{len(p.runs)} runs on {a.np} rank(s) into {out}")
     lab.run_plan(p)
     if accept:
-        kept = {f for files in lab.accepted.values() for f in files}
+        kept = {f for files in lab.accepted.values() for f in files}  # resolved paths
         lab.say(f"--accept-change: {len(lab.accepted)} finished step(s) kept across the edit "
                 f"(reason: {accept[1]})")
         for f in a.accept_change:
-            if str(Path(f).resolve()) not in {str(Path(k).resolve()) for k in kept}:
+            if str(Path(f).resolve()) not in kept:
                 lab.say(f"--accept-change {f}: no finished step had recorded another version "
                         "of it (nothing to keep)")
     return _report(out, a.quiet)

@@ -115,7 +115,7 @@ class Lab:
         # "Accepting an edit that changes no result"
         self.accept_files, self.accept_reason = (
             ({str(Path(f).resolve()) for f in accept[0]}, accept[1]) if accept else (set(), ""))
-        self.accepted = {}  # {step directory: [accepted files]} of this invocation
+        self.accepted = {}  # {step directory: [accepted files, resolved]} of this invocation
         self.quiet = quiet
         self.inputs = self.repo / "inputs"
         self.liggghts = self.build / "bin" / "liggghts-wheel"
@@ -206,15 +206,15 @@ class Lab:
         if then.inputs != done.get("inputs") or then.included != recorded:
             return None
         utc = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
-        done.update(inputs=key.inputs, included_sha256=key.included, inputs_parts=key.parts)
         done.setdefault("accepted_changes", []).extend(
             {"file": f, "old_sha256": old[f], "new_sha256": key.included[f],
              "reason": self.accept_reason, "utc": utc} for f in sorted(old))
-        tmp = record_file.with_name(record_file.name + ".tmp")
-        tmp.write_text(json.dumps(done, indent=1) + "\n")
-        os.replace(tmp, record_file)
-        self.accepted[str(record_file.parent)] = sorted(old)
         step = record_file.parent
+        info = {k: v for k, v in done.items()
+                if k not in ("inputs", "included_sha256", "inputs_parts")}
+        self._finish(step, key, **info)  # the record with the new key
+        done.update(inputs=key.inputs, included_sha256=key.included, inputs_parts=key.parts)
+        self.accepted[str(step)] = sorted(str(Path(f).resolve()) for f in old)
         self.say(f"{step.relative_to(self.out) if step.is_relative_to(self.out) else step}: "
                  f"finished before, kept across the edit of "
                  f"{', '.join(Path(f).name for f in sorted(old))} (--accept-change)")
