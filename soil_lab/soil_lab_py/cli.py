@@ -219,7 +219,7 @@ def _report(directory, quiet=False):
             failed = bed_hold.failure(h, bed, Path(directory) / "beds" / bed / "hold" /
                                       "liggghts.log")
             print(f"soil-lab: warning: {failed} (this lab ran with the check off)" if failed else
-                  f"soil-lab: bed '{bed}' left alone under the test settings: "
+                  f"soil-lab: bed '{bed}': {bed_hold.verdict(h)} under the test settings: "
                   f"{bed_hold.describe(h)}")
         if r.costs or r.bed_costs:
             c = s["cost_total"]
