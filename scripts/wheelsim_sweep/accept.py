@@ -12,10 +12,11 @@ valid are touched: a point whose inputs hash, run file or another included file 
 left as it is (and named). Nothing runs.
 """
 
-import datetime
 import json
 import sys
 from pathlib import Path
+
+from wheelsim_post import accepted_change
 
 from .runner import DONE_FILE, RUN_FILE, _write_atomic
 
@@ -43,9 +44,8 @@ def _accept(record, now, files, reason, stamp, r):
     if accepted and not others:
         for k, old, new in accepted:
             recorded[k] = new
-            record.setdefault("accepted_changes", []).append(
-                {"file": r.local(k), "old_sha256": old, "new_sha256": new, "reason": reason,
-                 "utc": stamp})
+        accepted_change.append(record, [accepted_change.entry(r.local(k), old, new, reason, stamp)
+                                        for k, old, new in accepted])
     return accepted, others
 
 
@@ -75,7 +75,7 @@ def accept_changes(r, files, reason):
     lock = r.lock_out_dir()  # not while a driver runs on the same output
     if lock is None:
         return 2
-    stamp = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    stamp = accepted_change.utc_now()
     n_points = n_beds = 0
     for p in sw.points:
         d = r.point_dir(p)

@@ -14,7 +14,6 @@ or shear run that was stopped goes on from its last checkpoint (<run>/checkpoint
 lab-<start step>-<step>.restart, soil_lab/decks/lab_run.in), not from its start.
 """
 
-import datetime
 import hashlib
 import json
 import os
@@ -24,7 +23,7 @@ import time
 from pathlib import Path
 from typing import NamedTuple
 
-from wheelsim_post import bed_hold, liggghts_log, mpi_launch, step_archive
+from wheelsim_post import accepted_change, bed_hold, liggghts_log, mpi_launch, step_archive
 from wheelsim_post.deck_files import deck_includes
 
 from .checkpoints import STATE, Checkpoints
@@ -205,10 +204,10 @@ class Lab:
         then = self._key(*parts, files=files, named=_with_hashes(named, old), hashes=old)
         if then.inputs != done.get("inputs") or then.included != recorded:
             return None
-        utc = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
-        done.setdefault("accepted_changes", []).extend(
-            {"file": f, "old_sha256": old[f], "new_sha256": key.included[f],
-             "reason": self.accept_reason, "utc": utc} for f in sorted(old))
+        utc = accepted_change.utc_now()
+        accepted_change.append(done, [accepted_change.entry(f, old[f], key.included[f],
+                                                            self.accept_reason, utc)
+                                      for f in sorted(old)])
         step = record_file.parent
         info = {k: v for k, v in done.items()
                 if k not in ("inputs", "included_sha256", "inputs_parts")}
