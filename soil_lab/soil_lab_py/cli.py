@@ -5,7 +5,8 @@
                     [--accept-change FILE --reason TEXT] [--stall-timeout MIN] [--build-dir D]
   soil-lab report DIR
   soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB] [--relaxed]
-  soil-lab compare LABEL=DIR [LABEL=DIR ...] [--at MM,MM,...] [--md FILE] [--png FILE]
+  soil-lab compare LABEL=DIR [LABEL=DIR ...] [--at MM,MM,...] [--target C_PA,PHI_DEG]
+                   [--md FILE] [--png FILE]
 
 Exit status: 0 done; 1 a LIGGGHTS or wheel-mesh run failed, or a fit failed; 2 bad command
 line, unknown soil or test, or a test size the lab rejects.
@@ -260,8 +261,10 @@ def _compare(a):
     at = _numbers(a.at, "--at", "shear displacements > 0 [mm]")
     if any(v <= 0 for v in at):
         raise plan.LabInputError(f"--at: expected shear displacements > 0 [mm], got '{a.at}'")
+    target = a.target and compare.check_target(
+        _numbers(a.target, "--target", "C_PA,PHI_DEG (numbers)"))
     labs = compare.load([compare.parse_source(s) for s in a.sources])
-    text = compare.table(labs, at)
+    text = compare.table(labs, at, target)
     print(text, end="")
     for option, path, write in (("--md", a.md, lambda p: Path(p).write_text(text)),
                                 ("--png", a.png, lambda p: compare.plot(p, labs))):
@@ -387,6 +390,9 @@ def main(argv=None):
     c.add_argument("--at", default=",".join(f"{v:g}" for v in compare.DEFAULT_AT_MM),
                    metavar="MM,MM,...", help="shear displacements to read tau at [mm] (default "
                                              "%(default)s)")
+    c.add_argument("--target", metavar="C_PA,PHI_DEG",
+                   help="the soil's Mohr-Coulomb target (cohesion [Pa], friction angle [deg]): "
+                        "each peak is also given against c + sigma tan(phi) at its box's stress")
     c.add_argument("--md", metavar="FILE", help="also write the tables to FILE (Markdown)")
     c.add_argument("--png", metavar="FILE", help="plot tau(j) of every source, a panel per stress")
     a = ap.parse_args(argv)

@@ -8,7 +8,8 @@ normal stress (done.json meta.normal_stress_Pa). Per box: τ at each displacemen
 over ±AT_HALF_WIDTH_M of it), the lab's peak (5 % running mean) and where, the normal stress on the
 plane, the lid's travel over the shear and, where DIR/beds/shear/done.json is there, the sample's
 bulk density when the shear began (analysis.shear_sample_density) and, with DIR/soil.toml, its
-solid fraction (that over the particle density).
+solid fraction (that over the particle density). With a target line (c, φ: the soil's
+Mohr–Coulomb target), each peak is also given against c + σ tan φ at that box's σ on the plane.
 """
 from pathlib import Path
 
@@ -56,8 +57,24 @@ def tau_at(box, j_m):
     return float(tau[near].mean()) if near.any() else None
 
 
-def table(labs, at_mm=DEFAULT_AT_MM):
-    """Markdown: a table per target normal stress, a row per source (load's) that has that box."""
+def target_tau(target, sigma_Pa):
+    """The target line's shear strength [Pa] at normal stress sigma_Pa: c + σ tan φ, target =
+    (c [Pa], φ [deg])."""
+    c_Pa, phi_deg = target
+    return c_Pa + sigma_Pa * np.tan(np.radians(phi_deg))
+
+
+def check_target(target):
+    """(c [Pa], φ [deg]) of --target's numbers, or a LabInputError naming what is wrong."""
+    if len(target) != 2 or not target[0] >= 0 or not 0 < target[1] < 90:
+        raise plan.LabInputError("--target: expected C_PA,PHI_DEG (the cohesion >= 0 [Pa] and the "
+                                 f"friction angle in (0, 90) [deg]), got {target}")
+    return tuple(target)
+
+
+def table(labs, at_mm=DEFAULT_AT_MM, target=None):
+    """Markdown: a table per target normal stress, a row per source (load's) that has that box;
+    with `target` (c [Pa], φ [deg]) a column of each peak against the target line."""
     stresses = sorted({s for _, bs in labs for s in bs})
     lines = []
     for sigma in stresses:
@@ -65,8 +82,8 @@ def table(labs, at_mm=DEFAULT_AT_MM):
                   "| source | σ on the plane [kPa] | "
                   + " | ".join(f"τ at {a:g} mm" for a in at_mm)
                   + " | peak [kPa] (at j [mm]) | lid over the shear [mm] | sample density [kg/m³] "
-                  "| solid fraction |",
-                  "|---" * (len(at_mm) + 6) + "|"]
+                  "| solid fraction |" + (" target line [kPa] (peak against it) |" if target else ""),
+                  "|---" * (len(at_mm) + 6 + bool(target)) + "|"]
         for label, bs in labs:
             b = bs.get(sigma)
             if b is None:
@@ -80,15 +97,25 @@ def table(labs, at_mm=DEFAULT_AT_MM):
                 + f" | {b['peak'].tau_peak_Pa / 1e3:.2f} ({b['peak'].j_peak_m * 1e3:.1f}) | "
                 f"{b['consolidation']['lid_travel_m'] * 1e3:+.1f} | "
                 + ("–" if rho is None else f"{rho:.0f}") + " | "
-                + ("–" if rho is None or rho_p is None else f"{rho / rho_p:.3f}") + " |")
+                + ("–" if rho is None or rho_p is None else f"{rho / rho_p:.3f}") + " |"
+                + (_against_target(b, target) if target else ""))
         lines.append("")
     lines.append(f"τ at j: the mean over ±{AT_HALF_WIDTH_M * 1e3:g} mm of j ('–': the box did not "
                  "travel that far); peak: the lab's (a running mean over 5 % of the samples); "
                  "sample density: the bed's mass over box area × lid height when the shear began "
                  "('–': the lab's bed record is not in that directory); solid fraction: that over "
                  "the particle density of the lab's soil.toml (trials that move the particle "
-                 "density compare by it).")
+                 "density compare by it)."
+                 + (f" Target line: c + σ tan φ at the box's σ on the plane, c {target[0] / 1e3:g} "
+                    f"kPa, φ {target[1]:g}°." if target else ""))
     return "\n".join(lines) + "\n"
+
+
+def _against_target(box, target):
+    """The target-line cell of a row: the line's τ at the box's σ and the peak's excess over it."""
+    line = target_tau(target, box["sigma_Pa"])
+    excess = round(100 * (box["peak"].tau_peak_Pa / line - 1), 1) + 0.0  # + 0.0: no "-0.0"
+    return f" {line / 1e3:.2f} ({excess:+.1f} %) |"
 
 
 def plot(path, labs):

@@ -1,7 +1,8 @@
 """soil-lab compare (soil_lab_py.compare): two synthetic labs of Janosi boxes with known answers.
 τ at a displacement is the curve's value there (mean over ±0.25 mm), '–' past the box's travel;
 boxes are matched by target normal stress, a box one lab lacks gives no row; the sample density
-appears only where the lab's shear-bed record is, its solid fraction where soil.toml is too; bad sources and --at values are named; the
+appears only where the lab's shear-bed record is, its solid fraction where soil.toml is too; peaks
+against a target line c + σ tan φ (--target); bad sources, --at and --target values are named; the
 command writes its Markdown and PNG."""
 
 import contextlib
@@ -71,6 +72,26 @@ class Compare(unittest.TestCase):
         self.assertAlmostEqual(compare.tau_at(box, 0.005),
                                np.mean(box["tau"][np.abs(box["j"] - 0.005) <= 0.25e-3]))
 
+    def test_peaks_against_a_target_line(self):
+        # A's boxes are Janosi curves saturating at 1 kPa + sigma tan 30 deg: on A's own line
+        # their peaks lie on it; B's (2 kPa, 25 deg) lie 11.4 % above it at 5 kPa, 1.6 % below at 10
+        text = compare.table(compare.load(self.sources), at_mm=(5,), target=(1e3, 30.0))
+        self.assertIn("| target line [kPa] (peak against it) |", text)
+        for sigma, expected in ((5e3, {"A": 0.0, "B": 11.4}), (1e4, {"A": 0.0, "B": -1.6}),
+                                (2e4, {"A": 0.0})):
+            rows = self.rows(text, sigma / 1e3)
+            self.assertEqual(set(rows), set(expected))
+            for label, excess in expected.items():
+                line, against = re.fullmatch(r"(\S+) \((\S+) %\)", rows[label][-1]).groups()
+                self.assertAlmostEqual(float(line), (1e3 + sigma * np.tan(np.radians(30))) / 1e3,
+                                       delta=0.006)
+                self.assertAlmostEqual(float(against), excess, delta=0.15, msg=(sigma, label))
+        self.assertIn("c 1 kPa, φ 30°", text)
+        self.assertNotIn("target line", compare.table(compare.load(self.sources), at_mm=(5,)))
+        for bad in ((1e3,), (-1.0, 30.0), (1e3, 0.0), (1e3, 90.0), (float("nan"), 30.0)):
+            with self.assertRaisesRegex(plan.LabInputError, "--target: expected C_PA,PHI_DEG"):
+                compare.check_target(bad)
+
     def test_bad_sources_are_named(self):
         for text, msg in (("lab_a", "expected LABEL=DIR"), ("=x", "expected LABEL=DIR"),
                           (f"A={self.a}/absent", "is not a directory")):
@@ -86,13 +107,16 @@ class Compare(unittest.TestCase):
         out = io.StringIO()
         with contextlib.redirect_stdout(out):
             rc = cli.main(["compare", f"A={self.a}", f"B={self.b}", "--at", "5,8",
-                           "--md", str(md), "--png", str(png)])
+                           "--target", "1000,30", "--md", str(md), "--png", str(png)])
         self.assertEqual(rc, 0)
         self.assertIn("| τ at 5 mm | τ at 8 mm |", md.read_text())
+        self.assertIn("c 1 kPa, φ 30°", md.read_text())
         self.assertTrue(out.getvalue().startswith(md.read_text()))
         self.assertGreater(png.stat().st_size, 10000)
         for args, msg in ((["--at", "0,5"], "--at: expected shear displacements > 0"),
                           (["--at", "x"], "--at: expected"),
+                          (["--target", "3300"], "--target: expected C_PA,PHI_DEG"),
+                          (["--target", "a,b"], "--target: expected C_PA,PHI_DEG"),
                           (["--md", str(Path(self.tmp.name) / "no" / "x.md")], "--md .*cannot write")):
             err = io.StringIO()
             with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
