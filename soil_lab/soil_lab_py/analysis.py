@@ -347,6 +347,36 @@ def plate_pressure_profile(plate):
     return 0.5 * (edges[:-1] + edges[1:]), np.array(means)
 
 
+#: The shear box's speed check also compares the two runs band by band: the travel cut into this
+#: many equal bands of shear displacement (quarters), the mean shear stress in each.
+SHEAR_PROFILE_BANDS = 4
+
+
+def shear_stress_profile(j_m, tau_Pa, j_max_m=None):
+    """(band centres [m], mean shear stress [Pa] in each band) of a shear run, its displacement
+    range [0, j_max_m] (default: the run's largest j) cut into SHEAR_PROFILE_BANDS equal bands
+    (the last one ends at j_max_m, included); NaN for a band the run has no sample in."""
+    j, tau = np.asarray(j_m, dtype=float), np.asarray(tau_Pa, dtype=float)
+    top = float(j.max()) if j_max_m is None else float(j_max_m)
+    edges = np.linspace(0.0, top, SHEAR_PROFILE_BANDS + 1)
+    band = np.searchsorted(edges, j, side="right") - 1
+    band[j == top] = SHEAR_PROFILE_BANDS - 1
+    means = [float(np.mean(tau[band == k])) if np.any(band == k) else float("nan")
+             for k in range(SHEAR_PROFILE_BANDS)]
+    return 0.5 * (edges[:-1] + edges[1:]), np.array(means)
+
+
+def profile_changes_sign(differences, floor=0.01):
+    """True when a speed check's band differences lie on both sides of zero by more than
+    `floor` (relative): the slower run is stronger along part of the travel and weaker along
+    another, so its verdict rests on where the peaks fell; one pair of runs cannot tell the
+    runs' own fluctuation (stick-slip) from a rate effect that grows along the travel (a creeping
+    sample compacting more in the slower run's longer time)."""
+    d = np.asarray(differences, dtype=float)
+    d = d[np.isfinite(d)]
+    return bool(d.size and d.max() > floor and d.min() < -floor)
+
+
 def plate_end_pressure(plate):
     """Mean pressure over the last band (20 %) of the loading branch's sinkage range [Pa]."""
     return float(plate_pressure_profile(plate)[1][-1])
@@ -738,9 +768,19 @@ def analyse(directory):
             extra = {"profile_depth_m": [float(x) for x in za],
                      "profile_difference": [float(x) for x in np.interp(za, zb, mb) / ma - 1.0]}
         elif test == "shear":
-            a = read_shear(full_dir, full)["peak"].tau_peak_Pa
-            b = read_shear(run, half)["peak"].tau_peak_Pa
+            sa, sb = read_shear(full_dir, full), read_shear(run, half)
+            a, b = sa["peak"].tau_peak_Pa, sb["peak"].tau_peak_Pa
             what, unit, diff = "peak shear stress", "Pa", (b - a) / a
+            # by displacement: both runs' band means over the full-speed run's travel
+            ja, ma = shear_stress_profile(sa["j"], sa["tau"])
+            _, mb = shear_stress_profile(sb["j"], sb["tau"], j_max_m=float(np.max(sa["j"])))
+            bands = mb / ma - 1.0
+            extra = {"profile_displacement_m": [float(x) for x in ja],
+                     "profile_difference": [float(x) for x in bands],
+                     "profile_changes_sign": profile_changes_sign(bands),
+                     # how far each lid moved over the shear (< 0: the sample compacted): a
+                     # creeping soil compacts more in the slower run's longer time
+                     "lid_full_m": float(sa["lid_dz"][-1]), "lid_half_m": float(sb["lid_dz"][-1])}
         else:
             fa, _, ea = read_repose(full_dir, full, dmax)
             fb, _, eb = read_repose(run, half, dmax)
@@ -865,7 +905,11 @@ def summary(r: Results):
                                                               "half_speed", "difference",
                                                               "tolerance", "relative", "passed",
                                                               "profile_depth_m",
-                                                              "profile_difference") if k in q}
+                                                              "profile_displacement_m",
+                                                              "profile_difference",
+                                                              "profile_changes_sign",
+                                                              "lid_full_m", "lid_half_m")
+                                              if k in q}
                                for q in r.quasi_static}
     if r.bed_holds:
         out["bed_hold"] = r.bed_holds

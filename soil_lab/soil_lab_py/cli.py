@@ -250,10 +250,24 @@ def _report(directory, quiet=False):
             tol = f"{100 * q['tolerance']:g} %" if q["relative"] else f"{q['tolerance']:g} {q['unit']}"
             print(f"soil-lab: quasi-static: {q['run']}: {q['quantity']} at half speed {diff} "
                   f"(tolerance {tol}): {'ok' if q['passed'] else 'NOT quasi-static'}")
-            if "profile_difference" in q:
+            if "profile_depth_m" in q:
                 bands = ", ".join(f"{1e3 * z:.3g} mm {100 * d:+.1f} %" for z, d in
                                   zip(q["profile_depth_m"], q["profile_difference"]))
                 print(f"soil-lab: quasi-static: {q['run']}: pressure at half speed by depth: {bands}")
+            if "profile_displacement_m" in q:
+                bands = ", ".join(f"{1e3 * j:.3g} mm {100 * d:+.1f} %" for j, d in
+                                  zip(q["profile_displacement_m"], q["profile_difference"]))
+                print(f"soil-lab: quasi-static: {q['run']}: shear stress at half speed by "
+                      f"displacement (quarters of the travel): {bands}; lid over the shear "
+                      f"{1e3 * q['lid_full_m']:+.2f} mm at full speed, "
+                      f"{1e3 * q['lid_half_m']:+.2f} mm at half speed")
+                if q["profile_changes_sign"]:
+                    print(f"soil-lab: quasi-static: {q['run']}: the difference changes sign along "
+                          "the travel, so the verdict rests on where the peaks fell: one pair of "
+                          "runs cannot tell the box's own fluctuation (stick-slip) from a rate "
+                          "effect that grows along the travel (a slower sample of a creeping "
+                          "soil compacts more: compare the lids); a replicate at the same speed "
+                          "would measure the fluctuation")
     return 0
 
 

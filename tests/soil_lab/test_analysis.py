@@ -151,6 +151,43 @@ class Analysis(unittest.TestCase):
             self.assertEqual(q["tolerance"], 0.05)
             self.assertIs(q["passed"], passed)
             self.assertEqual(len(r.shears), 3)  # the half-speed box is not a Mohr-Coulomb point
+            # a uniformly weaker box is weaker in every quarter of the travel: no sign change
+            np.testing.assert_allclose(q["profile_displacement_m"],
+                                       [0.00125, 0.00375, 0.00625, 0.00875])
+            np.testing.assert_allclose(q["profile_difference"], scale - 1.0, atol=1e-9)
+            self.assertIs(q["profile_changes_sign"], False)
+
+    def test_shear_speed_check_reports_a_difference_that_changes_sign(self):
+        # The half-speed box 5 % weaker over the first half of the travel and 10 % stronger over
+        # the second: the peaks differ by +10 % (NOT quasi-static by the rule), and the quarters
+        # read -5, -5, +10, +10 %, which the check flags as a sign change (the box's fluctuation,
+        # not shown to be a rate effect); results.toml keeps the bands and the flag.
+        d = Path(tempfile.mkdtemp())
+        (d / "soil.toml").write_text('name = "synthetic"\npreset = "standard"\n'
+                                     'dmax_m = 0.004\n')
+        for sigma in (5e3, 1e4, 2e4):
+            syn.shear_run(d, sigma)
+        half = d / "shear_s10000_half"
+        half.mkdir()
+        t = np.loadtxt(d / "shear_s10000" / "shear.csv")
+        t[:, 3] *= np.where(t[:, 1] < 0.005, 0.95, 1.10)
+        np.savetxt(half / "shear.csv", t, header="time_s displacement_m shear_force_N tau_Pa "
+                   "sigma_Pa lid_z_m phase")
+        (half / "done.json").write_text((d / "shear_s10000" / "done.json").read_text())
+        r = analysis.analyse(d)
+        q, = r.quasi_static
+        self.assertAlmostEqual(q["difference"], 0.10, places=2)
+        self.assertFalse(q["passed"])
+        np.testing.assert_allclose(q["profile_difference"], [-0.05, -0.05, 0.10, 0.10],
+                                   atol=1e-9)
+        self.assertIs(q["profile_changes_sign"], True)
+        written = analysis.summary(r)["quasi_static"]["shear_s10000"]
+        self.assertEqual(written["profile_difference"], q["profile_difference"])
+        self.assertIs(written["profile_changes_sign"], True)
+        self.assertEqual((written["lid_full_m"], written["lid_half_m"]), (0.0, 0.0))
+        # within +-1 % both ways is no sign change worth naming
+        self.assertIs(analysis.profile_changes_sign([-0.005, 0.004, 0.2]), False)
+        self.assertIs(analysis.profile_changes_sign([float("nan"), -0.02, 0.02]), True)
 
     def test_repose_speed_check_compares_the_angles_in_degrees(self):
         # A 30 deg heap against one of 33 deg (fails the 1.5 deg tolerance), then against another
