@@ -340,10 +340,18 @@ def plate_pressure_profile(plate):
     """(band centres [m], mean pressure [Pa] in each band) of the loading branch, its sinkage range
     [0, z_max] cut into PLATE_PROFILE_BANDS equal bands (the last one ends at z_max, included)."""
     z, p = loading_branch(plate)
-    edges = np.linspace(0.0, z.max(), PLATE_PROFILE_BANDS + 1)
-    band = np.minimum(np.searchsorted(edges, z, side="right") - 1, PLATE_PROFILE_BANDS - 1)
-    means = [float(np.mean(p[band == k])) if np.any(band == k) else float("nan")
-             for k in range(PLATE_PROFILE_BANDS)]
+    return band_means(z, p, z.max(), PLATE_PROFILE_BANDS)
+
+
+def band_means(x, y, top, bands):
+    """(band centres, mean of y in each band): [0, top] cut into `bands` equal bands of x (the last
+    one ends at top, included; x beyond top is left out); NaN for a band with no sample."""
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    edges = np.linspace(0.0, float(top), bands + 1)
+    band = np.searchsorted(edges, x, side="right") - 1
+    band[x == top] = bands - 1
+    means = [float(np.mean(y[band == k])) if np.any(band == k) else float("nan")
+             for k in range(bands)]
     return 0.5 * (edges[:-1] + edges[1:]), np.array(means)
 
 
@@ -353,17 +361,10 @@ SHEAR_PROFILE_BANDS = 4
 
 
 def shear_stress_profile(j_m, tau_Pa, j_max_m=None):
-    """(band centres [m], mean shear stress [Pa] in each band) of a shear run, its displacement
-    range [0, j_max_m] (default: the run's largest j) cut into SHEAR_PROFILE_BANDS equal bands
-    (the last one ends at j_max_m, included); NaN for a band the run has no sample in."""
-    j, tau = np.asarray(j_m, dtype=float), np.asarray(tau_Pa, dtype=float)
-    top = float(j.max()) if j_max_m is None else float(j_max_m)
-    edges = np.linspace(0.0, top, SHEAR_PROFILE_BANDS + 1)
-    band = np.searchsorted(edges, j, side="right") - 1
-    band[j == top] = SHEAR_PROFILE_BANDS - 1
-    means = [float(np.mean(tau[band == k])) if np.any(band == k) else float("nan")
-             for k in range(SHEAR_PROFILE_BANDS)]
-    return 0.5 * (edges[:-1] + edges[1:]), np.array(means)
+    """(band centres [m], mean shear stress [Pa] in each band) of a shear run: band_means over
+    [0, j_max_m] (default: the run's largest j) in SHEAR_PROFILE_BANDS bands."""
+    top = float(np.max(j_m)) if j_max_m is None else float(j_max_m)
+    return band_means(j_m, tau_Pa, top, SHEAR_PROFILE_BANDS)
 
 
 def profile_changes_sign(differences, floor=0.01):
@@ -768,7 +769,10 @@ def analyse(directory):
             extra = {"profile_depth_m": [float(x) for x in za],
                      "profile_difference": [float(x) for x in np.interp(za, zb, mb) / ma - 1.0]}
         elif test == "shear":
-            sa, sb = read_shear(full_dir, full), read_shear(run, half)
+            # the full-speed run is one of the lab's boxes, read above
+            sa = next((s for s in r.shears if s["done"] == full), None) or \
+                read_shear(full_dir, full)
+            sb = read_shear(run, half)
             a, b = sa["peak"].tau_peak_Pa, sb["peak"].tau_peak_Pa
             what, unit, diff = "peak shear stress", "Pa", (b - a) / a
             # by displacement: both runs' band means over the full-speed run's travel
@@ -780,7 +784,8 @@ def analyse(directory):
                      "profile_changes_sign": profile_changes_sign(bands),
                      # how far each lid moved over the shear (< 0: the sample compacted): a
                      # creeping soil compacts more in the slower run's longer time
-                     "lid_full_m": float(sa["lid_dz"][-1]), "lid_half_m": float(sb["lid_dz"][-1])}
+                     "lid_full_m": sa["consolidation"]["lid_travel_m"],
+                     "lid_half_m": sb["consolidation"]["lid_travel_m"]}
         else:
             fa, _, ea = read_repose(full_dir, full, dmax)
             fb, _, eb = read_repose(run, half, dmax)

@@ -251,14 +251,12 @@ def _report(directory, quiet=False):
             print(f"soil-lab: quasi-static: {q['run']}: {q['quantity']} at half speed {diff} "
                   f"(tolerance {tol}): {'ok' if q['passed'] else 'NOT quasi-static'}")
             if "profile_depth_m" in q:
-                bands = ", ".join(f"{1e3 * z:.3g} mm {100 * d:+.1f} %" for z, d in
-                                  zip(q["profile_depth_m"], q["profile_difference"]))
-                print(f"soil-lab: quasi-static: {q['run']}: pressure at half speed by depth: {bands}")
+                print(f"soil-lab: quasi-static: {q['run']}: pressure at half speed by depth: "
+                      f"{_bands(q, 'profile_depth_m')}")
             if "profile_displacement_m" in q:
-                bands = ", ".join(f"{1e3 * j:.3g} mm {100 * d:+.1f} %" for j, d in
-                                  zip(q["profile_displacement_m"], q["profile_difference"]))
                 print(f"soil-lab: quasi-static: {q['run']}: shear stress at half speed by "
-                      f"displacement (quarters of the travel): {bands}; lid over the shear "
+                      f"displacement (quarters of the travel): {_bands(q, 'profile_displacement_m')}; "
+                      "lid over the shear "
                       f"{1e3 * q['lid_full_m']:+.2f} mm at full speed, "
                       f"{1e3 * q['lid_half_m']:+.2f} mm at half speed")
                 if q["profile_changes_sign"]:
@@ -269,6 +267,13 @@ def _report(directory, quiet=False):
                           "soil compacts more: compare the lids); a replicate at the same speed "
                           "would measure the fluctuation")
     return 0
+
+
+def _bands(q, at):
+    """A speed check's band differences as "<position> mm <difference> %, ..." (at: the key of
+    the band positions [m])."""
+    return ", ".join(f"{1e3 * x:.3g} mm {100 * d:+.1f} %" for x, d in
+                     zip(q[at], q["profile_difference"]))
 
 
 def _compare(a):
