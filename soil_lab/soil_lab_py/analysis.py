@@ -1,7 +1,7 @@
 """`soil-lab report` and `soil-lab scm`: read a lab directory's outputs, fit, summarise, plot.
 
 What is read (runner.py writes it): soil.toml; beds/plate/done.json (bulk density, porosity);
-beds/shear/done.json (the sample's mass); beds/*/hold/done.json (the bed-hold check);
+beds/shear/done.json and beds/shear_r<k>/done.json (the sample's mass); beds/*/hold/done.json (the bed-hold check);
 plate_b*/plate.csv; shear_s*/shear.csv; repose/repose.dump; each run's done.json (cost).
 What is written by write_report: results.toml, results.csv, plate.png, shear_curves.png,
 mohr_coulomb.png, repose.png (for the tests that ran). docs/soil-lab.md, "Outputs".
@@ -40,6 +40,7 @@ class Results:
     shears: List[dict] = field(default_factory=list)  # sigma_Pa, j, tau, peak, janosi, done
     mc_peak: Optional[fits.MohrCoulombFit] = None
     mc_residual: Optional[fits.MohrCoulombFit] = None
+    replicates: Optional[dict] = None  # with --shear-replicates: shear_replicates' summary
     repose_fits: List[repose.ReposeFit] = field(default_factory=list)
     repose_profiles: List[tuple] = field(default_factory=list)
     repose_error: Optional[str] = None  # why no angle could be fitted (too small a heap, ...)
@@ -470,7 +471,12 @@ def read_shear(run, done):
     log = run / "liggghts.log"
     text = log.read_text(errors="replace") if log.is_file() else ""
     counts = shear_particle_counts(text) if text else None
+    replicate = (done.get("meta") or {}).get("replicate", 1)
+    if isinstance(replicate, bool) or not isinstance(replicate, int) or replicate < 1:
+        raise LabResultError(f"{run / 'done.json'}: meta.replicate = {replicate!r}: expected a "
+                             "whole number >= 1 (the box's bed: 1 the lab's first)")
     return {"sigma_Pa": float(np.mean(sigma)), "sigma_target_Pa": sigma_target,
+            "replicate": replicate,
             "j": j, "tau": tau, "lid_dz": t["lid_z_m"][s] - t["lid_z_m"][s][0], "peak": peak,
             "janosi": janosi, "loss": shear_particle_loss(counts, peak.j_peak_m),
             "consolidation": shear_consolidation(t["time_s"], t["sigma_Pa"], t["lid_z_m"],
@@ -518,18 +524,68 @@ def shear_sample_density(shears, bed_dir):
     return bed_rho, out
 
 
+def shear_bed_name(replicate):
+    """The bed a box of replicate k was sheared on (plan.make_plan's names)."""
+    return "shear" if replicate == 1 else f"shear_r{replicate}"
+
+
 def read_shears(d):
-    """The finished shear boxes in `d` (read_shear's records, by normal stress on the plane; each
-    consolidation record with the sample's densities where d/beds/shear/done.json is there) and
-    the shear bed's bulk density as poured (None without its record)."""
+    """The finished shear boxes in `d` (read_shear's records, by normal stress on the plane, then
+    replicate; each consolidation record with the sample's densities where its bed's
+    d/beds/<bed>/done.json is there) and the first shear bed's bulk density as poured (None
+    without its record)."""
     shears = sorted((read_shear(run, done) for run, done in _runs(Path(d), "shear_s*")),
-                    key=lambda s: s["sigma_Pa"])
-    bed_rho, densities = shear_sample_density(shears, Path(d) / "beds" / "shear")
-    for s, rho in zip(shears, densities):
-        if rho is not None:
-            s["consolidation"]["sample_bulk_density_kg_m3"] = rho[0]
-            s["consolidation"]["sample_bulk_density_end_kg_m3"] = rho[1]
+                    key=lambda s: (s["sigma_Pa"], s["replicate"]))
+    bed_rho = None
+    for k in sorted({s["replicate"] for s in shears}):
+        group = [s for s in shears if s["replicate"] == k]
+        rho_k, densities = shear_sample_density(group, Path(d) / "beds" / shear_bed_name(k))
+        bed_rho = rho_k if k == 1 else bed_rho
+        for s, rho in zip(group, densities):
+            if rho is not None:
+                s["consolidation"]["sample_bulk_density_kg_m3"] = rho[0]
+                s["consolidation"]["sample_bulk_density_end_kg_m3"] = rho[1]
     return shears, bed_rho
+
+
+def shear_stress_count(shears):
+    """The number of different target normal stresses among the finished boxes (replicates of
+    one stress count once): the Mohr-Coulomb fit needs 3."""
+    return len({s["sigma_target_Pa"] for s in shears})
+
+
+def shear_replicates(shears):
+    """How much the boxes scatter from bed to bed, for a lab with replicate boxes
+    (--shear-replicates; None without a second replicate): per target normal stress the peaks'
+    count, mean, sample standard deviation and spread ((max - min) / mean), and per replicate
+    whose boxes cover >= 3 stresses its own Mohr-Coulomb fit (c, phi), with the spread of those
+    fits (sample standard deviations over the replicates)."""
+    reps = sorted({s["replicate"] for s in shears})
+    if len(reps) < 2:
+        return None
+    by_stress = []
+    for target in sorted({s["sigma_target_Pa"] for s in shears}):
+        peaks = np.array([s["peak"].tau_peak_Pa for s in shears if s["sigma_target_Pa"] == target])
+        mean = float(peaks.mean())
+        by_stress.append({"sigma_target_Pa": float(target), "boxes": int(peaks.size),
+                          "tau_peak_mean_Pa": mean,
+                          "tau_peak_sd_Pa": float(peaks.std(ddof=1)) if peaks.size > 1 else 0.0,
+                          "tau_peak_spread": float(np.ptp(peaks) / mean) if mean > 0 else 0.0})
+    per = []
+    for k in reps:
+        group = [s for s in shears if s["replicate"] == k]
+        if shear_stress_count(group) < 3:
+            continue
+        f = fits.fit_mohr_coulomb([s["sigma_Pa"] for s in group],
+                                  [s["peak"].tau_peak_Pa for s in group])
+        per.append((k, f.friction_deg, f.cohesion_Pa))
+    out = {"replicates": reps, "by_stress": by_stress,
+           "fitted_replicates": [k for k, _, _ in per],
+           "friction_deg": [phi for _, phi, _ in per], "cohesion_Pa": [c for _, _, c in per]}
+    if len(per) >= 2:
+        out["friction_sd_deg"] = float(np.std([phi for _, phi, _ in per], ddof=1))
+        out["cohesion_sd_Pa"] = float(np.std([c for _, _, c in per], ddof=1))
+    return out
 
 
 # A shear box whose smoothed shear stress falls below -UNSTABLE_SHEAR_FRACTION x its peak pulls
@@ -637,12 +693,15 @@ def shear_consolidation_warnings(shears):
 
 
 def shear_count_warnings(shears):
-    """A line when fewer shear boxes have finished than the Mohr-Coulomb fit needs (a lab stopped
-    before its last boxes, or reported while it runs): c and phi are then not fitted."""
-    if not 0 < len(shears) < 3:
+    """A line when the finished shear boxes cover fewer normal stresses than the Mohr-Coulomb fit
+    needs (a lab stopped before its last boxes, or reported while it runs): c and phi are then
+    not fitted."""
+    n = shear_stress_count(shears)
+    if not 0 < n < 3:
         return []
-    return [f"only {len(shears)} shear box(es) finished: the Mohr-Coulomb fit needs >= 3 normal "
-            "stresses, so c and phi are not fitted (the same soil-lab run command finishes the lab)"]
+    return [f"only {len(shears)} shear box(es) finished, at {n} normal stress(es): the "
+            "Mohr-Coulomb fit needs >= 3 normal stresses, so c and phi are not fitted (the same "
+            "soil-lab run command finishes the lab)"]
 
 
 def shear_loss_warnings(shears):
@@ -740,10 +799,12 @@ def analyse(directory):
                  for b, hs in r.holds.items()])
 
     r.shears, r.shear_bed_bulk_density = read_shears(d)
-    if len(r.shears) >= 3:
+    if shear_stress_count(r.shears) >= 3:
+        # every finished box is a point: replicates of a stress are points of their own
         sig = [s["sigma_Pa"] for s in r.shears]
         r.mc_peak = fits.fit_mohr_coulomb(sig, [s["peak"].tau_peak_Pa for s in r.shears])
         r.mc_residual = fits.fit_mohr_coulomb(sig, [s["peak"].tau_residual_Pa for s in r.shears])
+    r.replicates = shear_replicates(r.shears)
 
     for run, done in _runs(d, "repose"):
         r.repose_fits, r.repose_profiles, r.repose_error = read_repose(run, done, dmax)
@@ -786,6 +847,12 @@ def analyse(directory):
                      # creeping soil compacts more in the slower run's longer time
                      "lid_full_m": sa["consolidation"]["lid_travel_m"],
                      "lid_half_m": sb["consolidation"]["lid_travel_m"]}
+            # with replicates: how far the same-speed boxes of this stress lie from the first
+            # bed's, the scatter the half-speed difference is to be read against
+            same = [s["peak"].tau_peak_Pa for s in r.shears
+                    if s["sigma_target_Pa"] == sa["sigma_target_Pa"] and s is not sa]
+            if same:
+                extra["replicate_differences"] = [float((t - a) / a) for t in same]
         else:
             fa, _, ea = read_repose(full_dir, full, dmax)
             fb, _, eb = read_repose(run, half, dmax)
@@ -869,6 +936,7 @@ def summary(r: Results):
              "janosi_K_m": s["janosi"].K_m, "janosi_tau_max_Pa": s["janosi"].tau_max_Pa,
              "janosi_rms_Pa": s["janosi"].rms_Pa,
              "rise_at_end": shear_rise_at_end(s["j"], s["tau"]),
+             **({} if s["replicate"] == 1 else {"replicate": s["replicate"]}),
              "stable": not shear_stability_errors([s]),
              **({} if s.get("consolidation") is None else {
                  "consolidation_s": s["consolidation"]["consolidation_s"],
@@ -893,9 +961,13 @@ def summary(r: Results):
             out["shear"].update({
                 "cohesion_Pa": r.mc_peak.cohesion_Pa, "friction_deg": r.mc_peak.friction_deg,
                 "mc_rms_Pa": r.mc_peak.rms_Pa, "mc_r2": r.mc_peak.r2,
+                "cohesion_se_Pa": r.mc_peak.cohesion_se_Pa,
+                "friction_se_deg": r.mc_peak.friction_se_deg,
                 "residual_cohesion_Pa": r.mc_residual.cohesion_Pa,
                 "residual_friction_deg": r.mc_residual.friction_deg,
                 "janosi_K_m": r.janosi_K_m})
+        if r.replicates:
+            out["shear"]["replicates"] = r.replicates
     if r.repose_error:
         out["repose"] = {"error": r.repose_error}
     if r.repose_fits:
@@ -913,7 +985,8 @@ def summary(r: Results):
                                                               "profile_displacement_m",
                                                               "profile_difference",
                                                               "profile_changes_sign",
-                                                              "lid_full_m", "lid_half_m")
+                                                              "lid_full_m", "lid_half_m",
+                                                              "replicate_differences")
                                               if k in q}
                                for q in r.quasi_static}
     if r.bed_holds:
@@ -959,7 +1032,10 @@ def write_report(r: Results, quiet=False):
         report.plot_shear_curves(d / "shear_curves.png", name,
                                  [(s["sigma_Pa"], s["j"], s["tau"]) for s in r.shears],
                                  [s["janosi"] for s in r.shears],
-                                 [s["lid_dz"] for s in r.shears])
+                                 [s["lid_dz"] for s in r.shears],
+                                 [f"σn = {s['sigma_Pa'] / 1e3:.3g} kPa"
+                                  + ("" if s["replicate"] == 1 else f" (bed {s['replicate']})")
+                                  for s in r.shears])
         written.append(d / "shear_curves.png")
     if r.mc_peak:
         sig = [s["sigma_Pa"] for s in r.shears]

@@ -87,7 +87,7 @@ def run_options(a):
                    plate_bin_m=a.plate_bin, shear_travel=a.shear_travel,
                    plate_speed=a.plate_speed, shear_speed=a.shear_speed,
                    plate_depth=a.plate_depth, plate_hold=a.plate_hold,
-                   plate_hold_stages=a.plate_hold_stages)
+                   plate_hold_stages=a.plate_hold_stages, shear_replicates=a.shear_replicates)
     bed_vars = {}
     for item in a.bed_var or []:
         if "=" not in item or item.startswith("="):
@@ -215,6 +215,8 @@ def _report(directory, quiet=False):
             print(f"soil-lab: warning: repose: {r.repose_error}")
         for w in s.get("shear", {}).get("warnings", []):
             print(f"soil-lab: warning: {w}")
+        if r.replicates:
+            _print_replicates(r.replicates)
         for bed, h in sorted(r.bed_holds.items()):
             # a failed check in the report: the lab ran on with --bed-hold 0
             failed = bed_hold.failure(h, bed, Path(directory) / "beds" / bed / "hold" /
@@ -259,14 +261,37 @@ def _report(directory, quiet=False):
                       "lid over the shear "
                       f"{1e3 * q['lid_full_m']:+.2f} mm at full speed, "
                       f"{1e3 * q['lid_half_m']:+.2f} mm at half speed")
-                if q["profile_changes_sign"]:
+                if "replicate_differences" in q:
+                    reps = q["replicate_differences"]
+                    within = abs(q["difference"]) <= max(abs(x) for x in reps)
+                    print(f"soil-lab: quasi-static: {q['run']}: its replicates at the same speed "
+                          "(other beds) peak "
+                          + ", ".join(f"{100 * x:+.1f} %" for x in reps)
+                          + f" from it: the half-speed difference lies "
+                          + ("within" if within else "outside")
+                          + " that scatter" + ("" if within else " (a rate effect)"))
+                elif q["profile_changes_sign"]:
                     print(f"soil-lab: quasi-static: {q['run']}: the difference changes sign along "
                           "the travel, so the verdict rests on where the peaks fell: one pair of "
                           "runs cannot tell the box's own fluctuation (stick-slip) from a rate "
                           "effect that grows along the travel (a slower sample of a creeping "
-                          "soil compacts more: compare the lids); a replicate at the same speed "
-                          "would measure the fluctuation")
+                          "soil compacts more: compare the lids); replicates at the same speed "
+                          "(--shear-replicates) would measure the fluctuation")
     return 0
+
+
+def _print_replicates(rep):
+    """The report's lines on replicate boxes (analysis.shear_replicates' summary)."""
+    for b in rep["by_stress"]:
+        print(f"soil-lab: shear replicates at {b['sigma_target_Pa'] / 1e3:.3g} kPa: {b['boxes']} "
+              f"boxes, peak {b['tau_peak_mean_Pa'] / 1e3:.4g} kPa, sd "
+              f"{b['tau_peak_sd_Pa'] / 1e3:.3g} kPa, spread {100 * b['tau_peak_spread']:.1f} %")
+    if rep["fitted_replicates"]:
+        print("soil-lab: shear replicates, each bed's own fit: " + "; ".join(
+            f"bed {k}: phi {phi:.2f} deg, c {c / 1e3:.3g} kPa" for k, phi, c in
+            zip(rep["fitted_replicates"], rep["friction_deg"], rep["cohesion_Pa"]))
+            + ("" if "friction_sd_deg" not in rep else
+               f" (sd {rep['friction_sd_deg']:.2f} deg, {rep['cohesion_sd_Pa'] / 1e3:.3g} kPa)"))
 
 
 def _bands(q, at):
@@ -349,6 +374,11 @@ def main(argv=None):
                         "end (default 1; 2 or more give a relaxed Bekker fit)")
     r.add_argument("--shear-speed", type=float, metavar="M_S",
                    help="the shear box's speed [m/s] (default 0.005; quick 0.02)")
+    r.add_argument("--shear-replicates", type=int, metavar="N",
+                   help="the shear boxes on N beds of the same recipe, each poured with its own "
+                        f"seed (1..{plan.MAX_SHEAR_REPLICATES}; default 1): the report gives the "
+                        "scatter of the peaks per stress and of c and phi between beds; N times "
+                        "the boxes' cost (docs/soil-lab.md \"Replicate boxes\")")
     r.add_argument("--speed-check", action="store_true",
                    help="quasi-static check: also run the larger plate, the middle normal stress "
                         "and the repose test (not in the quick preset) at half speed and report "

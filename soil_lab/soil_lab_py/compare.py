@@ -4,7 +4,7 @@ normal stress and equal shear displacement, as a calibration trial is judged (do
 
 A source is LABEL=DIR, DIR a lab directory or a folder of finished boxes (shear_s<σ>/ with its
 shear.csv and done.json, e.g. `soil-lab run --archive`'s). Boxes are matched by their target
-normal stress (done.json meta.normal_stress_Pa). Per box: τ at each displacement asked (the mean
+normal stress (done.json meta.normal_stress_Pa); of a lab with replicate boxes, the first bed's. Per box: τ at each displacement asked (the mean
 over ±AT_HALF_WIDTH_M of it), the lab's peak (5 % running mean) and where, the normal stress on the
 plane, the lid's travel over the shear and, where DIR/beds/shear/done.json is there, the sample's
 bulk density when the shear began (analysis.shear_sample_density) and, with DIR/soil.toml, its
@@ -42,7 +42,9 @@ def boxes(directory):
                                  "expected a lab directory or a folder of archived boxes")
     soil_toml = Path(directory) / "soil.toml"
     rho_p = analysis.read_soil(soil_toml).get("density_kg_m3") if soil_toml.is_file() else None
-    return {b["sigma_target_Pa"]: {**b, "particle_density_kg_m3": rho_p} for b in found}
+    # a lab with replicate boxes (--shear-replicates): its first bed's, as a lab without them
+    return {b["sigma_target_Pa"]: {**b, "particle_density_kg_m3": rho_p} for b in found
+            if b["replicate"] == 1}
 
 
 def load(sources):

@@ -79,6 +79,12 @@ MAX_TOOL_SPEED = 0.1
 # of the DEM soils measured so far is a matter of seconds (docs/soil-lab.md, "Held plates").
 MAX_PLATE_HOLD = 60.0
 MAX_HOLD_STAGES = 20
+# --shear-replicates N: the shear boxes again on N - 1 more beds of the same recipe, each poured
+# with its own insertion seed (in.soilbin's `seed`, a prime > 10000; the first bed keeps the
+# recipe's), so that the report can say how much one box per stress scatters (docs/soil-lab.md,
+# "Replicate boxes"). Each replicate costs as much as the boxes themselves.
+MAX_SHEAR_REPLICATES = 5
+REPLICATE_SEEDS = (67867967, 86028121, 104395301, 122949823)   # replicates 2..5 (primes)
 
 
 def _speed(value, default, option):
@@ -105,7 +111,8 @@ def _finite_positive(x):
 
 def check_options(tests, preset="standard", normal_stresses_Pa=None, plate_widths_m=None,
                   plate_bin_m=None, shear_travel=None, plate_speed=None, shear_speed=None,
-                  plate_depth=None, plate_hold=None, plate_hold_stages=None):
+                  plate_depth=None, plate_hold=None, plate_hold_stages=None,
+                  shear_replicates=None):
     """The checks of make_plan's options that need no soil (the same arguments, None: the
     default): `soil-lab run` makes them before it creates or starts anything, make_plan again
     before the checks that need the soil's grain sizes and stiffness (a plate wider than its bin,
@@ -115,7 +122,8 @@ def check_options(tests, preset="standard", normal_stresses_Pa=None, plate_width
     plate widths that are not two different finite widths > 0, a plate bin or plate depth that is
     not a finite length > 0, a hold outside (0, MAX_PLATE_HOLD] s or stages outside
     1..MAX_HOLD_STAGES or without a hold; with the shear box fewer than 3 normal stresses, one not
-    a finite stress > 0, a travel outside (0, 0.5]. Returns the tests as a tuple."""
+    a finite stress > 0, a travel outside (0, 0.5], replicates outside 1..MAX_SHEAR_REPLICATES;
+    replicates without the shear box. Returns the tests as a tuple."""
     tests = tuple(tests)
     if not tests:
         raise LabInputError(f"--tests: expected at least one test of {', '.join(TEST_NAMES)}")
@@ -156,13 +164,21 @@ def check_options(tests, preset="standard", normal_stresses_Pa=None, plate_width
         if shear_travel is not None and not 0 < shear_travel <= 0.5:  # also NaN
             raise LabInputError(f"--shear-travel {shear_travel:g} is outside (0, 0.5] (a fraction "
                                 f"of the box side: the upper frame must stay over the lower one)")
+    if shear_replicates is not None:
+        if "shear" not in tests:
+            raise LabInputError("--shear-replicates repeats the shear boxes: add shear to --tests")
+        if isinstance(shear_replicates, bool) or not isinstance(shear_replicates, int) or \
+                not 1 <= shear_replicates <= MAX_SHEAR_REPLICATES:
+            raise LabInputError(f"--shear-replicates {shear_replicates}: expected a whole number "
+                                f"in 1..{MAX_SHEAR_REPLICATES} (the boxes at each normal stress, "
+                                f"each on its own bed; 1: no replicate)")
     return tests
 
 
 def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None, bed_vars=None,
               plate_widths_m=None, plate_bin_m=None, speed_check=False, shear_travel=None,
               plate_speed=None, shear_speed=None, plate_depth=None, plate_hold=None,
-              plate_hold_stages=None):
+              plate_hold_stages=None, shear_replicates=None):
     """The beds and runs for `tests` on `soil`. Raises LabInputError for what check_options
     refuses (it needs no soil), and for plates narrower than 2 grains (d_max) or that do not fit
     their bin with 3/4 of a plate width of soil on every side, a plate bin narrower than 8 grains,
@@ -174,10 +190,12 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
     default's. plate_hold [s]: the plates stand still that long at plate_hold_stages (default 1)
     equally spaced depths of the loading, the last at its end (stress relaxation). speed_check:
     also the larger plate, the middle normal stress and (standard preset) the repose test at half
-    speed (runs named <run>_half), for the quasi-static check."""
+    speed (runs named <run>_half), for the quasi-static check. shear_replicates N (default 1):
+    the boxes again on beds shear_r2..shear_rN, poured with REPLICATE_SEEDS (runs
+    shear_s<σ>_r<k>, meta replicate k); the half-speed box is the first bed's only."""
     tests = check_options(tests, preset, normal_stresses_Pa, plate_widths_m, plate_bin_m,
                           shear_travel, plate_speed, shear_speed, plate_depth, plate_hold,
-                          plate_hold_stages)
+                          plate_hold_stages, shear_replicates)
     quick = preset == "quick"
     plate_speed = _speed(plate_speed, PLATE_SPEED[preset], "--plate-speed")
     shear_speed = _speed(shear_speed, SHEAR_SPEED[preset], "--shear-speed")
@@ -266,9 +284,21 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         # it. Until 2026-11-26 the rim was `wall` wide and the domain ended 2 d beyond the bin's
         # plate margin: at 0.25 L on 16-40 mm grains 1-2 % of the grains were lost by the peaks.
         rim = max(wall, distance + wall + d)
-        for s in stresses:
+        replicates = shear_replicates or 1
+        if replicates > 1 and bed_vars.get("seed") in {str(x) for x in REPLICATE_SEEDS}:
+            raise LabInputError(f"--bed-var seed={bed_vars['seed']}: a replicate bed's seed "
+                                f"(--shear-replicates pours its beds with "
+                                f"{', '.join(str(x) for x in REPLICATE_SEEDS)}): choose another")
+        for k in range(2, replicates + 1):
+            beds[f"shear_r{k}"] = Bed(f"shear_r{k}", L, L, H,
+                                      {**bed_vars, "seed": str(REPLICATE_SEEDS[k - 2])})
+        for k, s in [(k, s) for k in range(1, replicates + 1) for s in stresses]:
+            # the first replicate's runs keep their names and records (labs run before
+            # --shear-replicates existed stay valid)
+            suffix, bed, rep_meta = ("", "shear", {}) if k == 1 else \
+                (f"_r{k}", f"shear_r{k}", {"replicate": k})
             runs.append(Run(
-                name=f"shear_s{_f(s)}", test="shear", deck="in.lab_shear", bed="shear",
+                name=f"shear_s{_f(s)}{suffix}", test="shear", deck="in.lab_shear", bed=bed,
                 meshes={"frame_low_mesh": ["frame", _f(L), _f(L), _f(rim), _f(low_h)],
                         "frame_up_mesh": ["frame", _f(L), _f(L), _f(wall), _f(up_h)],
                         "lid_mesh": ["plate-rect", _f(L - 2 * clear), _f(L - 2 * clear), _f(lid_t)]},
@@ -280,7 +310,7 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
                            # shortest and longest consolidation [s] (in.lab_shear)
                            "consolidate": "0.2" if quick else "0.3",
                            "consolidate_max": "1.5" if quick else "3.0"},
-                meta={"normal_stress_Pa": s, "box_m": L, "speed_m_s": speed}))
+                meta={"normal_stress_Pa": s, "box_m": L, "speed_m_s": speed, **rep_meta}))
 
     if "repose" in tests:
         # Lifted frame on a fixed rough base of side B, column 0.5 B high. The heap left on the
@@ -338,7 +368,7 @@ def _half_speed_runs(runs, repose=True):
     (if `repose`), each at half its speed (same bed and tools)."""
     picked = []
     plates = [r for r in runs if r.test == "plate"]
-    shears = [r for r in runs if r.test == "shear"]
+    shears = [r for r in runs if r.test == "shear" and "replicate" not in r.meta]
     if plates:
         picked.append(max(plates, key=lambda r: r.meta["b_m"]))
     if shears:

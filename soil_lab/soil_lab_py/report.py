@@ -99,7 +99,7 @@ def _bekker_text(fit):
     )
 
 
-def plot_shear_curves(path, soil_name, curves, fits=None, lid_dz=None):
+def plot_shear_curves(path, soil_name, curves, fits=None, lid_dz=None, labels=None):
     """Shear stress–displacement curves, one per normal stress, with their Janosi fits, and below
     them (when lid_dz is given) the lid's vertical displacement, as a lab's direct shear report
     shows it (contraction or dilation of the sample while it is sheared).
@@ -107,8 +107,12 @@ def plot_shear_curves(path, soil_name, curves, fits=None, lid_dz=None):
     curves: sequence of (sigma_n_Pa, j_m, tau_Pa); fits: a JanosiFit (or None) per curve, or
     None; lid_dz: per curve the lid's height minus its height when the shear began [m], at the
     curve's j. x: shear displacement j [mm]; y: shear stress tau [kPa] (and vertical displacement
-    [mm], > 0 dilation)."""
+    [mm], > 0 dilation). labels: per curve its legend text (default "σn = <σ> kPa")."""
     fits = list(fits) if fits is not None else [None] * len(curves)
+    labels = list(labels) if labels is not None else \
+        [f"σn = {sigma / 1e3:.3g} kPa" for sigma, _, _ in curves]
+    if len(labels) != len(curves):
+        raise ValueError(f"plot_shear_curves: {len(curves)} curves but {len(labels)} labels")
     if len(fits) != len(curves):
         raise ValueError(f"plot_shear_curves: {len(curves)} curves but {len(fits)} fits")
     if lid_dz is not None and len(lid_dz) != len(curves):
@@ -118,18 +122,18 @@ def plot_shear_curves(path, soil_name, curves, fits=None, lid_dz=None):
         ax = fig.add_subplot()
     else:
         ax, ax_v = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [2, 1]})
-        for k, ((sigma, j, _), dz) in enumerate(zip(curves, lid_dz)):
+        for k, ((_, j, _), dz, label) in enumerate(zip(curves, lid_dz, labels)):
             ax_v.plot(np.asarray(j, float) * 1e3, np.asarray(dz, float) * 1e3, "-", lw=1,
-                      color=f"C{k}", label=f"σn = {sigma / 1e3:.3g} kPa")
+                      color=f"C{k}", label=label)
         ax_v.axhline(0.0, color="k", lw=0.5)
         ax_v.set_xlabel("shear displacement j [mm]")
         ax_v.set_ylabel("vertical displacement [mm]\n(lid; > 0 dilation)")
         ax_v.grid(True, alpha=0.3)
-    for k, ((sigma, j, tau), fit) in enumerate(zip(curves, fits)):
+    for k, ((_, j, tau), fit, label) in enumerate(zip(curves, fits, labels)):
         j = np.asarray(j, float)
         tau = np.asarray(tau, float)
         color = f"C{k}"
-        ax.plot(j * 1e3, tau / 1e3, ".", ms=3, color=color, label=f"σn = {sigma / 1e3:.3g} kPa")
+        ax.plot(j * 1e3, tau / 1e3, ".", ms=3, color=color, label=label)
         if fit is not None:
             jj = np.linspace(0.0, float(j.max()), 200)
             ax.plot(

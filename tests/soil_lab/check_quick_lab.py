@@ -23,6 +23,10 @@
                                      holds' mean relaxation within 0.1, its mean loading
                                      pressure within 15 %
   soil-lab run ... again          -> every bed and run skipped (resume), in seconds
+  ... --shear-replicates 2        -> the finished lab grows a second shear bed (its own seed: another
+                                     packing) and its three boxes, nothing else re-runs; the
+                                     report's replicate table (2 boxes per stress, each bed's fit)
+                                     and the speed check's replicate differences
   soil-lab scm DIR --out F.toml   -> an SCM soil file that wheel-rig --check loads unchanged
   bad input                       -> exit 2 naming the unknown soil / test / option
 
@@ -256,6 +260,32 @@ def main():
     skipped = len(re.findall(r"done before, skipped", r.stdout))
     check(r.returncode == 0 and skipped == 11,
           f"re-run skips 3 beds and 8 runs ({skipped} skipped, {time.monotonic() - t0:.1f} s)")
+
+    # Replicates grow on the finished lab (docs/soil-lab.md "Replicate boxes"): the first bed's
+    # runs keep their records, a second shear bed is poured with its own seed.
+    t0 = time.monotonic()
+    r = lab(*command, "--shear-replicates", "2", env=env)
+    skipped = len(re.findall(r"done before, skipped", r.stdout))
+    ran = sorted(set(re.findall(r"(shear_s\d+_r2): running", r.stdout)))
+    check(r.returncode == 0 and skipped == 11 and ran == ["shear_s3000_r2", "shear_s6000_r2",
+                                                          "shear_s9000_r2"],
+          f"--shear-replicates 2 on the finished lab: {skipped} of 11 kept, ran {ran} "
+          f"({time.monotonic() - t0:.1f} s; {r.stderr.strip()[-300:]})")
+    res = tomllib.loads((out / "results.toml").read_text()) if r.returncode == 0 else {}
+    rep = res.get("shear", {}).get("replicates", {})
+    rho = [json.loads((out / "beds" / b / "done.json").read_text())["result"]["bulk_density"]
+           for b in ("shear", "shear_r2") if (out / "beds" / b / "done.json").is_file()]
+    check(len(rho) == 2 and rho[0] != rho[1],
+          f"the replicate bed is another packing of the same soil (bulk density {rho} kg/m3)")
+    check(rep.get("fitted_replicates") == [1, 2] and
+          [b.get("boxes") for b in rep.get("by_stress", [])] == [2, 2, 2] and
+          all(15 < phi < 45 for phi in rep.get("friction_deg", [])) and
+          len(res.get("shear", {}).get("stresses", [])) == 6 and
+          len(res.get("quasi_static", {}).get("shear_s6000", {}).get("replicate_differences",
+                                                                       [])) == 1,
+          f"replicate table: each bed's phi {rep.get('friction_deg')} deg, peaks' spread "
+          f"{[round(b.get('tau_peak_spread', -1), 3) for b in rep.get('by_stress', [])]}, "
+          "six Mohr-Coulomb points, the speed check's replicate difference")
 
     scm = out / "ci_fitted.toml"
     r = lab("scm", str(out), "--out", str(scm))

@@ -47,21 +47,25 @@ def heap_particles(height_m, left_deg, right_deg, radius_m, depth_m=None, n_surf
     return x, y, z
 
 
-def shear_run(directory, sigma, c=1e3, phi_deg=30.0, K=1e-3, name=None, tau_scale=1.0):
-    """A shear box run at `sigma` [Pa] in directory/<name> (default shear_s<sigma>): 50
-    consolidation rows (phase 1), then 400 rows of a Janosi curve (phase 2) to j = 10 mm whose
-    plateau is tau_scale (c + sigma tan phi)."""
+def shear_run(directory, sigma, c=1e3, phi_deg=30.0, K=1e-3, name=None, tau_scale=1.0,
+              replicate=1):
+    """A shear box run at `sigma` [Pa] in directory/<name> (default shear_s<sigma>, or
+    shear_s<sigma>_r<k> for replicate k > 1, whose meta says so): 50 consolidation rows (phase 1),
+    then 400 rows of a Janosi curve (phase 2) to j = 10 mm whose plateau is
+    tau_scale (c + sigma tan phi)."""
     j = np.concatenate([np.zeros(50), np.linspace(0.0, 0.01, 400)])
     tau = tau_scale * (c + sigma * np.tan(np.radians(phi_deg))) * -np.expm1(-j / K)
     phase = np.repeat([1, 2], [50, 400])
     t = np.arange(j.size) * 1e-3
-    run = Path(directory) / (name or f"shear_s{sigma:g}")
+    run = Path(directory) / (name or f"shear_s{sigma:g}" + ("" if replicate == 1 else
+                                                            f"_r{replicate}"))
     run.mkdir(parents=True)
     np.savetxt(run / "shear.csv", np.column_stack([t, j, tau * 0.01, tau, sigma + 0 * j,
                                                    0.05 + 0 * j, phase]),
                header="time_s displacement_m shear_force_N tau_Pa sigma_Pa lid_z_m phase")
     (run / "done.json").write_text(json.dumps(
-        {"meta": {"normal_stress_Pa": sigma, "box_m": 0.1, "speed_m_s": 0.005}, "wall_s": 2.0,
+        {"meta": {"normal_stress_Pa": sigma, "box_m": 0.1, "speed_m_s": 0.005,
+                  **({} if replicate == 1 else {"replicate": replicate})}, "wall_s": 2.0,
          "steps": 1000, "particles": 500, "np": 1, "dt_s": 1e-5}))
 
 

@@ -461,12 +461,74 @@ class Analysis(unittest.TestCase):
         self.assertAlmostEqual(j[-1], 0.01)
 
     def test_too_few_shear_boxes_for_mohr_coulomb_are_named(self):
+        def boxes(*targets):
+            return [{"sigma_target_Pa": t} for t in targets]
         self.assertEqual(analysis.shear_count_warnings([]), [])
-        self.assertEqual(analysis.shear_count_warnings([{}] * 3), [])
-        warn = analysis.shear_count_warnings([{}] * 2)
+        self.assertEqual(analysis.shear_count_warnings(boxes(5e3, 1e4, 2e4)), [])
+        warn = analysis.shear_count_warnings(boxes(5e3, 1e4))
         self.assertEqual(len(warn), 1)
         self.assertIn("only 2 shear box(es) finished", warn[0])
         self.assertIn("c and phi are not fitted", warn[0])
+        # replicates of a stress count once: four boxes at two stresses are not enough
+        warn = analysis.shear_count_warnings(boxes(5e3, 1e4, 5e3, 1e4))
+        self.assertIn("only 4 shear box(es) finished, at 2 normal stress(es)", warn[0])
+
+    def test_replicate_boxes_give_the_scatter_per_stress_and_of_each_beds_fit(self):
+        # Three beds (--shear-replicates 3): the second bed's boxes 10 % stronger, the third's
+        # 10 % weaker, on a soil of c 1 kPa, phi 30 deg. Each bed's own fit: phi and c scaled by
+        # 1.1 / 0.9 (tan phi 10 % up / down: 32.42 / 27.46 deg); per stress the peaks' sd is
+        # 10 % of the middle one and the spread 20 %. The pooled fit over all nine points is the
+        # soil's, with a standard error from the beds' scatter; the half-speed box of the first
+        # bed, 4 % weaker, lies within the +-10 % its replicates show at the same speed.
+        d = Path(tempfile.mkdtemp())
+        (d / "soil.toml").write_text('name = "synthetic"\npreset = "standard"\n'
+                                     'dmax_m = 0.004\n')
+        for k, scale in ((1, 1.0), (2, 1.1), (3, 0.9)):
+            for sigma in (5e3, 1e4, 2e4):
+                syn.shear_run(d, sigma, tau_scale=scale, replicate=k)
+        syn.shear_run(d, 1e4, name="shear_s10000_half", tau_scale=0.96)
+        r = analysis.analyse(d)
+        self.assertEqual(len(r.shears), 9)
+        self.assertEqual([s["replicate"] for s in r.shears[:3]], [1, 2, 3])
+        self.assertAlmostEqual(r.mc_peak.friction_deg, 30.0, delta=0.05)
+        self.assertAlmostEqual(r.mc_peak.cohesion_Pa, 1e3, delta=20)
+        self.assertGreater(r.mc_peak.friction_se_deg, 0.5)
+        rep = r.replicates
+        self.assertEqual(rep["replicates"], [1, 2, 3])
+        self.assertEqual(rep["fitted_replicates"], [1, 2, 3])
+        for got, scale in zip(rep["friction_deg"], (1.0, 1.1, 0.9)):
+            self.assertAlmostEqual(got, np.degrees(np.arctan(scale * np.tan(np.radians(30)))),
+                                   delta=0.05)
+        for got, scale in zip(rep["cohesion_Pa"], (1.0, 1.1, 0.9)):
+            self.assertAlmostEqual(got, scale * 1e3, delta=20)
+        self.assertAlmostEqual(rep["friction_sd_deg"], np.std(rep["friction_deg"], ddof=1))
+        for b in rep["by_stress"]:
+            self.assertEqual(b["boxes"], 3)
+            self.assertAlmostEqual(b["tau_peak_sd_Pa"] / b["tau_peak_mean_Pa"], 0.1, delta=0.002)
+            self.assertAlmostEqual(b["tau_peak_spread"], 0.2, delta=0.004)
+        q, = r.quasi_static
+        np.testing.assert_allclose(q["replicate_differences"], [0.1, -0.1], atol=2e-3)
+        s = analysis.summary(r)
+        self.assertEqual(s["shear"]["replicates"]["fitted_replicates"], [1, 2, 3])
+        self.assertEqual([b.get("replicate", 1) for b in s["shear"]["stresses"][:3]], [1, 2, 3])
+        self.assertEqual(s["quasi_static"]["shear_s10000"]["replicate_differences"],
+                         q["replicate_differences"])
+        self.assertIn("friction_se_deg", s["shear"])
+        # each bed's sample density from its own bed's record
+        for k, mass in ((1, "0.4"), (2, "0.44")):
+            bed = d / "beds" / analysis.shear_bed_name(k)
+            bed.mkdir(parents=True)
+            (bed / "done.json").write_text(json.dumps({"result": {
+                "particle_mass": mass, "bin_length": "0.1", "bin_width": "0.1",
+                "spheres": "500", "bulk_density": "760.5"}}))
+        r = analysis.analyse(d)
+        rho = {s["replicate"]: s["consolidation"].get("sample_bulk_density_kg_m3")
+               for s in r.shears}
+        self.assertAlmostEqual(rho[1], 800.0)
+        self.assertAlmostEqual(rho[2], 880.0)
+        self.assertIsNone(rho[3])   # no record of the third bed
+        # a lab without replicates has no replicate summary
+        self.assertIsNone(analysis.shear_replicates([s for s in r.shears if s["replicate"] == 1]))
 
     def test_an_unstable_shear_box_is_named(self):
         j = np.linspace(0.0, 0.008, 400)

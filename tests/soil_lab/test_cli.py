@@ -94,6 +94,9 @@ class RunChecksFirst(unittest.TestCase):
             ("--tests", ""): "--tests: expected a comma-separated list, got ''",
             ("--tests", "plate,sheer"): "--tests: unknown test 'sheer' (did you mean 'shear'?)",
             ("--checkpoints", "-1"): "--checkpoints: expected a number >= 0",
+            ("--shear-replicates", "0"): "--shear-replicates 0: expected a whole number in 1..5",
+            ("--tests", "plate", "--shear-replicates", "2"):
+                "--shear-replicates repeats the shear boxes: add shear to --tests",
             ("--park",): "--park keeps checkpoints in the archive: it needs --archive DIR",
             ("--accept-change", "inputs/soils/common/derived.in"):
                 "--accept-change needs --reason TEXT",
@@ -190,6 +193,17 @@ class DamagedLab(unittest.TestCase):
         rc, out, err = main("scm", self.lab, "--out", scm)
         self.assertEqual((rc, err), (0, ""))
         self.assertTrue(scm.is_file())
+
+    def test_replicate_boxes_are_reported(self):
+        # a second bed's boxes, 10 % stronger: the report's lines per stress and per bed
+        for sigma in (5e3, 1e4, 2e4):
+            shear_run(self.lab, sigma, tau_scale=1.1, replicate=2)
+        rc, out, err = main("report", self.lab)
+        self.assertEqual((rc, err), (0, ""))
+        self.assertIn("soil-lab: shear replicates at 10 kPa: 2 boxes, peak ", out)
+        self.assertIn("spread 9.5 %", out)  # (1.1 - 1) / 1.05
+        self.assertIn("soil-lab: shear replicates, each bed's own fit: bed 1: phi 30.00 deg", out)
+        self.assertIn("bed 2: phi 32.42 deg", out)
 
     def test_a_corrupt_soil_toml(self):
         (self.lab / "soil.toml").write_text('name = "synthetic"\ndmax_m = = 0.004\n')

@@ -224,6 +224,40 @@ class Plan(unittest.TestCase):
         self.assertEqual(sorted(r.name for r in quick.runs if r.name.endswith("_half")),
                          ["plate_b0.032_half", "shear_s6000_half"])
 
+    def test_shear_replicates_pour_their_own_beds(self):
+        p = make_plan(SAND, ("shear",), shear_replicates=3, speed_check=True)
+        self.assertEqual(sorted(p.beds), ["shear", "shear_r2", "shear_r3"])
+        # the first bed keeps the recipe's seed (in.soilbin's default); the others their own
+        self.assertNotIn("seed", p.beds["shear"].extra_vars)
+        seeds = [p.beds[b].extra_vars["seed"] for b in ("shear_r2", "shear_r3")]
+        self.assertEqual(seeds, [str(x) for x in plan.REPLICATE_SEEDS[:2]])
+        for b in ("shear_r2", "shear_r3"):
+            self.assertEqual((p.beds[b].length_m, p.beds[b].fill_height_m),
+                             (p.beds["shear"].length_m, p.beds["shear"].fill_height_m))
+        names = [r.name for r in p.runs]
+        self.assertEqual(names, ["shear_s5000", "shear_s10000", "shear_s20000",
+                                 "shear_s5000_r2", "shear_s10000_r2", "shear_s20000_r2",
+                                 "shear_s5000_r3", "shear_s10000_r3", "shear_s20000_r3",
+                                 "shear_s10000_half"])
+        runs = {r.name: r for r in p.runs}
+        self.assertEqual(runs["shear_s10000_r3"].bed, "shear_r3")
+        self.assertEqual(runs["shear_s10000_r3"].meta["replicate"], 3)
+        self.assertEqual(runs["shear_s10000_r3"].variables, runs["shear_s10000"].variables)
+        # the first bed's runs keep their records as before (no replicate key: same run key)
+        self.assertEqual(runs["shear_s10000"].meta, make_plan(SAND, ("shear",)).runs[1].meta)
+        self.assertEqual(runs["shear_s10000_half"].bed, "shear")
+        # a user's seed for every bed stays the first bed's; a replicate's own seed is refused
+        p = make_plan(SAND, ("shear",), shear_replicates=2, bed_vars={"seed": "15485863"})
+        self.assertEqual(p.beds["shear"].extra_vars["seed"], "15485863")
+        with self.assertRaisesRegex(LabInputError, "seed=67867967"):
+            make_plan(SAND, ("shear",), shear_replicates=2, bed_vars={"seed": "67867967"})
+        for bad in (0, plan.MAX_SHEAR_REPLICATES + 1, 2.5, True):
+            with self.assertRaisesRegex(LabInputError, "--shear-replicates"):
+                plan.check_options(("shear",), shear_replicates=bad)
+        with self.assertRaisesRegex(LabInputError, "add shear to --tests"):
+            plan.check_options(("plate",), shear_replicates=2)
+        self.assertEqual(len(plan.REPLICATE_SEEDS), plan.MAX_SHEAR_REPLICATES - 1)
+
 
 if __name__ == "__main__":
     unittest.main()
