@@ -524,11 +524,6 @@ def shear_sample_density(shears, bed_dir):
     return bed_rho, out
 
 
-def shear_bed_name(replicate):
-    """The bed a box of replicate k was sheared on (plan.make_plan's names)."""
-    return "shear" if replicate == 1 else f"shear_r{replicate}"
-
-
 def read_shears(d):
     """The finished shear boxes in `d` (read_shear's records, by normal stress on the plane, then
     replicate; each consolidation record with the sample's densities where its bed's
@@ -539,7 +534,7 @@ def read_shears(d):
     bed_rho = None
     for k in sorted({s["replicate"] for s in shears}):
         group = [s for s in shears if s["replicate"] == k]
-        rho_k, densities = shear_sample_density(group, Path(d) / "beds" / shear_bed_name(k))
+        rho_k, densities = shear_sample_density(group, Path(d) / "beds" / plan.shear_bed_name(k))
         bed_rho = rho_k if k == 1 else bed_rho
         for s, rho in zip(group, densities):
             if rho is not None:

@@ -87,6 +87,11 @@ MAX_SHEAR_REPLICATES = 5
 REPLICATE_SEEDS = (67867967, 86028121, 104395301, 122949823)   # replicates 2..5 (primes)
 
 
+def shear_bed_name(replicate):
+    """The bed the boxes of replicate k are sheared on: the lab's `shear` bed for the first."""
+    return "shear" if replicate == 1 else f"shear_r{replicate}"
+
+
 def _speed(value, default, option):
     if value is None:
         return default
@@ -290,13 +295,13 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
                                 f"(--shear-replicates pours its beds with "
                                 f"{', '.join(str(x) for x in REPLICATE_SEEDS)}): choose another")
         for k in range(2, replicates + 1):
-            beds[f"shear_r{k}"] = Bed(f"shear_r{k}", L, L, H,
-                                      {**bed_vars, "seed": str(REPLICATE_SEEDS[k - 2])})
+            beds[shear_bed_name(k)] = Bed(shear_bed_name(k), L, L, H,
+                                          {**bed_vars, "seed": str(REPLICATE_SEEDS[k - 2])})
         for k, s in [(k, s) for k in range(1, replicates + 1) for s in stresses]:
             # the first replicate's runs keep their names and records (labs run before
             # --shear-replicates existed stay valid)
-            suffix, bed, rep_meta = ("", "shear", {}) if k == 1 else \
-                (f"_r{k}", f"shear_r{k}", {"replicate": k})
+            suffix, rep_meta = ("", {}) if k == 1 else (f"_r{k}", {"replicate": k})
+            bed = shear_bed_name(k)
             runs.append(Run(
                 name=f"shear_s{_f(s)}{suffix}", test="shear", deck="in.lab_shear", bed=bed,
                 meshes={"frame_low_mesh": ["frame", _f(L), _f(L), _f(rim), _f(low_h)],

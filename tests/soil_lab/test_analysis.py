@@ -13,7 +13,7 @@ from types import SimpleNamespace
 import numpy as np
 
 import synthetic as syn
-from soil_lab_py import analysis, fits
+from soil_lab_py import analysis, fits, plan
 
 KE_Pa_m = 2.0e7  # the synthetic soil's unloading stiffness
 
@@ -516,7 +516,7 @@ class Analysis(unittest.TestCase):
         self.assertIn("friction_se_deg", s["shear"])
         # each bed's sample density from its own bed's record
         for k, mass in ((1, "0.4"), (2, "0.44")):
-            bed = d / "beds" / analysis.shear_bed_name(k)
+            bed = d / "beds" / plan.shear_bed_name(k)
             bed.mkdir(parents=True)
             (bed / "done.json").write_text(json.dumps({"result": {
                 "particle_mass": mass, "bin_length": "0.1", "bin_width": "0.1",
