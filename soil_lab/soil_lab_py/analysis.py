@@ -600,7 +600,7 @@ def shear_stability_errors(shears):
         w = max(1, len(tau) // 50)
         smooth = np.convolve(tau, np.ones(w) / w, mode="valid") if len(tau) > w else tau
         low, peak = float(np.min(smooth)), s["peak"].tau_peak_Pa
-        at = f"shear box at {s['sigma_Pa'] / 1e3:.3g} kPa: "
+        at = _box_at(s)
         if s["janosi"].tau_max_Pa <= 0 or low < -UNSTABLE_SHEAR_FRACTION * abs(peak):
             out.append(at + f"unstable: the shear stress reached {low:.4g} Pa (peak {peak:.4g} "
                        f"Pa, Janosi tau_max {s['janosi'].tau_max_Pa:.4g} Pa): a resisting soil "
@@ -642,7 +642,7 @@ def shear_peak_warnings(shears):
         if rise > RISING_AT_END_WARNING:
             box = (s.get("done") or {}).get("meta", {}).get("box_m")
             travel = f"{float(np.ptp(s['j'])) / box:.2g}" if box else "this"
-            out.append(f"shear box at {s['sigma_Pa'] / 1e3:.3g} kPa: the shear stress still rises "
+            out.append(_box_at(s) + "the shear stress still rises "
                        f"at the end of the travel (its last quarter, to j {float(np.max(s['j'])):.3g} "
                        f"m, {100 * rise:.1f} % of the peak above the quarter before): the "
                        "peak was not reached, so this box's peak strength, and the friction angle "
@@ -652,12 +652,19 @@ def shear_peak_warnings(shears):
     return out
 
 
+def _box_at(s):
+    """A warning's prefix naming the box: "shear box at <sigma> kPa: ", with " (bed k)" for a
+    replicate's (--shear-replicates)."""
+    bed = "" if s.get("replicate", 1) == 1 else f" (bed {s['replicate']})"
+    return f"shear box at {s['sigma_Pa'] / 1e3:.3g} kPa{bed}: "
+
+
 def _boxes_with(shears, key):
     """(a warning's "shear box at <sigma> kPa: " prefix, box[key], box) for each box that has
     `key` (a summary without it is skipped)."""
     for s in shears:
         if s.get(key) is not None:
-            yield f"shear box at {s['sigma_Pa'] / 1e3:.3g} kPa: ", s[key], s
+            yield _box_at(s), s[key], s
 
 
 # A box whose normal stress over the first 2 % of its shear is below this share of its mean over

@@ -506,6 +506,13 @@ class Analysis(unittest.TestCase):
             self.assertEqual(b["boxes"], 3)
             self.assertAlmostEqual(b["tau_peak_sd_Pa"] / b["tau_peak_mean_Pa"], 0.1, delta=0.002)
             self.assertAlmostEqual(b["tau_peak_spread"], 0.2, delta=0.004)
+        # a warning about a replicate's box names its bed: the second bed's 10 kPa box still
+        # rising at the end of its travel
+        rising = dict(r.shears[4], j=np.linspace(0, 0.01, 100), tau=np.linspace(1e3, 8e3, 100))
+        self.assertEqual(rising["replicate"], 2)
+        warn, = analysis.shear_peak_warnings([rising])
+        self.assertTrue(warn.startswith("shear box at 10 kPa (bed 2): the shear stress still "
+                                        "rises"), warn)
         q, = r.quasi_static
         np.testing.assert_allclose(q["replicate_differences"], [0.1, -0.1], atol=2e-3)
         s = analysis.summary(r)
