@@ -652,6 +652,12 @@ def shear_peak_warnings(shears):
     return out
 
 
+# With replicate boxes, the speed check's half-speed peak lies "within the scatter" of the
+# same-speed boxes when it is within this many of their sample standard deviations of their mean
+# (about a 95 % band for a normal scatter; with 2-5 boxes the sd itself is uncertain by 35-70 %).
+REPLICATE_SCATTER_SDS = 2.0
+
+
 def _box_at(s):
     """A warning's prefix naming the box: "shear box at <sigma> kPa: ", with " (bed k)" for a
     replicate's (--shear-replicates)."""
@@ -855,6 +861,14 @@ def analyse(directory):
                     if s["sigma_target_Pa"] == sa["sigma_target_Pa"] and s is not sa]
             if same:
                 extra["replicate_differences"] = [float((t - a) / a) for t in same]
+                # the half-speed peak against all same-speed boxes of the stress (the first
+                # bed's among them): how many of their standard deviations it lies from their mean
+                peaks = np.array([a, *same])
+                mean, sd = float(peaks.mean()), float(peaks.std(ddof=1))
+                extra.update(replicate_peak_mean_Pa=mean, replicate_peak_sd_Pa=sd,
+                             half_speed_from_mean=float((b - mean) / mean),
+                             half_speed_sds_from_mean=float((b - mean) / sd) if sd > 0
+                             else float("inf"))
         else:
             fa, _, ea = read_repose(full_dir, full, dmax)
             fb, _, eb = read_repose(run, half, dmax)
@@ -988,7 +1002,11 @@ def summary(r: Results):
                                                               "profile_difference",
                                                               "profile_changes_sign",
                                                               "lid_full_m", "lid_half_m",
-                                                              "replicate_differences")
+                                                              "replicate_differences",
+                                                              "replicate_peak_mean_Pa",
+                                                              "replicate_peak_sd_Pa",
+                                                              "half_speed_from_mean",
+                                                              "half_speed_sds_from_mean")
                                               if k in q}
                                for q in r.quasi_static}
     if r.bed_holds:

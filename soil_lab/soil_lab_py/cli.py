@@ -262,14 +262,18 @@ def _report(directory, quiet=False):
                       f"{1e3 * q['lid_full_m']:+.2f} mm at full speed, "
                       f"{1e3 * q['lid_half_m']:+.2f} mm at half speed")
                 if "replicate_differences" in q:
-                    reps = q["replicate_differences"]
-                    within = abs(q["difference"]) <= max(abs(x) for x in reps)
+                    n_sd = q["half_speed_sds_from_mean"]
+                    within = abs(n_sd) <= analysis.REPLICATE_SCATTER_SDS
                     print(f"soil-lab: quasi-static: {q['run']}: its replicates at the same speed "
                           "(other beds) peak "
-                          + ", ".join(f"{100 * x:+.1f} %" for x in reps)
-                          + f" from it: the half-speed difference lies "
-                          + ("within" if within else "outside")
-                          + " that scatter" + ("" if within else " (a rate effect)"))
+                          + ", ".join(f"{100 * x:+.1f} %" for x in q["replicate_differences"])
+                          + f" from it; the half-speed peak is {100 * q['half_speed_from_mean']:+.1f}"
+                          f" % from the mean of the {len(q['replicate_differences']) + 1} "
+                          f"same-speed boxes ({n_sd:+.2f} sd): "
+                          + ("within their scatter, so the check cannot tell a rate effect of "
+                             "this size from the box-to-box scatter" if within else
+                             f"outside {analysis.REPLICATE_SCATTER_SDS:g} sd of their scatter: "
+                             "a rate effect"))
                 elif q["profile_changes_sign"]:
                     print(f"soil-lab: quasi-static: {q['run']}: the difference changes sign along "
                           "the travel, so the verdict rests on where the peaks fell: one pair of "

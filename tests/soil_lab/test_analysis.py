@@ -479,7 +479,7 @@ class Analysis(unittest.TestCase):
         # 1.1 / 0.9 (tan phi 10 % up / down: 32.42 / 27.46 deg); per stress the peaks' sd is
         # 10 % of the middle one and the spread 20 %. The pooled fit over all nine points is the
         # soil's, with a standard error from the beds' scatter; the half-speed box of the first
-        # bed, 4 % weaker, lies within the +-10 % its replicates show at the same speed.
+        # bed, 4 % weaker, lies 0.4 sd from the mean of the three same-speed boxes.
         d = Path(tempfile.mkdtemp())
         (d / "soil.toml").write_text('name = "synthetic"\npreset = "standard"\n'
                                      'dmax_m = 0.004\n')
@@ -515,6 +515,11 @@ class Analysis(unittest.TestCase):
                                         "rises"), warn)
         q, = r.quasi_static
         np.testing.assert_allclose(q["replicate_differences"], [0.1, -0.1], atol=2e-3)
+        # against the three same-speed boxes (mean 1.0, sd 0.1 of the first): -4 %, -0.4 sd
+        self.assertAlmostEqual(q["half_speed_from_mean"], -0.04, delta=1e-3)
+        self.assertAlmostEqual(q["half_speed_sds_from_mean"], -0.4, delta=0.01)
+        self.assertAlmostEqual(q["replicate_peak_sd_Pa"] / q["replicate_peak_mean_Pa"], 0.1,
+                               delta=1e-3)
         s = analysis.summary(r)
         self.assertEqual(s["shear"]["replicates"]["fitted_replicates"], [1, 2, 3])
         self.assertEqual([b.get("replicate", 1) for b in s["shear"]["stresses"][:3]], [1, 2, 3])

@@ -198,12 +198,19 @@ class DamagedLab(unittest.TestCase):
         # a second bed's boxes, 10 % stronger: the report's lines per stress and per bed
         for sigma in (5e3, 1e4, 2e4):
             shear_run(self.lab, sigma, tau_scale=1.1, replicate=2)
+        # the first bed's 10 kPa box again at half speed, 30 % stronger: 3.4 sd from the mean
+        # of the two same-speed boxes (1.0 and 1.1: mean 1.05, sd 0.0707)
+        shear_run(self.lab, 1e4, name="shear_s10000_half", tau_scale=1.3)
         rc, out, err = main("report", self.lab)
         self.assertEqual((rc, err), (0, ""))
         self.assertIn("soil-lab: shear replicates at 10 kPa: 2 boxes, peak ", out)
         self.assertIn("spread 9.5 %", out)  # (1.1 - 1) / 1.05
         self.assertIn("soil-lab: shear replicates, each bed's own fit: bed 1: phi 30.00 deg", out)
         self.assertIn("bed 2: phi 32.42 deg", out)
+        self.assertIn("quasi-static: shear_s10000: its replicates at the same speed (other beds) "
+                      "peak +10.0 % from it; the half-speed peak is +23.8 % from the mean of the 2 "
+                      "same-speed boxes (+3.54 sd): outside 2 sd of their scatter: a rate effect",
+                      out)
 
     def test_a_corrupt_soil_toml(self):
         (self.lab / "soil.toml").write_text('name = "synthetic"\ndmax_m = = 0.004\n')
