@@ -1039,6 +1039,19 @@ def write_report(r: Results, quiet=False):
             for k, v in table.items():
                 if isinstance(v, (int, float)) and not isinstance(v, bool):
                     w.writerow([test, k, f"{v:.6g}"])
+        rep = r.replicates or {}
+        if rep:  # the replicate boxes' scatter (results.toml [shear.replicates]), flattened
+            for k in ("friction_sd_deg", "cohesion_sd_Pa"):
+                if k in rep:
+                    w.writerow(["shear", f"replicates_{k}", f"{rep[k]:.6g}"])
+            for k, phi, c in zip(rep["fitted_replicates"], rep["friction_deg"],
+                                 rep["cohesion_Pa"]):
+                w.writerow(["shear", f"bed{k}_friction_deg", f"{phi:.6g}"])
+                w.writerow(["shear", f"bed{k}_cohesion_Pa", f"{c:.6g}"])
+            for b in rep["by_stress"]:
+                at = f"s{b['sigma_target_Pa']:g}"
+                for k in ("tau_peak_mean_Pa", "tau_peak_sd_Pa", "tau_peak_spread"):
+                    w.writerow(["shear", f"replicates_{at}_{k}", f"{b[k]:.6g}"])
     written.append(d / "results.csv")
     name = r.soil.get("name", "?")
     if r.plates:

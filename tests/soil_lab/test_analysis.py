@@ -526,6 +526,14 @@ class Analysis(unittest.TestCase):
         self.assertEqual(s["quasi_static"]["shear_s10000"]["replicate_differences"],
                          q["replicate_differences"])
         self.assertIn("friction_se_deg", s["shear"])
+        # results.csv flattens the replicate table
+        analysis.write_report(r)
+        rows = {(t, q): float(v) for t, q, v in
+                (line.split(",") for line in (d / "results.csv").read_text().splitlines()[1:])}
+        self.assertAlmostEqual(rows["shear", "bed2_friction_deg"], rep["friction_deg"][1], places=3)
+        self.assertAlmostEqual(rows["shear", "replicates_friction_sd_deg"],
+                               rep["friction_sd_deg"], places=3)
+        self.assertAlmostEqual(rows["shear", "replicates_s10000_tau_peak_spread"], 0.2, delta=0.004)
         # each bed's sample density from its own bed's record
         for k, mass in ((1, "0.4"), (2, "0.44")):
             bed = d / "beds" / plan.shear_bed_name(k)
