@@ -658,11 +658,16 @@ def shear_peak_warnings(shears):
 REPLICATE_SCATTER_SDS = 2.0
 
 
-def _box_at(s):
-    """A warning's prefix naming the box: "shear box at <sigma> kPa: ", with " (bed k)" for a
-    replicate's (--shear-replicates)."""
+def _box_name(s):
+    """A box as the report names it: "<sigma> kPa", with " (bed k)" for a replicate's
+    (--shear-replicates)."""
     bed = "" if s.get("replicate", 1) == 1 else f" (bed {s['replicate']})"
-    return f"shear box at {s['sigma_Pa'] / 1e3:.3g} kPa{bed}: "
+    return f"{s['sigma_Pa'] / 1e3:.3g} kPa{bed}"
+
+
+def _box_at(s):
+    """A warning's prefix naming the box: "shear box at <sigma> kPa[ (bed k)]: "."""
+    return f"shear box at {_box_name(s)}: "
 
 
 def _boxes_with(shears, key):
@@ -862,9 +867,11 @@ def analyse(directory):
             if same:
                 extra["replicate_differences"] = [float((t - a) / a) for t in same]
                 # the half-speed peak against all same-speed boxes of the stress (the first
-                # bed's among them): how many of their standard deviations it lies from their mean
-                peaks = np.array([a, *same])
-                mean, sd = float(peaks.mean()), float(peaks.std(ddof=1))
+                # bed's among them, shear_replicates' row of it): how many of their standard
+                # deviations it lies from their mean
+                row = next(x for x in r.replicates["by_stress"]
+                           if x["sigma_target_Pa"] == sa["sigma_target_Pa"])
+                mean, sd = row["tau_peak_mean_Pa"], row["tau_peak_sd_Pa"]
                 extra.update(replicate_peak_mean_Pa=mean, replicate_peak_sd_Pa=sd,
                              half_speed_from_mean=float((b - mean) / mean),
                              half_speed_sds_from_mean=float((b - mean) / sd) if sd > 0
@@ -1066,9 +1073,7 @@ def write_report(r: Results, quiet=False):
                                  [(s["sigma_Pa"], s["j"], s["tau"]) for s in r.shears],
                                  [s["janosi"] for s in r.shears],
                                  [s["lid_dz"] for s in r.shears],
-                                 [f"σn = {s['sigma_Pa'] / 1e3:.3g} kPa"
-                                  + ("" if s["replicate"] == 1 else f" (bed {s['replicate']})")
-                                  for s in r.shears])
+                                 [f"σn = {_box_name(s)}" for s in r.shears])
         written.append(d / "shear_curves.png")
     if r.mc_peak:
         sig = [s["sigma_Pa"] for s in r.shears]
