@@ -45,6 +45,7 @@ class Results:
     repose_profiles: List[tuple] = field(default_factory=list)
     repose_error: Optional[str] = None  # why no angle could be fitted (too small a heap, ...)
     quasi_static: List[dict] = field(default_factory=list)  # half-speed comparisons
+    paired_speed_checks: List[dict] = field(default_factory=list)  # over beds: paired_speed_check
     costs: List[dict] = field(default_factory=list)
     bed_costs: Dict[str, float] = field(default_factory=dict)  # bed name -> wall time [s]
     bed_holds: Dict[str, dict] = field(default_factory=dict)  # bed name -> bed-hold check result
@@ -658,6 +659,36 @@ def shear_peak_warnings(shears):
 REPLICATE_SCATTER_SDS = 2.0
 
 
+# Two-sided 95 % quantiles of Student's t by degrees of freedom (1..4: 2..5 beds, the most
+# --shear-replicates pours), for the interval of a mean over so few beds.
+STUDENT_T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776}
+
+
+def paired_speed_check(differences, tolerance):
+    """The speed check over beds: each bed's box at half speed against its box at full speed
+    (relative peak differences, one per bed, >= 2). A pairing on the bed removes the bed-to-bed
+    scatter (the packings differ, each pair shares one); what is left is the rate effect and each
+    box's own fluctuation, whose spread over the beds is measured. Returns the mean difference,
+    its sample sd and standard error, the 95 % interval (Student's t on n - 1 degrees of freedom)
+    and the verdict: "quasi-static" when the whole interval lies within +-tolerance, "rate
+    effect" when it lies wholly outside, "cannot tell" otherwise (more beds narrow it);
+    `passed` is the single pair's rule (|mean| <= tolerance) on the mean."""
+    d = np.asarray(differences, dtype=float)
+    if d.size < 2 or d.size - 1 not in STUDENT_T95:
+        raise ValueError(f"a paired speed check needs 2..{max(STUDENT_T95) + 1} beds, got {d.size}")
+    mean, sd = float(d.mean()), float(d.std(ddof=1))
+    sem = sd / np.sqrt(d.size)
+    t = STUDENT_T95[d.size - 1]
+    lo, hi = mean - t * sem, mean + t * sem
+    verdict = ("quasi-static" if -tolerance <= lo and hi <= tolerance else
+               "rate effect" if lo > tolerance or hi < -tolerance else "cannot tell")
+    return {"beds": int(d.size), "differences": [float(x) for x in d],
+            "mean_difference": mean, "sd_difference": sd, "sem_difference": float(sem),
+            "t95": t, "interval_low": float(lo), "interval_high": float(hi),
+            "tolerance": float(tolerance), "passed": bool(abs(mean) <= tolerance),
+            "verdict": verdict}
+
+
 def _box_name(s):
     """A box as the report names it: "<sigma> kPa", with " (bed k)" for a replicate's
     (--shear-replicates)."""
@@ -853,7 +884,8 @@ def analyse(directory):
             ja, ma = shear_stress_profile(sa["j"], sa["tau"])
             _, mb = shear_stress_profile(sb["j"], sb["tau"], j_max_m=float(np.max(sa["j"])))
             bands = mb / ma - 1.0
-            extra = {"profile_displacement_m": [float(x) for x in ja],
+            extra = {"sigma_target_Pa": sa["sigma_target_Pa"], "replicate": sa["replicate"],
+                     "profile_displacement_m": [float(x) for x in ja],
                      "profile_difference": [float(x) for x in bands],
                      "profile_changes_sign": profile_changes_sign(bands),
                      # how far each lid moved over the shear (< 0: the sample compacted): a
@@ -889,6 +921,16 @@ def analyse(directory):
                                "difference": float(diff), "tolerance": tol,
                                "relative": test != "repose", "passed": bool(abs(diff) <= tol),
                                **extra})
+    # with --shear-replicates: each bed's half-speed difference at a stress, paired on its bed
+    for target in sorted({q["sigma_target_Pa"] for q in r.quasi_static if "replicate" in q}):
+        pairs = sorted(((q["replicate"], q) for q in r.quasi_static
+                        if q.get("sigma_target_Pa") == target), key=lambda x: x[0])
+        if len(pairs) >= 2:
+            r.paired_speed_checks.append({
+                "sigma_target_Pa": float(target), "runs": [q["run"] for _, q in pairs],
+                "replicates": [k for k, _ in pairs],
+                **paired_speed_check([q["difference"] for _, q in pairs],
+                                     QUASI_STATIC_TOLERANCE["shear"])})
 
     for run, done in [(q, _done(q)) for q in sorted(d.iterdir()) if q.is_dir()]:
         if done is not None and "steps" in done:
@@ -1016,6 +1058,10 @@ def summary(r: Results):
                                                               "half_speed_sds_from_mean")
                                               if k in q}
                                for q in r.quasi_static}
+    if r.paired_speed_checks:
+        out["quasi_static_paired"] = {_paired_key(c): {k: v for k, v in c.items()
+                                                       if k != "sigma_target_Pa"}
+                                      for c in r.paired_speed_checks}
     if r.bed_holds:
         out["bed_hold"] = r.bed_holds
     if r.costs:
@@ -1026,6 +1072,12 @@ def summary(r: Results):
                              "lab_wall_s": beds_s + runs_s,
                              "beds": {k: v for k, v in r.bed_costs.items()}}
     return out
+
+
+def _paired_key(c):
+    """results.toml's key of a paired speed check: shear_s<target stress [Pa]> (its full-speed
+    boxes on the first bed are named so)."""
+    return f"shear_s{c['sigma_target_Pa']:g}"
 
 
 def write_report(r: Results, quiet=False):
@@ -1059,6 +1111,9 @@ def write_report(r: Results, quiet=False):
                 at = f"s{b['sigma_target_Pa']:g}"
                 for k in ("tau_peak_mean_Pa", "tau_peak_sd_Pa", "tau_peak_spread"):
                     w.writerow(["shear", f"replicates_{at}_{k}", f"{b[k]:.6g}"])
+        for c in r.paired_speed_checks:  # results.toml [quasi_static_paired.<key>], flattened
+            for k in ("mean_difference", "sem_difference", "interval_low", "interval_high"):
+                w.writerow(["quasi_static_paired", f"{_paired_key(c)}_{k}", f"{c[k]:.6g}"])
     written.append(d / "results.csv")
     name = r.soil.get("name", "?")
     if r.plates:

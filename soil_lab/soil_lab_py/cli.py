@@ -281,6 +281,19 @@ def _report(directory, quiet=False):
                           "effect that grows along the travel (a slower sample of a creeping "
                           "soil compacts more: compare the lids); replicates at the same speed "
                           "(--shear-replicates) would measure the fluctuation")
+    for c in r.paired_speed_checks:
+        print(f"soil-lab: quasi-static over {c['beds']} beds at "
+              f"{c['sigma_target_Pa'] / 1e3:.3g} kPa (each bed's box at half speed against its "
+              "box at full speed: "
+              + ", ".join(f"{100 * x:+.1f} %" for x in c["differences"])
+              + f"): mean {100 * c['mean_difference']:+.1f} % ± {100 * c['sem_difference']:.1f} % "
+              f"(standard error), 95 % interval {100 * c['interval_low']:+.1f} to "
+              f"{100 * c['interval_high']:+.1f} % against the tolerance "
+              f"±{100 * c['tolerance']:g} %: "
+              + {"quasi-static": "quasi-static (the whole interval within it)",
+                 "rate effect": "a rate effect (the whole interval outside it): NOT quasi-static",
+                 "cannot tell": "cannot tell (the interval straddles the tolerance; more beds "
+                                "narrow it)"}[c["verdict"]])
     return 0
 
 
@@ -385,8 +398,9 @@ def main(argv=None):
                         "the boxes' cost (docs/soil-lab.md \"Replicate boxes\")")
     r.add_argument("--speed-check", action="store_true",
                    help="quasi-static check: also run the larger plate, the middle normal stress "
-                        "and the repose test (not in the quick preset) at half speed and report "
-                        "the differences")
+                        "(on every bed with --shear-replicates: a check paired on the bed) and "
+                        "the repose test (not in the quick preset) at half speed and report the "
+                        "differences")
     r.add_argument("--bed-var", action="append", metavar="NAME=VALUE",
                    help="an inputs/in.soilbin variable for every bed (e.g. compaction=plate)")
     r.add_argument("--bed-hold", type=float, default=bed_hold.DEFAULT_HOLD_S, metavar="S",

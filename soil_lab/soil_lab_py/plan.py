@@ -197,7 +197,8 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
     also the larger plate, the middle normal stress and (standard preset) the repose test at half
     speed (runs named <run>_half), for the quasi-static check. shear_replicates N (default 1):
     the boxes again on beds shear_r2..shear_rN, poured with REPLICATE_SEEDS (runs
-    shear_s<σ>_r<k>, meta replicate k); the half-speed box is the first bed's only."""
+    shear_s<σ>_r<k>, meta replicate k); with speed_check, every bed's middle-stress box gets its
+    half-speed twin (shear_s<σ>[_r<k>]_half: a paired check, analysis.paired_speed_checks)."""
     tests = check_options(tests, preset, normal_stresses_Pa, plate_widths_m, plate_bin_m,
                           shear_travel, plate_speed, shear_speed, plate_depth, plate_hold,
                           plate_hold_stages, shear_replicates)
@@ -369,15 +370,19 @@ SPEED_VARIABLES = {"plate": "plate_speed", "shear": "shear_speed", "repose": "li
 
 
 def _half_speed_runs(runs, repose=True):
-    """The quasi-static check's runs: the larger plate, the middle normal stress, the repose test
-    (if `repose`), each at half its speed (same bed and tools)."""
+    """The quasi-static check's runs: the larger plate, the middle normal stress (its box on every
+    bed, with --shear-replicates: the half-speed difference is then measured on each bed, and
+    its mean is read against its own scatter), the repose test (if `repose`), each at half its
+    speed (same bed and tools)."""
     picked = []
     plates = [r for r in runs if r.test == "plate"]
     shears = [r for r in runs if r.test == "shear" and "replicate" not in r.meta]
     if plates:
         picked.append(max(plates, key=lambda r: r.meta["b_m"]))
     if shears:
-        picked.append(sorted(shears, key=lambda r: r.meta["normal_stress_Pa"])[len(shears) // 2])
+        middle = sorted(shears, key=lambda r: r.meta["normal_stress_Pa"])[len(shears) // 2]
+        picked += [r for r in runs if r.test == "shear" and
+                   r.meta["normal_stress_Pa"] == middle.meta["normal_stress_Pa"]]
     if repose:
         picked += [r for r in runs if r.test == "repose"]
     out = []

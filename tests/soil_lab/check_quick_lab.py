@@ -24,9 +24,10 @@
                                      pressure within 15 %
   soil-lab run ... again          -> every bed and run skipped (resume), in seconds
   ... --shear-replicates 2        -> the finished lab grows a second shear bed (its own seed: another
-                                     packing) and its three boxes, nothing else re-runs; the
-                                     report's replicate table (2 boxes per stress, each bed's fit)
-                                     and the speed check's replicate differences
+                                     packing), its three boxes and its middle box at half
+                                     speed, nothing else re-runs; the report's replicate table (2
+                                     boxes per stress, each bed's fit), the speed check's
+                                     replicate differences and its pairing over the two beds
   soil-lab scm DIR --out F.toml   -> an SCM soil file that wheel-rig --check loads unchanged
   bad input                       -> exit 2 naming the unknown soil / test / option
 
@@ -266,8 +267,9 @@ def main():
     t0 = time.monotonic()
     r = lab(*command, "--shear-replicates", "2", env=env)
     skipped = len(re.findall(r"done before, skipped", r.stdout))
-    ran = sorted(set(re.findall(r"(shear_s\d+_r2): running", r.stdout)))
+    ran = sorted(set(re.findall(r"(shear_s\d+_r2(?:_half)?): running", r.stdout)))
     check(r.returncode == 0 and skipped == 11 and ran == ["shear_s3000_r2", "shear_s6000_r2",
+                                                          "shear_s6000_r2_half",
                                                           "shear_s9000_r2"],
           f"--shear-replicates 2 on the finished lab: {skipped} of 11 kept, ran {ran} "
           f"({time.monotonic() - t0:.1f} s; {r.stderr.strip()[-300:]})")
@@ -286,6 +288,14 @@ def main():
           f"replicate table: each bed's phi {rep.get('friction_deg')} deg, peaks' spread "
           f"{[round(b.get('tau_peak_spread', -1), 3) for b in rep.get('by_stress', [])]}, "
           "six Mohr-Coulomb points, the speed check's replicate difference")
+    paired = res.get("quasi_static_paired", {}).get("shear_s6000", {})
+    check(paired.get("runs") == ["shear_s6000", "shear_s6000_r2"] and
+          paired.get("verdict") in ("quasi-static", "rate effect", "cannot tell") and
+          paired.get("interval_low", 1) <= paired.get("mean_difference", 0) <=
+          paired.get("interval_high", -1),
+          f"the speed check paired over the two beds: {paired.get('differences')}, mean "
+          f"{paired.get('mean_difference')}, 95 % interval {paired.get('interval_low')} .. "
+          f"{paired.get('interval_high')}: {paired.get('verdict')}")
 
     scm = out / "ci_fitted.toml"
     r = lab("scm", str(out), "--out", str(scm))

@@ -514,6 +514,7 @@ class Analysis(unittest.TestCase):
         self.assertTrue(warn.startswith("shear box at 10 kPa (bed 2): the shear stress still "
                                         "rises"), warn)
         q, = r.quasi_static
+        self.assertEqual(r.paired_speed_checks, [])   # one bed's half-speed box: no pairs to pool
         np.testing.assert_allclose(q["replicate_differences"], [0.1, -0.1], atol=2e-3)
         # against the three same-speed boxes (mean 1.0, sd 0.1 of the first): -4 %, -0.4 sd
         self.assertAlmostEqual(q["half_speed_from_mean"], -0.04, delta=1e-3)
@@ -549,6 +550,50 @@ class Analysis(unittest.TestCase):
         self.assertIsNone(rho[3])   # no record of the third bed
         # a lab without replicates has no replicate summary
         self.assertIsNone(analysis.shear_replicates([s for s in r.shears if s["replicate"] == 1]))
+
+    def test_the_speed_check_over_beds_pairs_each_beds_boxes(self):
+        # Three beds 0 / +10 / -10 % strong, each with its middle box at half speed -4 / -2 / -6 %
+        # weaker than its own bed's: the bed-to-bed scatter (10 %) leaves the pairs; mean -4 %,
+        # sd 2 %, standard error 2 / sqrt 3 = 1.155 %, 95 % interval -4 +- 4.303 x 1.155 =
+        # -8.97 .. +0.97 %: it straddles -5 %, so "cannot tell" (the mean alone passes 5 %).
+        d = Path(tempfile.mkdtemp())
+        (d / "soil.toml").write_text('name = "synthetic"\npreset = "standard"\n'
+                                     'dmax_m = 0.004\n')
+        for k, scale, half in ((1, 1.0, 0.96), (2, 1.1, 0.98), (3, 0.9, 0.94)):
+            for sigma in (5e3, 1e4, 2e4):
+                syn.shear_run(d, sigma, tau_scale=scale, replicate=k)
+            name = "shear_s10000" + ("" if k == 1 else f"_r{k}") + "_half"
+            syn.shear_run(d, 1e4, name=name, tau_scale=scale * half, replicate=k)
+        r = analysis.analyse(d)
+        self.assertEqual([q["run"] for q in r.quasi_static],
+                         ["shear_s10000", "shear_s10000_r2", "shear_s10000_r3"])
+        c, = r.paired_speed_checks
+        self.assertEqual((c["beds"], c["replicates"], c["sigma_target_Pa"]), (3, [1, 2, 3], 1e4))
+        np.testing.assert_allclose(c["differences"], [-0.04, -0.02, -0.06], atol=1e-3)
+        self.assertAlmostEqual(c["mean_difference"], -0.04, delta=1e-3)
+        self.assertAlmostEqual(c["sem_difference"], 0.02 / np.sqrt(3), delta=1e-3)
+        self.assertAlmostEqual(c["interval_low"], -0.0897, delta=2e-3)
+        self.assertAlmostEqual(c["interval_high"], 0.0097, delta=2e-3)
+        self.assertEqual((c["verdict"], c["passed"]), ("cannot tell", True))
+        s = analysis.summary(r)
+        self.assertEqual(s["quasi_static_paired"]["shear_s10000"]["verdict"], "cannot tell")
+        self.assertEqual(s["quasi_static_paired"]["shear_s10000"]["runs"],
+                         ["shear_s10000", "shear_s10000_r2", "shear_s10000_r3"])
+        analysis.write_report(r)
+        rows = {(t, q): float(v) for t, q, v in
+                (line.split(",") for line in (d / "results.csv").read_text().splitlines()[1:])}
+        self.assertAlmostEqual(rows["quasi_static_paired", "shear_s10000_mean_difference"],
+                               c["mean_difference"], places=5)
+        # the verdicts: an interval within +-5 %, one wholly outside it; a single bed is refused
+        ok = analysis.paired_speed_check([-0.01, 0.0, 0.01], 0.05)
+        self.assertEqual(ok["verdict"], "quasi-static")
+        self.assertAlmostEqual(ok["interval_high"], 4.303 * 0.01 / np.sqrt(3), places=6)
+        rate = analysis.paired_speed_check([-0.12, -0.10, -0.14], 0.05)
+        self.assertEqual((rate["verdict"], rate["passed"]), ("rate effect", False))
+        self.assertEqual(analysis.paired_speed_check([0.20, 0.08], 0.05)["verdict"],
+                         "cannot tell")   # two beds: t 12.7, a wide interval
+        with self.assertRaisesRegex(ValueError, "2..5 beds, got 1"):
+            analysis.paired_speed_check([0.01], 0.05)
 
     def test_an_unstable_shear_box_is_named(self):
         j = np.linspace(0.0, 0.008, 400)

@@ -211,6 +211,15 @@ class DamagedLab(unittest.TestCase):
                       "peak +10.0 % from it; the half-speed peak is +23.8 % from the mean of the 2 "
                       "same-speed boxes (+3.54 sd): outside 2 sd of their scatter: a rate effect",
                       out)
+        # the second bed's box at half speed too, 28 % stronger than its own: the paired check
+        # over the two beds (+30 %, +28 %: mean +29 %, se 1 %, t 12.7: +16.3 .. +41.7 %)
+        shear_run(self.lab, 1e4, name="shear_s10000_r2_half", tau_scale=1.1 * 1.28, replicate=2)
+        rc, out, err = main("report", self.lab)
+        self.assertEqual((rc, err), (0, ""))
+        self.assertIn("soil-lab: quasi-static over 2 beds at 10 kPa (each bed's box at half speed "
+                      "against its box at full speed: +30.0 %, +28.0 %): mean +29.0 % ± 1.0 % "
+                      "(standard error), 95 % interval +16.3 to +41.7 % against the tolerance "
+                      "±5 %: a rate effect (the whole interval outside it): NOT quasi-static", out)
 
     def test_a_corrupt_soil_toml(self):
         (self.lab / "soil.toml").write_text('name = "synthetic"\ndmax_m = = 0.004\n')

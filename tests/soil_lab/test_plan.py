@@ -238,7 +238,8 @@ class Plan(unittest.TestCase):
         self.assertEqual(names, ["shear_s5000", "shear_s10000", "shear_s20000",
                                  "shear_s5000_r2", "shear_s10000_r2", "shear_s20000_r2",
                                  "shear_s5000_r3", "shear_s10000_r3", "shear_s20000_r3",
-                                 "shear_s10000_half"])
+                                 "shear_s10000_half", "shear_s10000_r2_half",
+                                 "shear_s10000_r3_half"])
         runs = {r.name: r for r in p.runs}
         self.assertEqual(runs["shear_s10000_r3"].bed, "shear_r3")
         self.assertEqual(runs["shear_s10000_r3"].meta["replicate"], 3)
@@ -246,6 +247,10 @@ class Plan(unittest.TestCase):
         # the first bed's runs keep their records as before (no replicate key: same run key)
         self.assertEqual(runs["shear_s10000"].meta, make_plan(SAND, ("shear",)).runs[1].meta)
         self.assertEqual(runs["shear_s10000_half"].bed, "shear")
+        # every bed's middle box at half speed (the paired check), on its own bed
+        self.assertEqual(runs["shear_s10000_r3_half"].bed, "shear_r3")
+        self.assertEqual(runs["shear_s10000_r3_half"].meta["replicate"], 3)
+        self.assertEqual(runs["shear_s10000_r3_half"].variables["shear_speed"], "0.0025")
         # a user's seed for every bed stays the first bed's; a replicate's own seed is refused
         p = make_plan(SAND, ("shear",), shear_replicates=2, bed_vars={"seed": "15485863"})
         self.assertEqual(p.beds["shear"].extra_vars["seed"], "15485863")
