@@ -75,7 +75,16 @@ sweep() {
     "${archive[@]}" "${sweep_args[@]}" || rc=$?
   stop_if_signalled "$rc" "$name"
   ((rc == 0)) || status=$rc
-  local runs
+  window_table "$name" "$w0" "$w1" "$results"
+}
+
+# window_table NAME WINDOW_START WINDOW_END RESULTS: the results table of sweep NAME's finished
+# runs (kept ones from points/NAME) over the window, into RESULTS (and $out/NAME/curves.csv); the
+# table's run_file column is relative to RESULTS' folder, so a table is written where it is kept,
+# never copied there from another folder.
+window_table() {
+  local name=$1 w0=$2 w1=$3 results=$4 kept="" runs
+  ((smoke || scm)) || kept=$here/points/$name
   mapfile -t runs < <(finished_runs "$out/$name" "$kept")
   ((${#runs[@]})) || { echo "run.sh: no finished run under $out/$name" >&2; exit 1; }
   "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start "$w0" --window-end "$w1" \
@@ -132,12 +141,10 @@ PY
       --sinkage-offset "$offset" --results "$dest/results.csv.new" --csv "$out/prediction_curves.csv"
     keep_table "$dest/results.csv.new" "$dest/results.csv"
     cp "$out/prediction_curves.csv" "$dest/curves.csv"
-    cp "$out/main/results.csv" "$dest/results_window_0.12.csv.new"
-    keep_table "$dest/results_window_0.12.csv.new" "$dest/results_window_0.12.csv"
+    window_table main 0.7 1.2 "$dest/results_window_0.12.csv"
     echo "run.sh: results.csv: the steady-state sweep (0.25 m of travel; sinkage against the equivalent surface, offset $offset m); the 0.12 m windows in results_window_0.12.csv"
   else
-    cp "$out/main/results.csv" "$dest/results.csv.new"
-    keep_table "$dest/results.csv.new" "$dest/results.csv"
+    window_table main 0.7 1.2 "$dest/results.csv"
     cp "$out/main/curves.csv" "$dest/curves.csv"
     echo "run.sh: results.csv: the main sweep (0.12 m windows); the steady-state sweep has $n_travel of its $n_slips slips"
   fi
