@@ -66,9 +66,13 @@ status=0
 # wheel-sweep and left out; a sweep stopped by a signal (the session's end) writes nothing. The
 # full case keeps its finished points in the committed points/NAME/ (wheel-sweep --archive;
 # README "Resuming across sessions").
+# kept_points NAME: the committed folder of sweep NAME's finished points (none for the smoke run
+# and for SCM, whose points take a minute)
+kept_points() { ((smoke || scm)) || echo "$here/points/$1"; }
+
 sweep() {
-  local name=$1 config=$2 w0=$3 w1=$4 results=$5 archive=() kept=""
-  ((smoke || scm)) || kept=$here/points/$name   # SCM points take a minute: not kept
+  local name=$1 config=$2 w0=$3 w1=$4 results=$5 archive=() kept
+  kept=$(kept_points "$name")
   [[ -z $kept ]] || archive=(--archive "$kept")
   local rc=0
   "$root/scripts/wheel-sweep" "$config" --out-dir "$out/$name" --build-dir "$build_dir" \
@@ -83,9 +87,8 @@ sweep() {
 # table's run_file column is relative to RESULTS' folder, so a table is written where it is kept,
 # never copied there from another folder.
 window_table() {
-  local name=$1 w0=$2 w1=$3 results=$4 kept="" runs
-  ((smoke || scm)) || kept=$here/points/$name
-  mapfile -t runs < <(finished_runs "$out/$name" "$kept")
+  local name=$1 w0=$2 w1=$3 results=$4 runs
+  mapfile -t runs < <(finished_runs "$out/$name" "$(kept_points "$name")")
   ((${#runs[@]})) || { echo "run.sh: no finished run under $out/$name" >&2; exit 1; }
   "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start "$w0" --window-end "$w1" \
     --results "$results.new" --csv "$out/$name/curves.csv"
