@@ -922,14 +922,17 @@ def analyse(directory):
                                "relative": test != "repose", "passed": bool(abs(diff) <= tol),
                                **extra})
     # with --shear-replicates: each bed's half-speed difference at a stress, paired on its bed
-    for target in sorted({q["sigma_target_Pa"] for q in r.quasi_static if "replicate" in q}):
-        pairs = sorted(((q["replicate"], q) for q in r.quasi_static
-                        if q.get("sigma_target_Pa") == target), key=lambda x: x[0])
+    by_target = {}
+    for q in r.quasi_static:
+        if "replicate" in q:   # a shear box's comparison
+            by_target.setdefault(q["sigma_target_Pa"], []).append(q)
+    for target, pairs in sorted(by_target.items()):
         if len(pairs) >= 2:
+            pairs.sort(key=lambda q: q["replicate"])
             r.paired_speed_checks.append({
-                "sigma_target_Pa": float(target), "runs": [q["run"] for _, q in pairs],
-                "replicates": [k for k, _ in pairs],
-                **paired_speed_check([q["difference"] for _, q in pairs],
+                "sigma_target_Pa": float(target), "runs": [q["run"] for q in pairs],
+                "replicates": [q["replicate"] for q in pairs],
+                **paired_speed_check([q["difference"] for q in pairs],
                                      QUASI_STATIC_TOLERANCE["shear"])})
 
     for run, done in [(q, _done(q)) for q in sorted(d.iterdir()) if q.is_dir()]:

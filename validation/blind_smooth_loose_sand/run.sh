@@ -61,7 +61,7 @@ started_utc=$(date -u +%Y-%m-%dT%H:%M:%SZ)
 status=0
 
 # sweep NAME CONFIG WINDOW_START WINDOW_END RESULTS: run one sweep into $out/NAME and write its
-# results table (and $out/NAME/curves.csv) (window in test-phase seconds: 0.05 m of travel after
+# results table (and $out/NAME/curves.csv; RESULTS "": no table, the caller writes it) (window in test-phase seconds: 0.05 m of travel after
 # the approach to steady sinkage, README "Averaging window"). A failed point is reported by
 # wheel-sweep and left out; a sweep stopped by a signal (the session's end) writes nothing. The
 # full case keeps its finished points in the committed points/NAME/ (wheel-sweep --archive;
@@ -79,7 +79,7 @@ sweep() {
     "${archive[@]}" "${sweep_args[@]}" || rc=$?
   stop_if_signalled "$rc" "$name"
   ((rc == 0)) || status=$rc
-  window_table "$name" "$w0" "$w1" "$results"
+  [[ -z $results ]] || window_table "$name" "$w0" "$w1" "$results"
 }
 
 # window_table NAME WINDOW_START WINDOW_END RESULTS: the results table of sweep NAME's finished
@@ -125,7 +125,8 @@ else
   # sweep", decided 2026-12-03): results.csv from its runs, with sinkage read against the long
   # bed's equivalent surface; the main sweep's 0.12 m windows then go to results_window_0.12.csv.
   # Until then results.csv is the main sweep's table, as before.
-  sweep main "$here/sweep.toml" 0.7 1.2 "$out/main/results.csv"
+  # (the main sweep's table is written below, to results.csv or results_window_0.12.csv)
+  sweep main "$here/sweep.toml" 0.7 1.2 ""
   sweep travel_0.25 "$here/sweep_travel.toml" 2.0 2.5 "$dest/results_travel_0.25.csv"
   n_slips=$("$python" -c 'import sys, tomllib; print(len(tomllib.load(open(sys.argv[1], "rb"))["slips"]))' "$here/sweep_travel.toml")
   n_travel=$(grep -cv '^#\|^slip,' "$dest/results_travel_0.25.csv")
