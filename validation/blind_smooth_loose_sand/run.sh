@@ -82,16 +82,17 @@ sweep() {
   [[ -z $results ]] || window_table "$name" "$w0" "$w1" "$results"
 }
 
-# window_table NAME WINDOW_START WINDOW_END RESULTS: the results table of sweep NAME's finished
-# runs (kept ones from points/NAME) over the window, into RESULTS (and $out/NAME/curves.csv); the
-# table's run_file column is relative to RESULTS' folder, so a table is written where it is kept,
-# never copied there from another folder.
+# window_table NAME WINDOW_START WINDOW_END RESULTS [CURVES [CURVES_ARGS...]]: the results table
+# of sweep NAME's finished runs (kept ones from points/NAME) over the window, into RESULTS (and
+# CURVES, default $out/NAME/curves.csv; CURVES_ARGS go to `wheelsim-post curves`, e.g.
+# --sinkage-offset); the table's run_file column is relative to RESULTS' folder, so a table is
+# written where it is kept, never copied there from another folder.
 window_table() {
-  local name=$1 w0=$2 w1=$3 results=$4 runs
+  local name=$1 w0=$2 w1=$3 results=$4 curves=${5:-$out/$1/curves.csv} runs
   mapfile -t runs < <(finished_runs "$out/$name" "$(kept_points "$name")")
   ((${#runs[@]})) || { echo "run.sh: no finished run under $out/$name" >&2; exit 1; }
   "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start "$w0" --window-end "$w1" \
-    --results "$results.new" --csv "$out/$name/curves.csv"
+    "${@:6}" --results "$results.new" --csv "$curves"
   keep_table "$results.new" "$results"
 }
 
@@ -126,7 +127,8 @@ else
   # bed's equivalent surface; the main sweep's 0.12 m windows then go to results_window_0.12.csv.
   # Until then results.csv is the main sweep's table, as before.
   # (the main sweep's table is written below, to results.csv or results_window_0.12.csv)
-  sweep main "$here/sweep.toml" 0.7 1.2 ""
+  main_window=(0.7 1.2)
+  sweep main "$here/sweep.toml" "${main_window[@]}" ""
   sweep travel_0.25 "$here/sweep_travel.toml" 2.0 2.5 "$dest/results_travel_0.25.csv"
   n_slips=$("$python" -c 'import sys, tomllib; print(len(tomllib.load(open(sys.argv[1], "rb"))["slips"]))' "$here/sweep_travel.toml")
   n_travel=$(grep -cv '^#\|^slip,' "$dest/results_travel_0.25.csv")
@@ -140,15 +142,13 @@ surface = float(re.search(r"equivalent surface ([0-9.e+-]+) m", head).group(1))
 print(f"{depth - surface:.6f}")
 PY
 )
-    mapfile -t runs < <(finished_runs "$out/travel_0.25" "$here/points/travel_0.25")
-    "$root/postprocess/wheelsim-post" curves "${runs[@]}" --window-start 2.0 --window-end 2.5 \
-      --sinkage-offset "$offset" --results "$dest/results.csv.new" --csv "$out/prediction_curves.csv"
-    keep_table "$dest/results.csv.new" "$dest/results.csv"
+    window_table travel_0.25 2.0 2.5 "$dest/results.csv" "$out/prediction_curves.csv" \
+      --sinkage-offset "$offset"
     cp "$out/prediction_curves.csv" "$dest/curves.csv"
-    window_table main 0.7 1.2 "$dest/results_window_0.12.csv"
+    window_table main "${main_window[@]}" "$dest/results_window_0.12.csv"
     echo "run.sh: results.csv: the steady-state sweep (0.25 m of travel; sinkage against the equivalent surface, offset $offset m); the 0.12 m windows in results_window_0.12.csv"
   else
-    window_table main 0.7 1.2 "$dest/results.csv"
+    window_table main "${main_window[@]}" "$dest/results.csv"
     cp "$out/main/curves.csv" "$dest/curves.csv"
     echo "run.sh: results.csv: the main sweep (0.12 m windows); the steady-state sweep has $n_travel of its $n_slips slips"
   fi
