@@ -6,7 +6,7 @@
   soil-lab report DIR
   soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB] [--relaxed]
   soil-lab compare LABEL=DIR [LABEL=DIR ...] [--at MM,MM,...] [--target C_PA,PHI_DEG]
-                   [--md FILE] [--png FILE]
+                   [--tolerance DEG] [--md FILE] [--png FILE]
 
 Exit status: 0 done; 1 a LIGGGHTS or wheel-mesh run failed, or a fit failed; 2 bad command
 line, unknown soil or test, or a test size the lab rejects.
@@ -325,7 +325,10 @@ def _compare(a):
     target = a.target and compare.check_target(
         _numbers(a.target, "--target", "C_PA,PHI_DEG (numbers)"))
     labs = compare.load([compare.parse_source(s) for s in a.sources])
-    text = compare.table(labs, at, target)
+    if not (0 < a.tolerance < 90):
+        raise plan.LabInputError(f"--tolerance: expected a friction angle tolerance in (0, 90) "
+                                 f"[deg], got {a.tolerance:g}")
+    text = compare.table(labs, at, target, a.tolerance)
     print(text, end="")
     for option, path, write in (("--md", a.md, lambda p: Path(p).write_text(text)),
                                 ("--png", a.png, lambda p: compare.plot(p, labs))):
@@ -460,6 +463,9 @@ def main(argv=None):
     c.add_argument("--target", metavar="C_PA,PHI_DEG",
                    help="the soil's Mohr-Coulomb target (cohesion [Pa], friction angle [deg]): "
                         "each peak is also given against c + sigma tan(phi) at its box's stress")
+    c.add_argument("--tolerance", type=float, default=compare.DEFAULT_TOLERANCE_DEG,
+                   metavar="DEG", help="with --target: the fitted phi is judged within +-DEG of "
+                                       "the target's (default %(default)g)")
     c.add_argument("--md", metavar="FILE", help="also write the tables to FILE (Markdown)")
     c.add_argument("--png", metavar="FILE", help="plot tau(j) of every source, a panel per stress")
     a = ap.parse_args(argv)

@@ -10,15 +10,20 @@ plane, the lid's travel over the shear and, where DIR/beds/shear/done.json is th
 bulk density when the shear began (analysis.shear_sample_density) and, with DIR/soil.toml, its
 solid fraction (that over the particle density). With a target line (c, φ: the soil's
 Mohr–Coulomb target), each peak is also given against c + σ tan φ at that box's σ on the plane.
+Last, per source with boxes at three or more stresses, the Mohr–Coulomb fit through its peaks
+(fits.fit_mohr_coulomb: φ and c with their standard errors) and, with a target, φ against it:
+inside or outside the tolerance, and whether one standard error of the fit reaches across the
+tolerance's edge (then that bed alone does not decide).
 """
 from pathlib import Path
 
 import numpy as np
 
-from . import analysis, plan, report
+from . import analysis, fits, plan, report
 
 AT_HALF_WIDTH_M = 0.25e-3  # τ at j: the mean of the samples within ± this of j
 DEFAULT_AT_MM = (5, 10, 20, 30, 40, 50, 59)
+DEFAULT_TOLERANCE_DEG = 2.0  # φ within 2° of the target: the soil-lab issue's calibration criterion
 
 
 def parse_source(text):
@@ -74,9 +79,10 @@ def check_target(target):
     return tuple(target)
 
 
-def table(labs, at_mm=DEFAULT_AT_MM, target=None):
+def table(labs, at_mm=DEFAULT_AT_MM, target=None, tolerance_deg=DEFAULT_TOLERANCE_DEG):
     """Markdown: a table per target normal stress, a row per source (load's) that has that box;
-    with `target` (c [Pa], φ [deg]) a column of each peak against the target line."""
+    with `target` (c [Pa], φ [deg]) a column of each peak against the target line; then the
+    Mohr–Coulomb fits (fit_table)."""
     stresses = sorted({s for _, bs in labs for s in bs})
     lines = []
     for sigma in stresses:
@@ -110,7 +116,50 @@ def table(labs, at_mm=DEFAULT_AT_MM, target=None):
                  "density compare by it)."
                  + (f" Target line: c + σ tan φ at the box's σ on the plane, c {target[0] / 1e3:g} "
                     f"kPa, φ {target[1]:g}°." if target else ""))
+    return "\n".join(lines) + "\n\n" + fit_table(labs, target, tolerance_deg)
+
+
+def fit_table(labs, target=None, tolerance_deg=DEFAULT_TOLERANCE_DEG):
+    """Markdown: a row per source, the Mohr–Coulomb fit through its peaks (σ on the plane, the
+    lab's peak τ); a source with boxes at fewer than three stresses gets no fit. With `target`
+    (c [Pa], φ [deg]) φ and c against it, and φ judged against ±tolerance_deg (verdict)."""
+    lines = ["### Mohr–Coulomb through the peaks", "",
+             "| source | boxes | φ [°] (± SE) | c [kPa] (± SE) | R² |"
+             + (" φ − target | c against target | φ within the tolerance? |" if target else ""),
+             "|---" * (5 + 3 * bool(target)) + "|"]
+    for label, bs in labs:
+        sigma = [b["sigma_Pa"] for _, b in sorted(bs.items())]
+        if len(sigma) < 3:
+            lines.append(f"| {label} | {len(sigma)} | – (needs boxes at 3 stresses) | – | – |"
+                         + (" – | – | – |" if target else ""))
+            continue
+        f = fits.fit_mohr_coulomb(sigma, [b["peak"].tau_peak_Pa for _, b in sorted(bs.items())])
+        row = (f"| {label} | {len(sigma)} | {f.friction_deg:.2f} (± {f.friction_se_deg:.2f}) | "
+               f"{f.cohesion_Pa / 1e3:.2f} (± {f.cohesion_se_Pa / 1e3:.2f}) | {f.r2:.3f} |")
+        if target:
+            dphi = f.friction_deg - target[1]
+            dc = ("–" if target[0] == 0
+                  else f"{round(100 * (f.cohesion_Pa / target[0] - 1), 1) + 0.0:+.1f} %")
+            row += (f" {dphi:+.2f}° | {dc} | "
+                    f"{verdict(dphi, f.friction_se_deg, tolerance_deg)} |")
+        lines.append(row)
+    lines += ["", "SE: the fit's standard error from its residuals (n − 2 degrees of freedom: "
+              "one with three boxes, so an indication rather than a confidence interval); it "
+              "holds the scatter of the boxes about one line on one bed, not the scatter between "
+              "beds (--shear-replicates). Peaks: the lab's (the tables above)."
+              + (f" Tolerance ±{tolerance_deg:g}° on φ (--tolerance)." if target else "")]
     return "\n".join(lines) + "\n"
+
+
+def verdict(dphi_deg, se_deg, tolerance_deg):
+    """Is φ − φ_target = dphi_deg within ±tolerance_deg, and does the fit decide it: 'undecided'
+    when the tolerance's edge lies within one standard error se_deg of the estimate."""
+    inside = abs(dphi_deg) <= tolerance_deg
+    text = "yes" if inside else "no"
+    if np.isfinite(se_deg) and abs(abs(dphi_deg) - tolerance_deg) < se_deg:
+        text += (f" (undecided: the edge ±{tolerance_deg:g}° lies within one SE, "
+                 f"{se_deg:.2f}°; replicate beds would decide)")
+    return text
 
 
 def _against_target(box, target):

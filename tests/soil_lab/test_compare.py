@@ -2,7 +2,9 @@
 τ at a displacement is the curve's value there (mean over ±0.25 mm), '–' past the box's travel;
 boxes are matched by target normal stress, a box one lab lacks gives no row; the sample density
 appears only where the lab's shear-bed record is, its solid fraction where soil.toml is too; peaks
-against a target line c + σ tan φ (--target); bad sources, --at and --target values are named; the
+against a target line c + σ tan φ (--target); the Mohr–Coulomb fit through each source's peaks
+against an independent least-squares formula, and φ judged against the tolerance (inside, outside,
+undecided within one SE); bad sources, --at, --target and --tolerance values are named; the
 command writes its Markdown and PNG."""
 
 import contextlib
@@ -46,8 +48,11 @@ class Compare(unittest.TestCase):
     def tearDown(self):
         self.tmp.cleanup()
 
-    def rows(self, text, sigma_kpa):
-        block = text.split(f"### Box at {sigma_kpa:g} kPa")[1].split("###")[0]
+    def rows(self, text, heading):
+        """{source: cells} of the table under `heading` (a box's stress [kPa], or a title)."""
+        if not isinstance(heading, str):
+            heading = f"Box at {heading:g} kPa"
+        block = text.split(f"### {heading}")[1].split("###")[0]
         return {cells[0]: cells[1:] for line in block.splitlines() if line.startswith("| ")
                 and not line.startswith("| source")
                 for cells in [[c.strip() for c in line.strip("|").split("|")]]}
@@ -92,6 +97,45 @@ class Compare(unittest.TestCase):
             with self.assertRaisesRegex(plan.LabInputError, "--target: expected C_PA,PHI_DEG"):
                 compare.check_target(bad)
 
+    def test_mohr_coulomb_fit_through_the_peaks(self):
+        # C: boxes whose plateaus lie off one line (10 kPa box 8 % low), a known least-squares answer
+        c_dir = Path(self.tmp.name) / "lab_c"
+        for sigma, scale in ((5e3, 1.0), (1e4, 0.92), (2e4, 1.0)):
+            syn.shear_run(c_dir, sigma, c=1e3, phi_deg=30.0, tau_scale=scale)
+        labs = compare.load(self.sources + [("C", c_dir)])
+        rows = self.rows(compare.table(labs, at_mm=(5,), target=(1e3, 31.0)),
+                         "Mohr–Coulomb through the peaks")
+        self.assertEqual(rows["B"][:2], ["2", "– (needs boxes at 3 stresses)"])
+        # A: on its own line, 30 deg and 1 kPa (peaks are the 5 % running mean of a curve at
+        # 1 - exp(-10) of its plateau), SE ~0; within 2 deg of a 31 deg target, decided
+        phi, se = map(float, re.fullmatch(r"(\S+) \(± (\S+)\)", rows["A"][1]).groups())
+        self.assertAlmostEqual(phi, 30.0, delta=0.05)
+        self.assertLess(se, 0.05)
+        self.assertAlmostEqual(float(rows["A"][2].split()[0]), 1.0, delta=0.02)
+        self.assertEqual(rows["A"][-1], "yes")
+        # C against the textbook formulas: slope = Sxy/Sxx, SE(slope) = sqrt(SSR/(n-2)/Sxx)
+        x = np.array([b["sigma_Pa"] for _, b in sorted(labs[2][1].items())])
+        y = np.array([b["peak"].tau_peak_Pa for _, b in sorted(labs[2][1].items())])
+        sxx = ((x - x.mean()) ** 2).sum()
+        slope = ((x - x.mean()) * (y - y.mean())).sum() / sxx
+        ssr = ((y - y.mean() - slope * (x - x.mean())) ** 2).sum()
+        se_slope = np.sqrt(ssr / (len(x) - 2) / sxx)
+        phi, se = map(float, re.fullmatch(r"(\S+) \(± (\S+)\)", rows["C"][1]).groups())
+        self.assertAlmostEqual(phi, np.degrees(np.arctan(slope)), delta=0.006)
+        self.assertAlmostEqual(se, np.degrees(se_slope / (1 + slope**2)), delta=0.006)
+        self.assertAlmostEqual(float(rows["C"][4].rstrip("°")), phi - 31.0, delta=0.006)
+        self.assertNotIn("φ within the tolerance", compare.table(labs, at_mm=(5,)))
+
+    def test_verdict_against_the_tolerance(self):
+        for dphi, se, expected in ((1.0, 0.5, "yes"), (-1.8, 0.5, "yes (undecided"),
+                                   (3.0, 0.5, "no"), (2.85, 4.04, "no (undecided"),
+                                   (-2.3, 0.5, "no (undecided"), (3.0, float("nan"), "no")):
+            text = compare.verdict(dphi, se, 2.0)
+            self.assertTrue(text.startswith(expected), (dphi, se, text))
+            if "(" not in expected:
+                self.assertNotIn("undecided", text)
+        self.assertEqual(compare.verdict(2.5, 0.1, 3.0), "yes")
+
     def test_bad_sources_are_named(self):
         for text, msg in (("lab_a", "expected LABEL=DIR"), ("=x", "expected LABEL=DIR"),
                           (f"A={self.a}/absent", "is not a directory")):
@@ -111,12 +155,15 @@ class Compare(unittest.TestCase):
         self.assertEqual(rc, 0)
         self.assertIn("| τ at 5 mm | τ at 8 mm |", md.read_text())
         self.assertIn("c 1 kPa, φ 30°", md.read_text())
+        self.assertIn("Tolerance ±2° on φ", md.read_text())
         self.assertTrue(out.getvalue().startswith(md.read_text()))
         self.assertGreater(png.stat().st_size, 10000)
         for args, msg in ((["--at", "0,5"], "--at: expected shear displacements > 0"),
                           (["--at", "x"], "--at: expected"),
                           (["--target", "3300"], "--target: expected C_PA,PHI_DEG"),
                           (["--target", "a,b"], "--target: expected C_PA,PHI_DEG"),
+                          (["--target", "1000,30", "--tolerance", "0"],
+                           "--tolerance: expected a friction angle tolerance in"),
                           (["--md", str(Path(self.tmp.name) / "no" / "x.md")], "--md .*cannot write")):
             err = io.StringIO()
             with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
