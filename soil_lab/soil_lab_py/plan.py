@@ -366,6 +366,15 @@ def _plate_hold(hold, stages):
     return {"hold": _f(hold), "hold_stages": str(int(stages))}
 
 
+def plate_test_time_s(variables):
+    """A plate run's simulated length [s] from its variables: the gap, the loading with its holds,
+    the unloading and the reload at plate_speed (soil_lab/decks/lab_plate_schedule.in's t3)."""
+    v = {k: float(x) for k, x in variables.items()}
+    holds = v.get("hold_stages", 1.0) * v.get("hold", 0.0)
+    return ((v["gap"] + v["depth1"] + 2 * v["unload"] + v["depth2"] - v["depth1"])
+            / v["plate_speed"] + holds)
+
+
 SPEED_VARIABLES = {"plate": "plate_speed", "shear": "shear_speed", "repose": "lift_speed"}
 
 

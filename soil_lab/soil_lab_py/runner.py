@@ -27,7 +27,7 @@ from wheelsim_post import accepted_change, bed_hold, liggghts_log, mpi_launch, s
 from wheelsim_post.deck_files import deck_includes
 
 from .checkpoints import STATE, Checkpoints
-from .plan import LabInputError, SoilInfo
+from .plan import LabInputError, SoilInfo, plate_test_time_s
 
 DECKS = Path(__file__).resolve().parent.parent / "decks"
 # Tests whose decks write checkpoints (lab_start.in, lab_checkpoints.in, lab_run.in); the repose
@@ -38,6 +38,28 @@ SHEAR_START_FILE = "shear_start_step.txt"  # in.lab_shear's record of the step i
 OUTPUTS = {"plate": {"out_csv": "plate.csv"}, "shear": {"out_csv": "shear.csv"},
            "repose": {"out_dump": "repose.dump"}}  # each test's deck output, in its run folder
 DEFAULT_CHECKPOINTS = 10  # restart files over a plate or shear run: at most 10 % of it is redone
+
+
+def _progress(run, d, elapsed_s):
+    """How far a plate or shear run had come `elapsed_s` [s] of simulated time after its start
+    (its checkpoint), for the operator who parks it: a plate's share of its schedule, a shear
+    box's displacement of its travel (from its CSV), so that a run near its end is seen as such."""
+    if run.test == "plate":
+        total = plate_test_time_s(run.variables)
+        return f"t {elapsed_s:.2f} of {total:.2f} s simulated, {100 * elapsed_s / total:.0f} %"
+    distance = float(run.variables["shear_distance"])
+    j = phase = None
+    with open(d / OUTPUTS["shear"]["out_csv"]) as f:
+        for line in f:   # time_s displacement_m ... phase; time from the run's first start
+            if line.startswith("#") or not line.strip():
+                continue
+            cells = line.split()
+            if float(cells[0]) > elapsed_s * (1 + 1e-9):
+                break
+            j, phase = float(cells[1]), int(float(cells[-1]))
+    if j is None or phase == 1:
+        return "consolidating under its lid"
+    return f"shear j {j * 1e3:.1f} of {distance * 1e3:.1f} mm, {100 * j / distance:.0f} %"
 
 
 class LabRunError(RuntimeError):
@@ -278,11 +300,12 @@ class Lab:
             if c is None:
                 continue
             start, step, path = c
+            progress = _progress(run, d, (step - start) * plan.soil.dt_s)
             kept = self.archive / run.name
             before = step_archive.parked(kept)
             if before is not None and before.get("step") == step:
                 same += 1
-                self.say(f"{run.name}: step {step} is parked already")
+                self.say(f"{run.name}: step {step} is parked already ({progress})")
                 continue
             files = [str(path.relative_to(d)), f"checkpoints/{STATE}",
                      OUTPUTS[run.test]["out_csv"]]
@@ -291,8 +314,8 @@ class Lab:
             written = step_archive.park(d, kept, files, {
                 "step": step, "start_step": start, "time_s": (step - start) * plan.soil.dt_s})
             parked += 1
-            self.say(f"{run.name}: parked at step {step} ({step - start} steps into the run; "
-                     f"{written / 1e6:.1f} MB in {kept / step_archive.PARKED})")
+            self.say(f"{run.name}: parked at step {step} ({step - start} steps into the run, "
+                     f"{progress}; {written / 1e6:.1f} MB in {kept / step_archive.PARKED})")
         self.say(f"--park: {parked} run(s) parked, {same} unchanged"
                  + ("" if parked or same else " (no unfinished run has a complete checkpoint)"))
         return 0

@@ -76,6 +76,12 @@ def wall_gran_reference(out, build, lab_holds):
     run, = [r for r in plan.make_plan(info, ("plate",), "quick", plate_hold=HOLD_S,
                                       plate_hold_stages=HOLD_STAGES).runs
             if r.name == "plate_b0.032"]
+    # the schedule's length as the lab computes it for its parking messages (runner._progress)
+    # against the deck's: the last CSV row of the held plate ends its reload
+    t_last = float((out / run.name / "plate.csv").read_text().splitlines()[-1].split()[0])
+    t_plan = plan.plate_test_time_s(run.variables)
+    check(abs(t_last - t_plan) < 0.01 * t_plan,
+          f"plan.plate_test_time_s {t_plan:.4f} s is the deck's schedule (last CSV row {t_last:.4f} s)")
     work = out / "wall_gran"
     work.mkdir(exist_ok=True)
     b, _, t = run.meshes["plate_mesh"][1:4]
@@ -161,6 +167,9 @@ def main():
     parked = arch / "shear_s3000" / "parked" / "parked.json"
     record = json.loads(parked.read_text()) if parked.is_file() else {}
     names = sorted(f["path"] for f in record.get("files", []))
+    check(re.search(r"shear_s3000: parked at step \d+ \(\d+ steps into the run, (shear j "
+                    r"[\d.]+ of [\d.]+ mm, \d+ %|consolidating under its lid);", r.stdout)
+          is not None, f"--park says how far the box had come ({r.stdout[-300:]})")
     check(r.returncode == 0 and "shear_s3000: parked at step" in r.stdout and len(names) == 4
           and {"checkpoints/state.json", "shear.csv", "shear_start_step.txt"} < set(names),
           f"--park kept the killed box's newest checkpoint, state, CSV and start record ({names}; "

@@ -272,5 +272,35 @@ class Provenance(unittest.TestCase):
         self.assertEqual(shlex.split(command), argv)
 
 
+class ParkProgress(unittest.TestCase):
+    """--park says how far each run it parks had come (runner._progress): a plate's share of its
+    schedule, a shear box's displacement over its travel, read off its CSV at the checkpoint."""
+
+    def test_plate_share_of_its_schedule(self):
+        from soil_lab_py import plan
+        variables = {"plate_speed": "0.02", "gap": "0.005", "depth1": "0.04", "unload": "0.01",
+                     "depth2": "0.06"}
+        # 5 mm of gap + 40 mm down, 10 mm up, 30 mm down again, at 20 mm/s
+        self.assertAlmostEqual(plan.plate_test_time_s(variables), 4.25)
+        self.assertAlmostEqual(plan.plate_test_time_s({**variables, "hold": "0.5",
+                                                       "hold_stages": "3"}), 5.75)
+        run = plan.Run("plate_b0.1", "plate", "in.lab_plate", "plate", {}, variables, {})
+        self.assertEqual(runner._progress(run, None, 3.405),
+                         "t 3.40 of 4.25 s simulated, 80 %")
+
+    def test_shear_displacement_at_the_checkpoint(self):
+        import synthetic as syn
+        from soil_lab_py import plan
+        with tempfile.TemporaryDirectory() as tmp:
+            syn.shear_run(tmp, 5e3)  # 50 rows consolidating, then j 0 -> 10 mm over 400 rows, 1 ms each
+            run = plan.Run("shear_s5000", "shear", "in.lab_shear", "shear", {},
+                           {"shear_distance": "0.012"}, {})
+            d = Path(tmp) / "shear_s5000"
+            self.assertEqual(runner._progress(run, d, 0.030), "consolidating under its lid")
+            # row 249 (t 0.249 s) is j = 199/399 x 10 mm = 4.99 mm; a later row is not taken
+            self.assertEqual(runner._progress(run, d, 0.2495),
+                             "shear j 5.0 of 12.0 mm, 42 %")
+
+
 if __name__ == "__main__":
     unittest.main()
