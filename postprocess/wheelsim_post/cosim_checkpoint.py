@@ -55,6 +55,23 @@ def rig_inputs_hash(ckpt_dir, step):
     return m.group(1) if m else "missing"
 
 
+def rig_progress(ckpt_dir, step):
+    """(phase name, rig time [s], test start [s] or None) of the rig's half of `step`: its lines
+    `t sim/phase_name P`, `n sim/time 1 T`, `n sim/test_start 1 T0` (nan before the test phase;
+    wheel_dynamics' RigSimulation::save_checkpoint). KeyError names a missing line."""
+    text = (Path(ckpt_dir) / RIG.format(s=step)).read_text()
+
+    def line(kind, key):
+        m = re.search(rf"(?m)^{kind} {re.escape(key)} (.*)$", text)
+        if m is None:
+            raise KeyError(f"{RIG.format(s=step)}: no '{kind} {key}' line")
+        return m.group(1).split()
+
+    start = float(line("n", "sim/test_start")[1])
+    return (line("t", "sim/phase_name")[0], float(line("n", "sim/time")[1]),
+            None if start != start else start)
+
+
 def resume_step(ckpt_dir, inputs_hash, warn=lambda msg: print(msg, file=sys.stderr)):
     """The step a resume with `inputs_hash` continues from: None when ckpt_dir holds no half at
     all; CheckpointError when no step is complete, or the step's halves disagree with each other

@@ -22,7 +22,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
 from pathlib import Path
 
-from wheelsim_post import bed_hold, mpi_launch, step_archive
+from wheelsim_post import bed_hold, cosim_checkpoint, mpi_launch, step_archive
 from wheelsim_post.deck_files import deck_includes
 
 from . import active_domain, archive, estimate, health, toml_out, watchdog
@@ -119,6 +119,20 @@ def _last_error(log):
             return line.strip()
     return lines[-1].strip() if lines else ""
 
+
+
+def _park_progress(point, point_dir, step):
+    """How far a point had come at checkpoint `step`, for whoever parks it: its rig phase and, in
+    the test phase, the test time of run.duration (a point near its end is then seen as such)."""
+    try:
+        phase, t, t0 = cosim_checkpoint.rig_progress(point_dir / archive.CHECKPOINTS, step)
+    except (OSError, KeyError, ValueError, IndexError) as e:
+        return f"progress unknown: {e}"
+    duration = point.rig.get("run", {}).get("duration")
+    if phase != "test" or t0 is None or not isinstance(duration, (int, float)) or duration <= 0:
+        return f"{phase} phase, t {t:.3f} s simulated"
+    return (f"test phase, {t - t0:.3f} of {duration:g} s, {100 * (t - t0) / duration:.0f} %; "
+            f"t {t:.3f} s simulated")
 
 class Interrupted(Exception):
     pass
@@ -943,13 +957,14 @@ class Runner:
                 return 1
             if step is None:
                 continue
+            progress = _park_progress(p, d, step)
             if written:
                 parked += 1
-                self.say(f"wheel-sweep: parked {p.reldir} at step {step} "
-                         f"({written / 1e6:.1f} MB in {self.archive / p.reldir / 'parked'})")
+                self.say(f"wheel-sweep: parked {p.reldir} at step {step} ({progress}; "
+                         f"{written / 1e6:.1f} MB in {self.archive / p.reldir / 'parked'})")
             else:
                 same += 1
-                self.say(f"wheel-sweep: {p.reldir}: step {step} is parked already")
+                self.say(f"wheel-sweep: {p.reldir}: step {step} is parked already ({progress})")
         self.say(f"wheel-sweep: --park: {parked} point(s) parked, {same} unchanged"
                  + ("" if parked or same else " (no unfinished point has a checkpoint)"))
         return 0

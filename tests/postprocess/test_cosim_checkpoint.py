@@ -98,6 +98,18 @@ class Resume(unittest.TestCase):
         with self.assertRaisesRegex(cc.CheckpointError, "an input changed"):
             self.resume("c" * 64)
 
+    def test_the_rig_halfs_progress(self):
+        # the lines RigSimulation::save_checkpoint writes (wheel_dynamics/src/rig_simulation.cpp)
+        body = ("wheelsim-rig-checkpoint 1\nn sim/time 1 1.25\nn sim/test_start 1 {t0}\n"
+                "i sim/phase {k}\nt sim/phase_name {name}\nt inputs_hash " + HASH + "\nend\n")
+        (self.d / "rig-100.ckpt").write_text(body.format(t0="0.75", k=3, name="test"))
+        self.assertEqual(cc.rig_progress(self.d, 100), ("test", 1.25, 0.75))
+        (self.d / "rig-100.ckpt").write_text(body.format(t0="nan", k=1, name="settle"))
+        self.assertEqual(cc.rig_progress(self.d, 100), ("settle", 1.25, None))
+        (self.d / "rig-100.ckpt").write_text("t inputs_hash " + HASH + "\n")
+        with self.assertRaisesRegex(KeyError, "rig-100.ckpt: no 'n sim/test_start' line"):
+            cc.rig_progress(self.d, 100)
+
     def test_the_command_wheel_cosim_calls(self):
         def run(*args):
             return subprocess.run([sys.executable, "-m", "wheelsim_post.cosim_checkpoint", *args],

@@ -1357,6 +1357,10 @@ def case_dem_park(a, work):
     r = run_sweep(a, cfg, "--out-dir", str(out1), "--archive", str(arch), "--park", timeout=120)
     check(r.returncode == 0 and f"step {step} is parked already" in r.stdout,
           "a second --park re-parked the same step")
+    # the progress, read off the real rig's checkpoint (its phase; in the test phase the test time)
+    check(re.search(rf"step {step} is parked already \(((release|settle|ramp) phase,|test phase, "
+                    r"[\d.]+ of [\d.]+ s, \d+ %;) t [\d.]+ s simulated\)", r.stdout) is not None,
+          f"--park names the point's phase and progress ({r.stdout[-300:]})")
     # a new machine: nothing of out1
     r = run_sweep(a, cfg, "--out-dir", str(out2), "--archive", str(arch), timeout=600)
     check(r.returncode == 0, "the sweep resumed from the parked checkpoint failed")

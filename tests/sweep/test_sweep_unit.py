@@ -1235,6 +1235,28 @@ def case_resumed_wall(a, work):
     check(_run_wall_time(work / "missing.h5") is None, "a missing file: not None")
 
 
+
+def case_park_progress(a, work):
+    """What --park says of a point's progress (runner._park_progress) from the rig's half of its
+    checkpoint: the phase and rig time before the test; in the test the test time of
+    run.duration; a missing checkpoint named, not raised."""
+    from types import SimpleNamespace as NS
+    from wheelsim_sweep.runner import _park_progress
+    ckpt = work / "point" / "cosim" / "checkpoints"
+    ckpt.mkdir(parents=True)
+    point = NS(rig={"run": {"duration": 0.5}})
+
+    def rig(time_s, t0, name):
+        (ckpt / "rig-40.ckpt").write_text(f"n sim/time 1 {time_s}\nn sim/test_start 1 {t0}\n"
+                                          f"t sim/phase_name {name}\nend\n")
+        return _park_progress(point, work / "point", 40)
+    for got, want in ((rig(0.3, "nan", "settle"), "settle phase, t 0.300 s simulated"),
+                      (rig(1.0, 0.8, "test"), "test phase, 0.200 of 0.5 s, 40 %; t 1.000 s simulated")):
+        check(got == want, f"{got!r}, expected {want!r}")
+    got = _park_progress(point, work / "point", 41)
+    check(got.startswith("progress unknown:") and "rig-41.ckpt" in got, got)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("case")
