@@ -120,7 +120,6 @@ def _last_error(log):
     return lines[-1].strip() if lines else ""
 
 
-
 def _park_progress(point, point_dir, step):
     """How far a point had come at checkpoint `step`, for whoever parks it: its rig phase and, in
     the test phase, the test time of run.duration (a point near its end is then seen as such)."""
@@ -133,6 +132,7 @@ def _park_progress(point, point_dir, step):
         return f"{phase} phase, t {t:.3f} s simulated"
     return (f"test phase, {t - t0:.3f} of {duration:g} s, {100 * (t - t0) / duration:.0f} %; "
             f"t {t:.3f} s simulated")
+
 
 class Interrupted(Exception):
     pass
