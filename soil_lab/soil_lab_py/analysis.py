@@ -1155,29 +1155,50 @@ class ShearStrength:
     tau_peaks_Pa: tuple
     K_m: tuple
     where: str = ""  #: "" for the lab directory itself, else the other lab it was taken from
+    declared_soil: str = ""  #: the --shear-soil name the boxes were run under ("": this soil's)
 
 
 def shear_strength(r: Results):
     """The shear boxes of the lab `r` as a ShearStrength (None without 3 boxes); unstable boxes
     are an error."""
-    if r.mc_peak is None:
-        return None
-    unstable = shear_stability_errors(r.shears)
+    return None if r.mc_peak is None else _shear_strength_of(r.shears, r.directory)
+
+
+def _shear_strength_of(shears, where):
+    """The boxes `shears` (read_shears' records) as a ShearStrength; unstable boxes are an error
+    naming `where`."""
+    unstable = shear_stability_errors(shears)
     if unstable:
-        raise LabResultError(f"{r.directory}: no SCM file from unstable shear boxes: "
+        raise LabResultError(f"{where}: no SCM file from unstable shear boxes: "
                              + "; ".join(unstable))
-    return ShearStrength(tuple(s["sigma_Pa"] for s in r.shears),
-                         tuple(s["peak"].tau_peak_Pa for s in r.shears),
-                         tuple(s["janosi"].K_m for s in r.shears if s["janosi"] is not None))
+    return ShearStrength(tuple(s["sigma_Pa"] for s in shears),
+                         tuple(s["peak"].tau_peak_Pa for s in shears),
+                         tuple(s["janosi"].K_m for s in shears if s["janosi"] is not None))
 
 
-def shear_strength_from(path, soil_name):
+def shear_strength_from(path, soil_name, declared_soil=None):
     """The shear boxes of another lab of the soil `soil_name`: a lab directory (its shear runs, or
-    the results.toml `soil-lab report` wrote in it, e.g. a committed soil_lab/results/<soil>/) or
-    a results.toml file. For plates pressed in a lab of their own (`--plate-depth`) whose shear
-    boxes were measured in the standard lab (docs/soil-lab.md, "SCM soil file from DEM")."""
+    the results.toml `soil-lab report` wrote in it, e.g. a committed soil_lab/results/<soil>/), a
+    results.toml file, or a folder of archived boxes (shear_s*/ with shear.csv and done.json, as
+    `--archive` keeps them: they record no soil name). For plates pressed in a lab of their own
+    (`--plate-depth`) whose shear boxes were measured in the standard lab (docs/soil-lab.md, "SCM
+    soil file from DEM").
+
+    `declared_soil` (--shear-soil NAME): the boxes were run under the soil name NAME, a recipe the
+    caller vouches is this soil's (a calibration trial later shipped under the soil's own name):
+    accepted where the source names NAME (or, an archive folder, no name), recorded in the
+    result (ShearStrength.declared_soil) and so in the SCM file's [source]."""
     p = Path(path)
-    if p.is_dir() and any(_runs(p, "shear_s*")):
+    if p.is_dir() and any(_runs(p, "shear_s*")) and not (p / "soil.toml").is_file():
+        if not declared_soil:
+            raise LabResultError(f"--shear-from {p}: a folder of archived shear boxes records no "
+                                 f"soil name: give --shear-soil NAME, the soil they were run as "
+                                 f"(if that is this lab's soil, '{soil_name}', say so)")
+        shears, _ = read_shears(p)
+        if shear_stress_count(shears) < 3:
+            raise LabResultError(f"--shear-from {p}: fewer than 3 finished shear boxes")
+        shear, name = _shear_strength_of(shears, f"--shear-from {p}"), declared_soil
+    elif p.is_dir() and any(_runs(p, "shear_s*")):
         other = analyse(p)
         shear, name = shear_strength(other), other.soil.get("name")
         if shear is None:
@@ -1214,9 +1235,16 @@ def shear_strength_from(path, soil_name):
             raise LabResultError(f"--shear-from {f}: unstable shear box(es) at "
                                  f"{', '.join(unstable)} (see its [shear] warnings): no SCM file "
                                  "from them")
+    if declared_soil:
+        if name != declared_soil:
+            raise LabResultError(f"--shear-from {p}: its soil is {name!r}, not the --shear-soil "
+                                 f"{declared_soil!r}")
+        return replace(shear, where=str(p),
+                       declared_soil="" if declared_soil == soil_name else declared_soil)
     if name != soil_name:
         raise LabResultError(f"--shear-from {p}: its soil is {name!r}, this lab's is "
-                             f"{soil_name!r}: both must be the same DEM soil")
+                             f"{soil_name!r}: both must be the same DEM soil (boxes of the same "
+                             f"recipe run under another name: --shear-soil {name})")
     return replace(shear, where=str(p))
 
 
@@ -1269,6 +1297,9 @@ def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None
     sigmas = ", ".join(f"{s / 1e3:.3g}" for s in shear.sigmas_Pa)
     k_values = ", ".join(f"{k:.3g}" for k in shear.K_m)
     lab = f" (the lab {shear.where})" if shear.where else ""
+    if shear.declared_soil:
+        lab = (f" (the lab {shear.where}: its soil '{shear.declared_soil}', the same recipe "
+               f"under another name as declared with --shear-soil)")
     mc = fits.fit_mohr_coulomb(shear.sigmas_Pa, shear.tau_peaks_Pa)
     sources = {
         "bekker": scm_file.dem_source(dem, "plate sinkage", bekker, how),

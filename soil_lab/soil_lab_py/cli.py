@@ -4,7 +4,7 @@
                     [--normal-stresses S1,S2,S3] [--bed-var NAME=VALUE ...] [--archive DIR]
                     [--accept-change FILE --reason TEXT] [--stall-timeout MIN] [--build-dir D]
   soil-lab report DIR
-  soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB] [--relaxed]
+  soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB [--shear-soil NAME]] [--relaxed]
   soil-lab compare LABEL=DIR [LABEL=DIR ...] [--at MM,MM,...] [--target C_PA,PHI_DEG]
                    [--tolerance DEG] [--md FILE] [--png FILE]
 
@@ -449,7 +449,12 @@ def main(argv=None):
     s.add_argument("--name", help="the SCM soil's name (default: '<DEM soil> (fitted from DEM)')")
     s.add_argument("--shear-from", metavar="LAB",
                    help="take the shear boxes (c, phi, K) from another lab of the same soil: its "
-                        "directory or results.toml (for a lab that pressed plates only)")
+                        "directory, results.toml or a folder of archived boxes (for a lab that "
+                        "pressed plates only)")
+    s.add_argument("--shear-soil", metavar="NAME",
+                   help="with --shear-from: its boxes ran as the soil NAME, which you vouch is "
+                        "this soil's recipe under another name (a trial later shipped); recorded "
+                        "in the file's [source]")
     s.add_argument("--relaxed", action="store_true",
                    help="fit Bekker to the pressures at the ends of the plates' holds (a lab run "
                         "with --plate-hold and --plate-hold-stages >= 2) instead of the loading")
@@ -480,7 +485,9 @@ def main(argv=None):
             return _compare(a)
         _scm_out(a.out)  # before the analysis
         r = analysis.analyse(a.dir)
-        shear = (analysis.shear_strength_from(a.shear_from, r.soil.get("name"))
+        if a.shear_soil and not a.shear_from:
+            raise plan.LabInputError("--shear-soil: only with --shear-from (the boxes it names)")
+        shear = (analysis.shear_strength_from(a.shear_from, r.soil.get("name"), a.shear_soil)
                  if a.shear_from else None)
         try:
             path = analysis.write_scm(r, a.out, a.name, shear, a.relaxed)

@@ -360,6 +360,47 @@ class Analysis(unittest.TestCase):
         with self.assertRaisesRegex(analysis.LabResultError, "has shear boxes of its own"):
             analysis.write_scm(r, Path(tempfile.mkdtemp()) / "scm.toml", shear=shear)
 
+    def test_shear_boxes_run_under_another_name_are_taken_when_declared(self):
+        # A trial later shipped under the soil's own name: its boxes were run as 'trial'.
+        r = self.lab(False)
+        summary = self.shear_summary("trial")
+        with self.assertRaisesRegex(analysis.LabResultError,
+                                    "its soil is 'trial', this lab's is 'synthetic'.*"
+                                    "--shear-soil trial"):
+            analysis.shear_strength_from(summary, "synthetic")
+        with self.assertRaisesRegex(analysis.LabResultError,
+                                    "its soil is 'trial', not the --shear-soil 'other'"):
+            analysis.shear_strength_from(summary, "synthetic", "other")
+        # an archive folder of boxes (--archive's: shear_s*/ with shear.csv and done.json, no
+        # soil.toml) records no name: refused without --shear-soil, taken with it
+        boxes = Path(tempfile.mkdtemp())
+        for sigma in (5e3, 1e4, 2e4):
+            syn.shear_run(boxes, sigma, c=1e3, phi_deg=30.0)
+        with self.assertRaisesRegex(analysis.LabResultError, "records no soil name: give "
+                                    "--shear-soil NAME.*'synthetic'"):
+            analysis.shear_strength_from(boxes, "synthetic")
+        for where in (summary, boxes):
+            shear = analysis.shear_strength_from(where, "synthetic", "trial")
+            self.assertEqual(shear.declared_soil, "trial")
+            out = Path(tempfile.mkdtemp()) / "scm.toml"
+            analysis.write_scm(r, out, shear=shear)
+            data = tomllib.loads(out.read_text())
+            # the synthetic boxes' peaks: 5 % running means of Janosi curves at 1 - exp(-10)
+            self.assertAlmostEqual(data["mohr_coulomb"]["friction_angle"], 30.0, delta=0.05)
+            self.assertAlmostEqual(data["mohr_coulomb"]["cohesion"], 1000.0, delta=20.0)
+            self.assertIn(f"(the lab {where}: its soil 'trial', the same recipe under another "
+                          "name as declared with --shear-soil)",
+                          data["source"]["mohr_coulomb"]["friction_angle"])
+        # declaring the soil's own name changes nothing
+        self.assertEqual(analysis.shear_strength_from(self.shear_summary(), "synthetic",
+                                                      "synthetic").declared_soil, "")
+        # a folder with fewer than 3 stresses
+        two = Path(tempfile.mkdtemp())
+        for sigma in (5e3, 1e4):
+            syn.shear_run(two, sigma)
+        with self.assertRaisesRegex(analysis.LabResultError, "fewer than 3 finished shear boxes"):
+            analysis.shear_strength_from(two, "synthetic", "trial")
+
     def test_particles_lost_from_the_shear_box_are_counted_and_reported(self):
         # A log as in.lab_shear writes it: an earlier thermo block (the consolidation's settle),
         # then the shear's, then LIGGGHTS' loop summary.

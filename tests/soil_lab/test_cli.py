@@ -308,6 +308,12 @@ class DamagedLab(unittest.TestCase):
         self.assertFalse(out.parent.exists())
         self.assertRefused(f"--out {self.lab}: is a directory", "scm", self.lab, "--out", self.lab)
 
+    def test_shear_soil_needs_shear_from(self):
+        out = Path(self.tmp.name) / "x.toml"
+        self.assertRefused("--shear-soil: only with --shear-from", "scm", self.lab, "--out", out,
+                           "--shear-soil", "trial")
+        self.assertFalse(out.exists())
+
 
 if __name__ == "__main__":
     unittest.main()
