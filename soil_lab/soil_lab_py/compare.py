@@ -47,9 +47,13 @@ def boxes(directory):
                                  "expected a lab directory or a folder of archived boxes")
     soil_toml = Path(directory) / "soil.toml"
     rho_p = analysis.read_soil(soil_toml).get("density_kg_m3") if soil_toml.is_file() else None
-    # a lab with replicate boxes (--shear-replicates): its first bed's, as a lab without them
-    return {b["sigma_target_Pa"]: {**b, "particle_density_kg_m3": rho_p} for b in found
-            if b["replicate"] == 1}
+    # a lab with replicate boxes (--shear-replicates): its first bed's, as a lab without them, each
+    # with the peaks of every bed at its stress for the Mohr-Coulomb fit (fit_table)
+    return {b["sigma_target_Pa"]: {**b, "particle_density_kg_m3": rho_p,
+                                   "bed_peaks": [(r["replicate"], r["sigma_Pa"],
+                                                  r["peak"].tau_peak_Pa) for r in found
+                                                 if r["sigma_target_Pa"] == b["sigma_target_Pa"]]}
+            for b in found if b["replicate"] == 1}
 
 
 def load(sources):
@@ -121,20 +125,25 @@ def table(labs, at_mm=DEFAULT_AT_MM, target=None, tolerance_deg=DEFAULT_TOLERANC
 
 def fit_table(labs, target=None, tolerance_deg=DEFAULT_TOLERANCE_DEG):
     """Markdown: a row per source, the Mohr–Coulomb fit through its peaks (σ on the plane, the
-    lab's peak τ); a source with boxes at fewer than three stresses gets no fit. With `target`
-    (c [Pa], φ [deg]) φ and c against it, and φ judged against ±tolerance_deg (verdict)."""
+    lab's peak τ; of every bed where the source has replicate boxes, so that its standard error
+    holds their scatter); a source with boxes at fewer than three stresses gets no fit. With
+    `target` (c [Pa], φ [deg]) φ and c against it, and φ judged against ±tolerance_deg
+    (verdict)."""
     lines = ["### Mohr–Coulomb through the peaks", "",
              "| source | boxes | φ [°] (± SE) | c [kPa] (± SE) | R² |"
              + (" φ − target | c against target | φ within the tolerance? |" if target else ""),
              "|---" * (5 + 3 * bool(target)) + "|"]
     for label, bs in labs:
-        sigma = [b["sigma_Pa"] for _, b in sorted(bs.items())]
-        if len(sigma) < 3:
-            lines.append(f"| {label} | {len(sigma)} | – (needs boxes at 3 stresses) | – | – |"
+        if len(bs) < 3:
+            lines.append(f"| {label} | {len(bs)} | – (needs boxes at 3 stresses) | – | – |"
                          + (" – | – | – |" if target else ""))
             continue
-        f = fits.fit_mohr_coulomb(sigma, [b["peak"].tau_peak_Pa for _, b in sorted(bs.items())])
-        row = (f"| {label} | {len(sigma)} | {f.friction_deg:.2f} (± {f.friction_se_deg:.2f}) | "
+        points = [p for _, b in sorted(bs.items()) for p in b.get("bed_peaks") or
+                  [(1, b["sigma_Pa"], b["peak"].tau_peak_Pa)]]
+        beds = len({bed for bed, _, _ in points})
+        f = fits.fit_mohr_coulomb([p[1] for p in points], [p[2] for p in points])
+        count = f"{len(points)}" + (f" ({beds} beds)" if beds > 1 else "")
+        row = (f"| {label} | {count} | {f.friction_deg:.2f} (± {f.friction_se_deg:.2f}) | "
                f"{f.cohesion_Pa / 1e3:.2f} (± {f.cohesion_se_Pa / 1e3:.2f}) | {f.r2:.3f} |")
         if target:
             dphi = f.friction_deg - target[1]
@@ -144,9 +153,11 @@ def fit_table(labs, target=None, tolerance_deg=DEFAULT_TOLERANCE_DEG):
                     f"{verdict(dphi, f.friction_se_deg, tolerance_deg)} |")
         lines.append(row)
     lines += ["", "SE: the fit's standard error from its residuals (n − 2 degrees of freedom: "
-              "one with three boxes, so an indication rather than a confidence interval); it "
-              "holds the scatter of the boxes about one line on one bed, not the scatter between "
-              "beds (--shear-replicates). Peaks: the lab's (the tables above)."
+              "one with three boxes, so an indication rather than a confidence interval); with "
+              "one bed it holds the boxes' scatter about one line on that bed, not the scatter "
+              "between beds, which a source with replicate beds (--shear-replicates) brings in: "
+              "its fit takes every bed's peaks. Peaks: the lab's (the tables above show the "
+              "first bed's)."
               + (f" Tolerance ±{tolerance_deg:g}° on φ (--tolerance)." if target else "")]
     return "\n".join(lines) + "\n"
 

@@ -126,6 +126,30 @@ class Compare(unittest.TestCase):
         self.assertAlmostEqual(float(rows["C"][4].rstrip("°")), phi - 31.0, delta=0.006)
         self.assertNotIn("φ within the tolerance", compare.table(labs, at_mm=(5,)))
 
+    def test_the_fit_takes_every_beds_peaks(self):
+        # D: a second bed (--shear-replicates) 10 % stronger at every stress: the per-stress
+        # tables show the first bed's boxes, the fit all six peaks (its SE their scatter)
+        d_dir = Path(self.tmp.name) / "lab_d"
+        for sigma in (5e3, 1e4, 2e4):
+            syn.shear_run(d_dir, sigma, c=1e3, phi_deg=30.0)
+            syn.shear_run(d_dir, sigma, c=1e3, phi_deg=30.0, tau_scale=1.1, replicate=2)
+        labs = compare.load([("D", d_dir)])
+        text = compare.table(labs, at_mm=(5,), target=(1e3, 30.0))
+        first = self.rows(text, 5)["D"]
+        self.assertAlmostEqual(float(first[1]), janosi(5e3, 1e3, 30.0, 0.005) / 1e3, delta=0.01)
+        row = self.rows(text, "Mohr–Coulomb through the peaks")["D"]
+        self.assertEqual(row[0], "6 (2 beds)")
+        pts = [p for _, b in sorted(labs[0][1].items()) for p in b["bed_peaks"]]
+        self.assertEqual(sorted(bed for bed, _, _ in pts), [1, 1, 1, 2, 2, 2])
+        x, y = np.array([p[1] for p in pts]), np.array([p[2] for p in pts])
+        sxx = ((x - x.mean()) ** 2).sum()
+        slope = ((x - x.mean()) * (y - y.mean())).sum() / sxx
+        se = np.sqrt(((y - y.mean() - slope * (x - x.mean())) ** 2).sum() / (len(x) - 2) / sxx)
+        phi, phi_se = map(float, re.fullmatch(r"(\S+) \(± (\S+)\)", row[1]).groups())
+        self.assertAlmostEqual(phi, np.degrees(np.arctan(slope)), delta=0.006)
+        self.assertAlmostEqual(phi_se, np.degrees(se / (1 + slope**2)), delta=0.006)
+        self.assertGreater(phi_se, 0.5)  # the beds' 10 % difference, not one bed's ~0
+
     def test_verdict_against_the_tolerance(self):
         for dphi, se, expected in ((1.0, 0.5, "yes"), (-1.8, 0.5, "yes (undecided"),
                                    (3.0, 0.5, "no"), (2.85, 4.04, "no (undecided"),
