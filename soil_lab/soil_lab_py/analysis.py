@@ -1248,14 +1248,43 @@ def shear_strength_from(path, soil_name, declared_soil=None):
     return replace(shear, where=str(p))
 
 
+def plate_speed_statement(r: Results, rate_dependent_ok=False):
+    """What the lab's quasi-static check of its plates says, for the SCM file's Bekker [source]:
+    each half-speed plate's change of the pressure at the end of loading against its tolerance,
+    or that no check was run. A failed check is a LabResultError unless `rate_dependent_ok`
+    (soil-lab scm --rate-dependent): a Bekker fit at a speed the pressure still depends on."""
+    checks = [q for q in r.quasi_static if q["run"].startswith("plate")]
+    if not checks:
+        return "plate speed not checked (no --speed-check half-speed plate in the lab)"
+    parts, failed = [], []
+    for q in checks:
+        verdict = "quasi-static" if q["passed"] else "NOT quasi-static"
+        parts.append(f"{q['run']} at half speed: {100 * q['difference']:+.1f} % at the end of "
+                     f"loading (tolerance {100 * q['tolerance']:g} %): {verdict}")
+        if not q["passed"]:
+            failed.append(parts[-1])
+    if failed and not rate_dependent_ok:
+        raise LabResultError(f"{r.directory}: the plates' speed check failed ({'; '.join(failed)}):"
+                             f" a Bekker fit at this speed depends on the speed; write it anyway, "
+                             f"said in its [source], with --rate-dependent")
+    return "speed check: " + "; ".join(parts)
+
+
 def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None,
-              relaxed=False):
+              relaxed=False, rate_dependent_ok=False):
     """An SCM soil file fitted to the DEM soil: its plates (their loading branches, or with
     `relaxed` the pressures at the ends of their holds), and its shear boxes or `shear`
-    (shear_strength_from another lab of the same soil)."""
+    (shear_strength_from another lab of the same soil). The Bekker [source] states the plates'
+    speed and its quasi-static check (plate_speed_statement: a failed check is refused unless
+    `rate_dependent_ok`)."""
     if r.bekker is None:
         raise LabResultError(f"{r.directory}: no plate sinkage results (2 plates): run the "
                              f"'plate' test first")
+    speeds = sorted({v for p in r.plates
+                     if isinstance(v := ((p.get("done") or {}).get("meta") or {}).get("speed_m_s"),
+                                   (int, float)) and v > 0})
+    speed_text = (f"pressed at {', '.join(f'{v:g}' for v in speeds)} m/s; " if speeds else "") + \
+        plate_speed_statement(r, rate_dependent_ok)
     widths = ", ".join(f"{p['b_m']:.3g}" for p in r.plates)
     if relaxed:
         bekker = r.bekker_relaxed
@@ -1302,7 +1331,7 @@ def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None
                f"under another name as declared with --shear-soil)")
     mc = fits.fit_mohr_coulomb(shear.sigmas_Pa, shear.tau_peaks_Pa)
     sources = {
-        "bekker": scm_file.dem_source(dem, "plate sinkage", bekker, how),
+        "bekker": scm_file.dem_source(dem, "plate sinkage", bekker, f"{how}; {speed_text}"),
         "mohr_coulomb": scm_file.dem_source(dem, "direct shear box, peak strength", mc,
                                             f"normal stresses {sigmas} kPa{lab}"),
         "janosi.shear_modulus": scm_file.dem_source(

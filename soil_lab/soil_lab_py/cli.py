@@ -4,7 +4,8 @@
                     [--normal-stresses S1,S2,S3] [--bed-var NAME=VALUE ...] [--archive DIR]
                     [--accept-change FILE --reason TEXT] [--stall-timeout MIN] [--build-dir D]
   soil-lab report DIR
-  soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB [--shear-soil NAME]] [--relaxed]
+  soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB [--shear-soil NAME]]
+               [--relaxed] [--rate-dependent]
   soil-lab compare LABEL=DIR [LABEL=DIR ...] [--at MM,MM,...] [--target C_PA,PHI_DEG]
                    [--tolerance DEG] [--md FILE] [--png FILE]
 
@@ -455,6 +456,9 @@ def main(argv=None):
                    help="with --shear-from: its boxes ran as the soil NAME, which you vouch is "
                         "this soil's recipe under another name (a trial later shipped); recorded "
                         "in the file's [source]")
+    s.add_argument("--rate-dependent", action="store_true",
+                   help="write the file although the lab's plate speed check failed (the plates' "
+                        "pressure still depends on their speed); its [source] says so")
     s.add_argument("--relaxed", action="store_true",
                    help="fit Bekker to the pressures at the ends of the plates' holds (a lab run "
                         "with --plate-hold and --plate-hold-stages >= 2) instead of the loading")
@@ -490,7 +494,7 @@ def main(argv=None):
         shear = (analysis.shear_strength_from(a.shear_from, r.soil.get("name"), a.shear_soil)
                  if a.shear_from else None)
         try:
-            path = analysis.write_scm(r, a.out, a.name, shear, a.relaxed)
+            path = analysis.write_scm(r, a.out, a.name, shear, a.relaxed, a.rate_dependent)
         except OSError as e:
             raise plan.LabInputError(f"--out {a.out}: cannot write it: {e.strerror}") from None
         print(f"soil-lab: wrote {path}")

@@ -131,6 +131,37 @@ class Analysis(unittest.TestCase):
         self.assertAlmostEqual(analysis.plate_end_pressure(plate) / p1[z1 >= 0.016].mean(), 1.0,
                                places=9)
 
+    def test_the_scm_file_states_the_plates_speed_check(self):
+        # No check: said. A half-speed twin 2 % softer: quasi-static, said. 20 % softer: refused
+        # without --rate-dependent, written and said with it.
+        shear = analysis.shear_strength_from(self.shear_summary(), "synthetic")
+
+        def scm(scale, **kw):
+            r = self.lab(False)
+            if scale is not None:
+                full, half = r.directory / "plate_b0.032", r.directory / "plate_b0.032_half"
+                half.mkdir()
+                t = np.loadtxt(full / "plate.csv", ndmin=2)
+                t[:, 2:4] *= scale
+                np.savetxt(half / "plate.csv", t, header="time_s sinkage_m force_N pressure_Pa "
+                           "contacts phase")
+                (half / "done.json").write_text(json.dumps(
+                    {"meta": {"b_m": 0.032, "half_of": "plate_b0.032"}, "wall_s": 2.0}))
+                r = analysis.analyse(r.directory)
+            out = Path(tempfile.mkdtemp()) / "scm.toml"
+            analysis.write_scm(r, out, shear=shear, **kw)
+            return tomllib.loads(out.read_text())["source"]["bekker"]["n"]
+        self.assertIn("plate speed not checked (no --speed-check half-speed plate in the lab)",
+                      scm(None))
+        self.assertIn("speed check: plate_b0.032 at half speed: -2.0 % at the end of loading "
+                      "(tolerance 5 %): quasi-static", scm(0.98))
+        with self.assertRaisesRegex(analysis.LabResultError,
+                                    r"speed check failed \(plate_b0.032 at half speed: -20.0 % .*"
+                                    r"NOT quasi-static\).*with --rate-dependent"):
+            scm(0.8)
+        self.assertIn("-20.0 % at the end of loading (tolerance 5 %): NOT quasi-static",
+                      scm(0.8, rate_dependent_ok=True))
+
     def test_shear_speed_check_compares_the_peaks(self):
         # Three boxes; the one at 10 kPa again at half speed with a 10 % lower, then a 3 % lower
         # plateau: the check reads -10 % (outside its 5 %) and -3 % (inside), relative.
