@@ -301,6 +301,46 @@ class ParkProgress(unittest.TestCase):
             self.assertEqual(runner._progress(run, d, 0.2495),
                              "shear j 5.0 of 12.0 mm, 42 %")
 
+    def test_progress_lines_while_a_run_goes(self):
+        # RunProgress (Lab.run's while_running): nothing before every_s of wall time; then the
+        # run's progress and, from its pace since the start, the wall time left
+        from soil_lab_py import plan
+        variables = {"plate_speed": "0.02", "gap": "0.005", "depth1": "0.04", "unload": "0.01",
+                     "depth2": "0.06"}   # 4.25 s simulated
+        run = plan.Run("plate_b0.1", "plate", "in.lab_plate", "plate", {}, variables, {})
+        with tempfile.TemporaryDirectory() as tmp:
+            d = Path(tmp)
+            csv = d / "plate.csv"
+            csv.write_text("# time_s sinkage_m force_N pressure_Pa contacts phase\n"
+                           "1.0 0.015 1 100 3 1\n")   # resumed at t 1.0 s
+            now, said = [0.0], []
+            report = runner.RunProgress(run, d, said.append, "[1/3] plate_b0.1", every_s=600.0,
+                                        clock=lambda: now[0])
+            report()
+            now[0] = 300.0
+            with open(csv, "a") as f:
+                f.write("1.5 0.02 1 100 3 1\n2.0 0.0")   # a partial last line is not read
+            report()
+            self.assertEqual(said, [])
+            now[0] = 600.0
+            report()
+            # 1.0 -> 1.5 s simulated in 600 s of wall: the 2.75 s left take 3300 s
+            self.assertEqual(said, ["[1/3] plate_b0.1: t 1.50 of 4.25 s simulated, 35 %, "
+                                    "~55 min left at this pace"])
+
+    def test_shear_progress_waits_for_the_shear(self):
+        import synthetic as syn
+        from soil_lab_py import plan
+        with tempfile.TemporaryDirectory() as tmp:
+            run = plan.Run("shear_s5000", "shear", "in.lab_shear", "shear", {},
+                           {"shear_distance": "0.012"}, {})
+            d = Path(tmp) / "shear_s5000"
+            d.mkdir()
+            self.assertEqual(runner._progress(run, d), "consolidating under its lid")  # no CSV
+            d.rmdir()
+            syn.shear_run(tmp, 5e3)   # its last row: j 10 mm
+            self.assertEqual(runner._progress(run, d), "shear j 10.0 of 12.0 mm, 83 %")
+
 
 if __name__ == "__main__":
     unittest.main()
