@@ -376,6 +376,8 @@ def plate_test_time_s(variables):
 
 
 SPEED_VARIABLES = {"plate": "plate_speed", "shear": "shear_speed", "repose": "lift_speed"}
+OUTPUTS = {"plate": {"out_csv": "plate.csv"}, "shear": {"out_csv": "shear.csv"},
+           "repose": {"out_dump": "repose.dump"}}  # each test's deck output, in its run folder
 
 
 def _half_speed_runs(runs, repose=True):

@@ -1,0 +1,77 @@
+"""How far a soil-lab run has come (soil_lab_py.progress): what --park says of each run it parks
+(a plate's share of its schedule, plan.plate_test_time_s; a shear box's displacement over its
+travel read off its CSV at the checkpoint, a later row not taken), and the line every 10 min of
+wall time while a run goes (RunProgress, with a fake clock: nothing before, then the progress and
+the wall time left at its pace)."""
+
+import tempfile
+import unittest
+from pathlib import Path
+
+import synthetic as syn
+from soil_lab_py import plan, progress
+
+
+class Progress(unittest.TestCase):
+    def test_plate_share_of_its_schedule(self):
+        variables = {"plate_speed": "0.02", "gap": "0.005", "depth1": "0.04", "unload": "0.01",
+                     "depth2": "0.06"}
+        # 5 mm of gap + 40 mm down, 10 mm up, 30 mm down again, at 20 mm/s
+        self.assertAlmostEqual(plan.plate_test_time_s(variables), 4.25)
+        self.assertAlmostEqual(plan.plate_test_time_s({**variables, "hold": "0.5",
+                                                       "hold_stages": "3"}), 5.75)
+        run = plan.Run("plate_b0.1", "plate", "in.lab_plate", "plate", {}, variables, {})
+        self.assertEqual(progress.run_progress(run, None, 3.405),
+                         "t 3.40 of 4.25 s simulated, 80 %")
+
+    def test_shear_displacement_at_the_checkpoint(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            syn.shear_run(tmp, 5e3)  # 50 rows consolidating, then j 0 -> 10 mm over 400 rows, 1 ms each
+            run = plan.Run("shear_s5000", "shear", "in.lab_shear", "shear", {},
+                           {"shear_distance": "0.012"}, {})
+            d = Path(tmp) / "shear_s5000"
+            self.assertEqual(progress.run_progress(run, d, 0.030), "consolidating under its lid")
+            # row 249 (t 0.249 s) is j = 199/399 x 10 mm = 4.99 mm; a later row is not taken
+            self.assertEqual(progress.run_progress(run, d, 0.2495),
+                             "shear j 5.0 of 12.0 mm, 42 %")
+
+    def test_progress_lines_while_a_run_goes(self):
+        # RunProgress (Lab.run's while_running): nothing before every_s of wall time; then the
+        # run's progress and, from its pace since the start, the wall time left
+        variables = {"plate_speed": "0.02", "gap": "0.005", "depth1": "0.04", "unload": "0.01",
+                     "depth2": "0.06"}   # 4.25 s simulated
+        run = plan.Run("plate_b0.1", "plate", "in.lab_plate", "plate", {}, variables, {})
+        with tempfile.TemporaryDirectory() as tmp:
+            d = Path(tmp)
+            csv = d / "plate.csv"
+            csv.write_text("# time_s sinkage_m force_N pressure_Pa contacts phase\n"
+                           "1.0 0.015 1 100 3 1\n")   # resumed at t 1.0 s
+            now, said = [0.0], []
+            report = progress.RunProgress(run, d, said.append, "[1/3] plate_b0.1", every_s=600.0,
+                                        clock=lambda: now[0])
+            report()
+            now[0] = 300.0
+            with open(csv, "a") as f:
+                f.write("1.5 0.02 1 100 3 1\n2.0 0.0")   # a partial last line is not read
+            report()
+            self.assertEqual(said, [])
+            now[0] = 600.0
+            report()
+            # 1.0 -> 1.5 s simulated in 600 s of wall: the 2.75 s left take 3300 s
+            self.assertEqual(said, ["[1/3] plate_b0.1: t 1.50 of 4.25 s simulated, 35 %, "
+                                    "~55 min left at this pace"])
+
+    def test_shear_progress_waits_for_the_shear(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            run = plan.Run("shear_s5000", "shear", "in.lab_shear", "shear", {},
+                           {"shear_distance": "0.012"}, {})
+            d = Path(tmp) / "shear_s5000"
+            d.mkdir()
+            self.assertEqual(progress.run_progress(run, d), "consolidating under its lid")  # no CSV
+            d.rmdir()
+            syn.shear_run(tmp, 5e3)   # its last row: j 10 mm
+            self.assertEqual(progress.run_progress(run, d), "shear j 10.0 of 12.0 mm, 83 %")
+
+
+if __name__ == "__main__":
+    unittest.main()
