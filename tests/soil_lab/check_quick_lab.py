@@ -76,7 +76,7 @@ def wall_gran_reference(out, build, lab_holds):
     run, = [r for r in plan.make_plan(info, ("plate",), "quick", plate_hold=HOLD_S,
                                       plate_hold_stages=HOLD_STAGES).runs
             if r.name == "plate_b0.032"]
-    # the schedule's length as the lab computes it for its parking messages (runner._progress)
+    # the schedule's length as the lab computes it for its parking messages (progress.run_progress)
     # against the deck's: the last CSV row of the held plate ends its reload
     t_last = float((out / run.name / "plate.csv").read_text().splitlines()[-1].split()[0])
     t_plan = plan.plate_test_time_s(run.variables)
