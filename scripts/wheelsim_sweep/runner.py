@@ -128,8 +128,10 @@ def _park_progress(point, point_dir, step):
     except (OSError, KeyError, ValueError, IndexError) as e:
         return f"progress unknown: {e}"
     duration = point.rig.get("run", {}).get("duration")
-    if phase != "test" or t0 is None or not isinstance(duration, (int, float)) or duration <= 0:
-        return f"{phase} phase, t {t:.3f} s simulated"
+    known = isinstance(duration, (int, float)) and duration > 0
+    if phase != "test" or t0 is None or not known:
+        return (f"{phase} phase, t {t:.3f} s simulated"
+                + (f", the {duration:g} s test phase to come" if known and phase != "test" else ""))
     return (f"test phase, {t - t0:.3f} of {duration:g} s, {100 * (t - t0) / duration:.0f} %; "
             f"t {t:.3f} s simulated")
 

@@ -1359,7 +1359,8 @@ def case_dem_park(a, work):
           "a second --park re-parked the same step")
     # the progress, read off the real rig's checkpoint (its phase; in the test phase the test time)
     check(re.search(rf"step {step} is parked already \(((release|settle|ramp) phase,|test phase, "
-                    r"[\d.]+ of [\d.]+ s, \d+ %;) t [\d.]+ s simulated\)", r.stdout) is not None,
+                    r"[\d.]+ of [\d.]+ s, \d+ %;) t [\d.]+ s simulated(, the [\d.]+ s test phase "
+                    r"to come)?\)", r.stdout) is not None,
           f"--park names the point's phase and progress ({r.stdout[-300:]})")
     # a new machine: nothing of out1
     r = run_sweep(a, cfg, "--out-dir", str(out2), "--archive", str(arch), timeout=600)

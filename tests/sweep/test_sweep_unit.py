@@ -1250,7 +1250,8 @@ def case_park_progress(a, work):
         (ckpt / "rig-40.ckpt").write_text(f"n sim/time 1 {time_s}\nn sim/test_start 1 {t0}\n"
                                           f"t sim/phase_name {name}\nend\n")
         return _park_progress(point, work / "point", 40)
-    for got, want in ((rig(0.3, "nan", "settle"), "settle phase, t 0.300 s simulated"),
+    for got, want in ((rig(0.3, "nan", "settle"),
+                       "settle phase, t 0.300 s simulated, the 0.5 s test phase to come"),
                       (rig(1.0, 0.8, "test"), "test phase, 0.200 of 0.5 s, 40 %; t 1.000 s simulated")):
         check(got == want, f"{got!r}, expected {want!r}")
     got = _park_progress(point, work / "point", 41)
