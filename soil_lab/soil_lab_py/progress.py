@@ -76,6 +76,14 @@ class RunProgress:
         self.t0 = self.last = self.t_f0 = self.f0 = None
 
     def __call__(self):
+        """Called every few seconds while the run goes; a progress it cannot read (a CSV being
+        written, a variable it cannot parse) is skipped: reporting must never stop the run."""
+        try:
+            self._report()
+        except (OSError, ValueError, KeyError, IndexError, ZeroDivisionError):
+            pass
+
+    def _report(self):
         now = self.clock()
         if self.t0 is None:   # the run's start (or its resume: the CSV's rows to its checkpoint)
             self.t0 = self.last = self.t_f0 = now

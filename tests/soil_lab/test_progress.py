@@ -60,6 +60,15 @@ class Progress(unittest.TestCase):
             # 1.0 -> 1.5 s simulated in 600 s of wall: the 2.75 s left take 3300 s
             self.assertEqual(said, ["[1/3] plate_b0.1: t 1.50 of 4.25 s simulated, 35 %, "
                                     "~55 min left at this pace"])
+            # a run whose progress cannot be read (here: a schedule variable that is no number)
+            # is not stopped by its report
+            bad = plan.Run("plate_b0.1", "plate", "in.lab_plate", "plate", {},
+                           {**variables, "gap": "x"}, {})
+            quiet = progress.RunProgress(bad, d, said.append, "x", clock=lambda: now[0])
+            quiet()
+            now[0] = 1300.0
+            quiet()
+            self.assertEqual(len(said), 1)
 
     def test_shear_progress_waits_for_the_shear(self):
         with tempfile.TemporaryDirectory() as tmp:
