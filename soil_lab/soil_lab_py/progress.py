@@ -3,6 +3,7 @@ or waits for it (a line every 10 min while it goes): a plate's simulated time of
 (plan.plate_test_time_s), a shear box's displacement of its travel, read off the run's CSV
 (docs/soil-lab.md "Checkpoints" and "Parking a stopped run")."""
 
+import math
 import os
 import time
 
@@ -44,6 +45,22 @@ def progress_fraction(run, d, elapsed_s=None):
         return "consolidating under its lid", None
     return (f"shear j {j * 1e3:.1f} of {distance * 1e3:.1f} mm, {100 * j / distance:.0f} %",
             j / distance)
+
+
+def run_length(run, dt_s):
+    """A plate or shear run's simulated length as text, for the line that starts it: a plate's
+    schedule (plate_test_time_s) in seconds and steps; a box's travel at its speed plus its
+    consolidation (at most consolidate_max, in.lab_shear); '' for another test."""
+    v = run.variables
+    if run.test == "plate":
+        t = plate_test_time_s(v)
+        return f"{t:.3g} s simulated = {math.ceil(t / dt_s):,} steps".replace(",", " ")
+    if run.test == "shear":
+        t = float(v["shear_distance"]) / float(v["shear_speed"])
+        cap = float(v.get("consolidate_max", 0.0))
+        return (f"consolidation <= {cap:g} s + shear {t:.3g} s simulated = <= "
+                f"{math.ceil((t + cap) / dt_s):,} steps").replace(",", " ")
+    return ""
 
 
 def _last_csv_row(path):

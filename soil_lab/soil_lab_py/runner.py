@@ -28,7 +28,7 @@ from wheelsim_post.deck_files import deck_includes
 
 from .checkpoints import STATE, Checkpoints
 from .plan import OUTPUTS, LabInputError, SoilInfo
-from .progress import RunProgress, run_progress
+from .progress import RunProgress, run_length, run_progress
 
 DECKS = Path(__file__).resolve().parent.parent / "decks"
 # Tests whose decks write checkpoints (lab_start.in, lab_checkpoints.in, lab_run.in); the repose
@@ -464,7 +464,8 @@ class Lab:
                 self.say(f"{progress}{run.name}: resuming from its checkpoint at step "
                          f"{ckpt.resumed_step} ({ckpt.resumed_step - ckpt.start_step} steps done)")
         if not (ckpt and ckpt.resuming):
-            self.say(f"{progress}{run.name}: running")
+            length = run_length(run, soil.dt_s)
+            self.say(f"{progress}{run.name}: running" + (f" ({length})" if length else ""))
         t0 = time.monotonic()
         watch = None
         if ckpt:

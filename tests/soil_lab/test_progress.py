@@ -21,6 +21,12 @@ class Progress(unittest.TestCase):
         self.assertAlmostEqual(plan.plate_test_time_s({**variables, "hold": "0.5",
                                                        "hold_stages": "3"}), 5.75)
         run = plan.Run("plate_b0.1", "plate", "in.lab_plate", "plate", {}, variables, {})
+        self.assertEqual(progress.run_length(run, 1e-4), "4.25 s simulated = 42 500 steps")
+        box = plan.Run("shear_s5000", "shear", "in.lab_shear", "shear", {},
+                       {"shear_distance": "0.06", "shear_speed": "0.005", "consolidate_max": "3.0"},
+                       {})
+        self.assertEqual(progress.run_length(box, 1e-4),
+                         "consolidation <= 3 s + shear 12 s simulated = <= 150 000 steps")
         self.assertEqual(progress.run_progress(run, None, 3.405),
                          "t 3.40 of 4.25 s simulated, 80 %")
 
