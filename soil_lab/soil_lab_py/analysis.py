@@ -1276,15 +1276,17 @@ def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None
     `relaxed` the pressures at the ends of their holds), and its shear boxes or `shear`
     (shear_strength_from another lab of the same soil). The Bekker [source] states the plates'
     speed and its quasi-static check (plate_speed_statement: a failed check is refused unless
-    `rate_dependent_ok`)."""
+    `rate_dependent_ok`, or `relaxed`, whose fit is not of the moving plates)."""
     if r.bekker is None:
         raise LabResultError(f"{r.directory}: no plate sinkage results (2 plates): run the "
                              f"'plate' test first")
     speeds = sorted({v for p in r.plates
                      if isinstance(v := ((p.get("done") or {}).get("meta") or {}).get("speed_m_s"),
                                    (int, float)) and v > 0})
+    # a relaxed fit takes the pressures at the ends of the holds, not the moving plates': their
+    # speed check is stated, not a reason to refuse
     speed_text = (f"pressed at {', '.join(f'{v:g}' for v in speeds)} m/s; " if speeds else "") + \
-        plate_speed_statement(r, rate_dependent_ok)
+        plate_speed_statement(r, rate_dependent_ok or relaxed)
     widths = ", ".join(f"{p['b_m']:.3g}" for p in r.plates)
     if relaxed:
         bekker = r.bekker_relaxed
