@@ -21,7 +21,7 @@ from wheelsim_post import bed_hold, mpi_launch
 from wheelsim_post.deck_files import deck_includes
 from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 
-from . import analysis, compare, plan, runner, scm_file
+from . import analysis, compare, estimate, plan, runner, scm_file
 from ._inputs import FitInputError
 
 REPO = Path(__file__).resolve().parents[2]  # the source tree, or <prefix>/share/wheelsim
@@ -103,6 +103,8 @@ def run_options(a):
                                  "result")
     if a.reason is not None and not a.accept_change:
         raise plan.LabInputError("--reason goes with --accept-change")
+    if a.estimate and (a.park or a.accept_change):
+        raise plan.LabInputError("--estimate runs nothing: not with --park or --accept-change")
     if a.accept_change and a.park:
         raise plan.LabInputError("--accept-change keeps finished steps of a lab that runs: not "
                                  "with --park")
@@ -150,6 +152,10 @@ def _run(a):
                        **options)
     if a.park:
         return lab.park(p)
+    if a.estimate:
+        for line in estimate.lab_estimate(p, out, a.archive):
+            lab.say(line)
+        return 0
     # The soil file as the checkout names it (inputs/soils/x.in), so results do not carry the
     # path of the machine that ran them; a file outside the checkout keeps its absolute path.
     soil_path = Path(soil.file).resolve()
@@ -422,6 +428,10 @@ def main(argv=None):
                         "the lab goes on from it on another machine; runs nothing, and may run "
                         "beside the lab that writes the checkpoints (docs/soil-lab.md, "
                         "\"Parking a stopped run\")")
+    r.add_argument("--estimate", action="store_true",
+                   help="print what the lab has left to run (steps per run, finished or parked "
+                        "runs) and the wall time at the paces this lab measured; runs nothing but "
+                        "the soil's size query")
     r.add_argument("--accept-change", action="append", metavar="FILE",
                    help="an edit of FILE (a file the soil file or the lab's decks include, e.g. "
                         "the base soil of a variant) changes no result: finished steps whose "

@@ -47,20 +47,36 @@ def progress_fraction(run, d, elapsed_s=None):
             j / distance)
 
 
+def run_steps(run, dt_s):
+    """A plate or shear run's steps (a box's with its longest consolidation, consolidate_max of
+    in.lab_shear); None for another test (the repose test's length is the heap's)."""
+    v = run.variables
+    if run.test == "plate":
+        return math.ceil(plate_test_time_s(v) / dt_s)
+    if run.test == "shear":
+        t = float(v["shear_distance"]) / float(v["shear_speed"])
+        return math.ceil((t + float(v.get("consolidate_max", 0.0))) / dt_s)
+    return None
+
+
 def run_length(run, dt_s):
     """A plate or shear run's simulated length as text, for the line that starts it: a plate's
     schedule (plate_test_time_s) in seconds and steps; a box's travel at its speed plus its
     consolidation (at most consolidate_max, in.lab_shear); '' for another test."""
+    steps = run_steps(run, dt_s)
+    if steps is None:
+        return ""
     v = run.variables
     if run.test == "plate":
-        t = plate_test_time_s(v)
-        return f"{t:.3g} s simulated = {math.ceil(t / dt_s):,} steps".replace(",", " ")
-    if run.test == "shear":
-        t = float(v["shear_distance"]) / float(v["shear_speed"])
-        cap = float(v.get("consolidate_max", 0.0))
-        return (f"consolidation <= {cap:g} s + shear {t:.3g} s simulated = <= "
-                f"{math.ceil((t + cap) / dt_s):,} steps").replace(",", " ")
-    return ""
+        return f"{plate_test_time_s(v):.3g} s simulated = {_int(steps)} steps"
+    return (f"consolidation <= {float(v.get('consolidate_max', 0.0)):g} s + shear "
+            f"{float(v['shear_distance']) / float(v['shear_speed']):.3g} s simulated = <= "
+            f"{_int(steps)} steps")
+
+
+def _int(n):
+    """12 345 678: thousands apart by spaces."""
+    return f"{n:,}".replace(",", " ")
 
 
 def _last_csv_row(path):

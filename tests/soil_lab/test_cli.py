@@ -98,6 +98,8 @@ class RunChecksFirst(unittest.TestCase):
             ("--tests", "plate", "--shear-replicates", "2"):
                 "--shear-replicates repeats the shear boxes: add shear to --tests",
             ("--park",): "--park keeps checkpoints in the archive: it needs --archive DIR",
+            ("--estimate", "--park", "--archive", "a"):
+                "--estimate runs nothing: not with --park or --accept-change",
             ("--accept-change", "inputs/soils/common/derived.in"):
                 "--accept-change needs --reason TEXT",
             ("--reason", "comment"): "--reason goes with --accept-change",

@@ -2,14 +2,19 @@
 (a plate's share of its schedule, plan.plate_test_time_s; a shear box's displacement over its
 travel read off its CSV at the checkpoint, a later row not taken), and the line every 10 min of
 wall time while a run goes (RunProgress, with a fake clock: nothing before, then the progress and
-the wall time left at its pace)."""
+the wall time left at its pace); and what is left (soil_lab_py.estimate, `run --estimate`): a
+parked run's steps left at its own last attempt's pace, a run on the same bed at that pace, a
+finished run named, a bed to prepare named."""
 
+import json
+import lzma
 import tempfile
 import unittest
 from pathlib import Path
+from types import SimpleNamespace
 
 import synthetic as syn
-from soil_lab_py import plan, progress
+from soil_lab_py import estimate, plan, progress
 
 
 class Progress(unittest.TestCase):
@@ -86,6 +91,48 @@ class Progress(unittest.TestCase):
             d.rmdir()
             syn.shear_run(tmp, 5e3)   # its last row: j 10 mm
             self.assertEqual(progress.run_progress(run, d), "shear j 10.0 of 12.0 mm, 83 %")
+
+
+class Estimate(unittest.TestCase):
+    def test_what_is_left_at_the_measured_pace(self):
+        plate = {"plate_speed": "0.02", "gap": "0.005", "depth1": "0.04", "unload": "0.01",
+                 "depth2": "0.06"}   # 4.25 s: 42 500 steps at 1e-4 s
+        runs = [plan.Run("plate_b0.1", "plate", "in.lab_plate", "plate", {}, plate, {}),
+                plan.Run("plate_b0.16", "plate", "in.lab_plate", "plate", {}, plate, {}),
+                plan.Run("shear_s5000", "shear", "in.lab_shear", "shear", {},
+                         {"shear_distance": "0.06", "shear_speed": "0.005"}, {})]
+        lab = SimpleNamespace(runs=runs, beds={"plate": None, "shear": None},
+                              soil=SimpleNamespace(dt_s=1e-4))
+        with tempfile.TemporaryDirectory() as tmp:
+            out, arch = Path(tmp) / "out", Path(tmp) / "archive"
+            (out / "beds" / "plate").mkdir(parents=True)
+            (out / "beds" / "plate" / "done.json").write_text("{}")
+            # plate_b0.1 parked at step 30 000 of a run that started at 10 000; its last attempt
+            # began at t 1000 s (from the start) and wrote that checkpoint at 2000 s: 20 steps/s
+            kept = arch / "plate_b0.1" / "parked"
+            (kept / "checkpoints").mkdir(parents=True)
+            (kept / "parked.json").write_text(json.dumps({
+                "step": 30000, "start_step": 10000, "time_s": 2.0, "files": [
+                    {"path": "checkpoints/lab-10000-30000.restart", "mtime_unix": 2000.0}]}))
+            (kept / "checkpoints" / "state.json.xz").write_bytes(lzma.compress(json.dumps(
+                {"attempts": [{"start_unix": 1000.0, "wall_before_s": 0.0}]}).encode()))
+            (arch / "shear_s5000").mkdir()
+            (arch / "shear_s5000" / "done.json").write_text('{"steps": 5, "wall_s": 1.0}')
+            lines = estimate.lab_estimate(lab, out, arch)
+        self.assertEqual(lines, [
+            "estimate: bed 'shear': to prepare here (its cost is not estimated)",
+            "estimate: [1/3] plate_b0.1: 22 500 steps to run (parked with 20 000 of 42 500 steps "
+            "done), ~19 min at 20 steps/s",
+            "estimate: [2/3] plate_b0.16: 42 500 steps to run, ~35 min at 20 steps/s",
+            "estimate: [3/3] shear_s5000: finished before (archive; the lab compares its inputs)",
+            "estimate: 65 000 steps to run, ~0.9 h of wall time at the measured paces; nothing "
+            "was run"])
+        # without the archive nothing is known of the plates' pace
+        with tempfile.TemporaryDirectory() as tmp:
+            lines = estimate.lab_estimate(lab, Path(tmp), None)
+        self.assertIn("pace unknown", lines[2])
+        self.assertTrue(lines[-1].endswith("+ 3 run(s) of unknown length or pace; nothing was "
+                                           "run"), lines[-1])
 
 
 if __name__ == "__main__":
