@@ -3,6 +3,7 @@
   soil-lab run SOIL [--tests bulk,plate,shear,repose] [--out DIR] [--np N] [--preset P]
                     [--normal-stresses S1,S2,S3] [--bed-var NAME=VALUE ...] [--archive DIR]
                     [--accept-change FILE --reason TEXT] [--stall-timeout MIN] [--build-dir D]
+                    [--park | --estimate]
   soil-lab report DIR
   soil-lab scm DIR --out FILE.toml [--name NAME] [--shear-from LAB [--shear-soil NAME]]
                [--relaxed] [--rate-dependent]
