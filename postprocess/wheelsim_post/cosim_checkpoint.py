@@ -72,6 +72,13 @@ def rig_progress(ckpt_dir, step):
             None if start != start else start)
 
 
+def rig_steps(text):
+    """The rig steps a rig checkpoint's text records (`i sim/steps N`: the point's own steps from
+    its start), None without the line."""
+    m = re.search(r"(?m)^i sim/steps (\d+)$", text)
+    return int(m.group(1)) if m else None
+
+
 def resume_step(ckpt_dir, inputs_hash, warn=lambda msg: print(msg, file=sys.stderr)):
     """The step a resume with `inputs_hash` continues from: None when ckpt_dir holds no half at
     all; CheckpointError when no step is complete, or the step's halves disagree with each other

@@ -18,6 +18,7 @@ machine (docs/sweeps.md, "Parking a stopped point").
 """
 import datetime
 import json
+import lzma
 import shutil
 import subprocess
 from pathlib import Path
@@ -92,6 +93,27 @@ CHECKPOINTS = Path("cosim") / "checkpoints"   # in a point folder (scripts/wheel
 def newest_checkpoint(point_dir):
     """The step of the newest complete checkpoint in a point's cosim/checkpoints (None: none)."""
     return cosim_checkpoint.newest(Path(point_dir) / CHECKPOINTS)
+
+
+def steps_done(point_dir, archive=None, rel=None):
+    """The rig steps an unfinished point will resume from: its newest complete checkpoint in
+    point_dir, else the one parked in archive/rel/parked/ (xz); 0 without either."""
+    step = newest_checkpoint(point_dir)
+    try:
+        if step is not None:
+            text = (Path(point_dir) / CHECKPOINTS / cosim_checkpoint.RIG.format(s=step)).read_text()
+        elif archive is not None:
+            record = step_archive.parked(Path(archive) / rel)
+            if record is None:
+                return 0
+            name = str(CHECKPOINTS / cosim_checkpoint.RIG.format(s=record["step"])) + ".xz"
+            text = lzma.decompress((Path(archive) / rel / step_archive.PARKED / name)
+                                   .read_bytes()).decode()
+        else:
+            return 0
+    except (OSError, KeyError, lzma.LZMAError, UnicodeDecodeError):
+        return 0
+    return cosim_checkpoint.rig_steps(text) or 0
 
 
 def _snapshot_h5(src, dest):

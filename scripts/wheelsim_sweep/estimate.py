@@ -451,6 +451,8 @@ class PointEstimate:
     # where the wheel's travel ends: its rim's front from the bin's far wall [m] (None: unknown)
     end_gap_m: float | None = None
     end_note: str = ""
+    # rig steps done at the checkpoint it resumes from (its own or a parked one): wall is the rest's
+    steps_done: int = 0
 
 
 @dataclass
@@ -544,7 +546,8 @@ def end_of_travel(point, info, x0, ph):
 
 
 def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: False, chunk=1,
-             overhead_s=COSIM_OVERHEAD_S, active=None, x0=0.0, measured_wall=lambda p: None):
+             overhead_s=COSIM_OVERHEAD_S, active=None, x0=0.0, measured_wall=lambda p: None,
+             steps_done=lambda p: 0):
     """The sweep's estimate. points: the sweep's points (each with .rig and .soil.label; a
     .wheel.mesh is used for the radius when the rig has no wheel.effective_radius); infos: soil
     label -> BedInfo; finished(p): True for a point that will be skipped; chunk: the deck's
@@ -552,7 +555,9 @@ def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: F
     domain's settings (active_domain.settings; None: off) and x0 [m] the wheel's start: the
     particles then cost as N x (share + FROZEN_COST x (1 - share)); measured_wall(p): the wall
     time [s] a finished point took (None if not known): the points still to run on the same bed
-    are scaled by measured / estimated of its finished points (`calibration`)."""
+    are scaled by measured / estimated of its finished points (`calibration`); steps_done(p): the
+    rig steps an unfinished point resumes from (a checkpoint, its own or parked): its wall is that
+    of the steps left."""
     todo = [p for p in points if not finished(p)]
     at_once = max(1, min(jobs, len(todo)))
     over = oversubscription(at_once * np_, cores)
@@ -594,6 +599,10 @@ def estimate(points, infos, rate, np_, bed_np, jobs, cores, finished=lambda p: F
             m, w, n = sums[e.point.soil.label]
             e.calibration, e.calibration_points = m / w, n
             e.wall *= m / w
+        done = 0 if e.finished else min(max(0, int(steps_done(e.point) or 0)), e.steps)
+        if done:
+            e.steps_done = done
+            e.wall *= (e.steps - done) / e.steps
     beds = []
     used = {p.soil.label for p in todo}
     for label, info in infos.items():
@@ -655,6 +664,10 @@ def report(est, sweep_name):
             f" s = release {ph['release']:.4g} + settle <= {ph['settle']:.4g} + ramp "
             f"{ph['ramp']:.4g} + test {ph['test']:.4g}; steps {fmt_int(e.steps)}; wall "
             f"{fmt_time(e.wall)} ({e.wall:.0f} s)")
+        if e.steps_done:
+            lines.append(f"estimate:   resumes from a checkpoint at step {fmt_int(e.steps_done)} "
+                         f"of {fmt_int(e.steps)}: the wall is that of the "
+                         f"{fmt_int(e.steps - e.steps_done)} steps left")
         if e.calibration is not None:
             lines.append(f"estimate:   scaled by {e.calibration:.3g}: the measured / estimated "
                          f"wall of {e.calibration_points} finished point(s) on this bed (the "

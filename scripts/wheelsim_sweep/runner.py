@@ -615,7 +615,9 @@ class Runner:
                                                                self.sweep.liggghts_args),
                                  x0=active_domain.start_x(self.sweep.deck,
                                                           self.sweep.liggghts_args),
-                                 measured_wall=self.measured_wall)
+                                 measured_wall=self.measured_wall,
+                                 steps_done=lambda p: archive.steps_done(
+                                     self.point_dir(p), self.archive, p.reldir))
 
     def measured_wall(self, p):
         """The wall time [s] a finished point took (its done.json), else None."""

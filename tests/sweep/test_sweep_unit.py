@@ -350,6 +350,16 @@ def case_estimate_arithmetic(a, work):
     line = E.summary_line(est)
     check("2 point(s) to run" in line and "10 000 particles" in line
           and "20 000 steps" in line and "1 min 4 s per point" in line, line)
+    # a point resuming from a checkpoint at 5 000 of its 20 000 steps: the wall of the rest; a
+    # finished point's checkpoint is not counted
+    resumed = E.estimate(pts, {"bed1": info}, rate, 2, 1, 2, 4, finished=lambda p: p.index == 0,
+                         overhead_s=0.0, steps_done=lambda p: 5000 if p.index < 2 else 0)
+    _close(resumed.points[1].wall, 64.5 * 0.75, "a resumed point's wall")
+    _close(resumed.points[2].wall, 64.5, "a point without a checkpoint")
+    check(resumed.points[0].steps_done == 0 and resumed.points[1].steps_done == 5000,
+          f"steps done {[e.steps_done for e in resumed.points]}")
+    check("resumes from a checkpoint at step 5 000 of 20 000: the wall is that of the 15 000 "
+          "steps left" in "\n".join(E.report(resumed, "synthetic.toml")), "the resume line")
     rep = "\n".join(E.report(est, "synthetic.toml"))
     for want in ("point w/bed1/s0 (finished, skipped)", "point w/bed1/s1 (to run)",
                  "settle <= 0.5", "steps 20 000", "wall 1 min 4 s (64 s)", "bed bed1 (to prepare",
@@ -1256,6 +1266,22 @@ def case_park_progress(a, work):
         check(got == want, f"{got!r}, expected {want!r}")
     got = _park_progress(point, work / "point", 41)
     check(got.startswith("progress unknown:") and "rig-41.ckpt" in got, got)
+    # the steps a point resumes from (archive.steps_done, wheel-sweep --estimate): its own newest
+    # complete checkpoint, else the parked one (xz), else 0
+    import lzma
+    from wheelsim_sweep import archive
+    for name in ("liggghts-40.restart", "liggghts-40.restart.wheel", "liggghts-40.restart.info"):
+        (ckpt / name).write_text("x")
+    (ckpt / "rig-40.ckpt").write_text("i sim/steps 1234\nend\n")
+    check(archive.steps_done(work / "point") == 1234, "steps done at the own checkpoint")
+    kept = work / "arch" / "w" / "parked"
+    (kept / "cosim" / "checkpoints").mkdir(parents=True)
+    (kept / "parked.json").write_text('{"step": 77, "files": []}')
+    (kept / "cosim" / "checkpoints" / "rig-77.ckpt.xz").write_bytes(
+        lzma.compress(b"i sim/steps 999\nend\n"))
+    check(archive.steps_done(work / "new", work / "arch", "w") == 999, "steps done when parked")
+    check(archive.steps_done(work / "new", work / "arch", "other") == 0
+          and archive.steps_done(work / "new") == 0, "no checkpoint: 0")
 
 
 def main():
