@@ -62,10 +62,10 @@ def rig_progress(ckpt_dir, step):
     text = (Path(ckpt_dir) / RIG.format(s=step)).read_text()
 
     def line(kind, key):
-        m = re.search(rf"(?m)^{kind} {re.escape(key)} (.*)$", text)
-        if m is None:
+        words = _rig_line(text, kind, key)
+        if words is None:
             raise KeyError(f"{RIG.format(s=step)}: no '{kind} {key}' line")
-        return m.group(1).split()
+        return words
 
     start = float(line("n", "sim/test_start")[1])
     return (line("t", "sim/phase_name")[0], float(line("n", "sim/time")[1]),
@@ -75,8 +75,15 @@ def rig_progress(ckpt_dir, step):
 def rig_steps(text):
     """The rig steps a rig checkpoint's text records (`i sim/steps N`: the point's own steps from
     its start), None without the line."""
-    m = re.search(r"(?m)^i sim/steps (\d+)$", text)
-    return int(m.group(1)) if m else None
+    words = _rig_line(text, "i", "sim/steps")
+    return int(words[0]) if words else None
+
+
+def _rig_line(text, kind, key):
+    """The words after `KIND KEY` on a rig checkpoint's line (n numbers, i integers, t texts:
+    RigSimulation::save_checkpoint), None without that line."""
+    m = re.search(rf"(?m)^{kind} {re.escape(key)} (.*)$", text)
+    return m.group(1).split() if m else None
 
 
 def resume_step(ckpt_dir, inputs_hash, warn=lambda msg: print(msg, file=sys.stderr)):

@@ -106,7 +106,7 @@ class RunProgress:
     def __init__(self, run, d, say, label, every_s=600.0, clock=time.monotonic):
         self.run, self.d, self.say, self.label = run, d, say, label
         self.every_s, self.clock = every_s, clock
-        self.t0 = self.last = self.t_f0 = self.f0 = None
+        self.last = self.t_f0 = self.f0 = None
 
     def __call__(self):
         """Called every few seconds while the run goes; a progress it cannot read (a CSV being
@@ -118,8 +118,8 @@ class RunProgress:
 
     def _report(self):
         now = self.clock()
-        if self.t0 is None:   # the run's start (or its resume: the CSV's rows to its checkpoint)
-            self.t0 = self.last = self.t_f0 = now
+        if self.last is None:   # the run's start (or its resume: the CSV's rows to its checkpoint)
+            self.last = self.t_f0 = now
             self.f0 = progress_fraction(self.run, self.d)[1]
             return
         if now - self.last < self.every_s:
