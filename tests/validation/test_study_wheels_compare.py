@@ -3,8 +3,9 @@
 values: the DEM-beside-SCM row (SCM's difference in % of DEM for F_T and sinkage, in kN for DP;
 an unhealthy SCM point marked † and its code named under the table), the split of SCM − DEM into
 traction force and motion resistance (ΔDP = ΔF_T − ΔR), a point under another setting (the sinkage
-allowance's, the wheel friction's, the speed's and the time step's sections), and a missing column (exit 2, one
-line naming the file).
+allowance's, the wheel friction's, the speed's and the time step's sections), the wheel pressed in at
+each time step (release-phase contact force at fixed sinkages, from synthetic run files with a
+known force-sinkage line), and a missing column (exit 2, one line naming the file).
 
     test_study_wheels_compare.py --work DIR
 """
@@ -27,6 +28,24 @@ def table(path, terrain, rows):
                      f"{terrain}/wheel1/{soil}/s{s:.3f}/run.h5")
     path.write_text("\n".join(lines) + "\n")
     return path
+
+
+def release(run_h5, k_N_m, z_release_m, z_settle_m):
+    """A run file with a release phase (0) in which the contact force is k z, sampled every
+    0.1 mm down to z_release, then a settle phase (1) down to z_settle."""
+    import h5py
+    import numpy as np
+
+    z = np.concatenate([np.arange(0.0, z_release_m + 1e-9, 1e-4),
+                        np.linspace(z_release_m + 1e-3, z_settle_m, 20)])
+    phase = np.where(z <= z_release_m + 1e-9, 0.0, 1.0)
+    force = np.zeros((z.size, 3))
+    force[:, 2] = k_N_m * z
+    run_h5.parent.mkdir(parents=True, exist_ok=True)
+    with h5py.File(run_h5, "w") as f:
+        f["observables/sinkage/value"] = z
+        f["observables/phase/value"] = phase
+        f["observables/contact/force/value"] = force
 
 
 def main():
@@ -81,6 +100,25 @@ def main():
     check("## The time step: 4.4e-5 s (sweep.toml) against 2.2e-5 s" in text
           and "| wheel1 s 0.2 | drawbar pull [kN] | -1 ± 0.05 | -0.9 ± 0.05 | -11.11 % |" in text,
           f"the time step's section and row (exit {r.returncode})")
+    # the wheel pressed in at each step: the release phase of each run file (phase 0), contact
+    # force k z; the table reads it at 20 / 50 / 100 / 140 / 180 mm, — below the release's end;
+    # the quarter step's run file is not there
+    release(work / "dem/wheel1/sand/s0.200/run.h5", 50e3, 0.19, 0.26)
+    dt2 = table(work / "results_dt2.csv", "dt2", [("sand", 0.2, -600.0, 5000.0, 0.25, "ok", "")])
+    release(work / "dt2/wheel1/sand/s0.200/run.h5", 80e3, 0.15, 0.22)
+    dt4 = table(work / "results_dt4.csv", "dt4", [("sand", 0.2, -400.0, 5000.0, 0.22, "ok", "")])
+    r = run_script(SCRIPT, dem, "--dt", dt2, "--dt4", dt4, "--md", md)
+    text = md.read_text() if r.returncode == 0 and md.is_file() else ""
+    check("## The time step: 4.4e-5 s (sweep.toml) against 1.1e-5 s" in text,
+          f"the quarter step's section (exit {r.returncode})")
+    press = [l for l in text.splitlines() if l.startswith("| wheel1 s 0.2 | ")
+             and ("sweep.toml |" in l or "dt 2.2e-5 s |" in l or "dt 1.1e-5 s |" in l)
+             and l.count("|") == 10]
+    want = ["| wheel1 s 0.2 | sweep.toml | 1.00 | 2.50 | 5.00 | 7.00 | 9.00 | 190.0 | 260.0 |",
+            "| wheel1 s 0.2 | dt 2.2e-5 s | 1.60 | 4.00 | 8.00 | 11.20 | — | 150.0 | 220.0 |"]
+    check(press[:2] == want, f"press-in rows\n{press}\nexpected (the first two)\n{want}")
+    check(len(press) == 3 and "unreadable" in press[2],
+          f"a run file that is not there is named, not fatal ({press[2:]})")
     # a skid point: TE = (DP / F_T)(1 - s) needs the driving convention, the table's
     # slip_driving (-1 at skid slip -0.5: v = 2 omega R_eff), not its signed slip (-0.5)
     skid = work / "skid.csv"

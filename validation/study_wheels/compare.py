@@ -4,14 +4,15 @@ traction force T/R_eff, drawbar pull, sinkage and tractive efficiency, and the a
 effect (the full-domain run of the same point), its run-to-run scatter (the same point on another
 ranks' grid), the grain-size sensitivity, issue 12's goal point (21-52 mm grains) and the active
 domain's sinkage allowance and the wheel-sand friction (the same point with each raised), the
-wheel's speed and the time step (the same point at half of each); and where SCM and DEM part, split into traction
-force and motion resistance.
+wheel's speed and the time step (the same point at half of each; the step at a quarter too, and
+the resistance the wheel meets while pressed in at each step); and where SCM and DEM part, split
+into traction force and motion resistance.
 
     compare.py RESULTS.csv [--scm RESULTS_SCM.csv ...] [--full-domain RESULTS_FULL.csv]
                [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--goal RESULTS_GOAL.csv]
                [--goal-wide RESULTS_GOAL_WIDE.csv] [--allowance RESULTS_ALLOWANCE.csv]
                [--wheel-mu RESULTS_WHEEL_MU.csv] [--speed RESULTS_SPEED.csv] [--dt RESULTS_DT.csv]
-               [--label CONFIG]
+               [--dt4 RESULTS_DT4.csv] [--label CONFIG]
                [--md OUT.md] [--png OUT.png]
 
 Inputs are tables of `wheelsim-post curves --results` (docs/postprocess.md); the wheel and the soil
@@ -193,6 +194,65 @@ def point_table(dem, other, other_name, tolerance=None, ref="sweep.toml"):
     return out, verdicts
 
 
+# the release phase (phase 0 of the run file): the wheel lowered at a fixed speed until it carries
+# its load; the press-in table reads the vertical contact force at these sinkages
+PRESS_IN_SINKAGES_M = (0.02, 0.05, 0.10, 0.14, 0.18)
+PRESS_IN_BAND_M = 0.002  # samples within +- this of each sinkage are averaged
+
+
+def release_curve(run_h5):
+    """(sinkage [m], vertical contact force [N]) of a run file's release phase, and the sinkage
+    at the end of its release and of its settle phase (phases 0 and 1)."""
+    import h5py
+    import numpy as np
+
+    with h5py.File(run_h5, "r") as f:
+        o = f["observables"]
+        z, phase = o["sinkage/value"][:], o["phase/value"][:]
+        fz = o["contact/force/value"][:, 2]
+    rel, settle = np.flatnonzero(phase == 0), np.flatnonzero(phase == 1)
+    if rel.size == 0:
+        raise ValueError("no release phase")
+    return z[rel], fz[rel], z[rel[-1]], (z[settle[-1]] if settle.size else math.nan)
+
+
+def press_in_table(steps):
+    """Markdown: the resistance the wheel meets while it is pressed in (its release phase, at the
+    same fixed speed in every run), at a few sinkages, for the same point at each time step:
+    where a difference in the time step first shows. steps: (results table, its name); the run
+    files are found from each table's run_file column, relative to the table."""
+    import numpy as np
+
+    heads = " | ".join(f"{z * 1e3:.0f} mm" for z in PRESS_IN_SINKAGES_M)
+    out = ["## The wheel pressed in, at each time step", "",
+           "The release phase: the wheel lowered at the rig's fixed release speed until it carries "
+           "its load. Vertical contact force [kN] at each sinkage (mean of the samples within "
+           f"±{PRESS_IN_BAND_M * 1e3:.0f} mm; — where the release ended above it), and the sinkage "
+           "at the end of the release and of the settle phase.", "",
+           f"| point | run | {heads} | end of release [mm] | end of settle [mm] |",
+           "|---|---|" + "---|" * len(PRESS_IN_SINKAGES_M) + "---|---|"]
+    ref = {(r["wheel"], round(num(r["target_slip"]), 4)) for r in read(steps[1][0])}
+    for path, name in steps:
+        for r in read(path):
+            key = (r["wheel"], round(num(r["target_slip"]), 4))
+            if key not in ref:
+                continue
+            run_h5 = Path(path).resolve().parent / r["run_file"]
+            try:
+                z, fz, z_release, z_settle = release_curve(run_h5)
+            except (OSError, KeyError, ValueError) as e:
+                out.append(f"| {key[0]} s {key[1]} | {name} | {r['run_file']} unreadable ({e}) |"
+                           + " |" * (len(PRESS_IN_SINKAGES_M) + 1))
+                continue
+            cells = []
+            for level in PRESS_IN_SINKAGES_M:
+                near = np.abs(z - level) <= PRESS_IN_BAND_M
+                cells.append(f"{fz[near].mean() * 1e-3:.2f}" if near.any() else "—")
+            out.append(f"| {key[0]} s {key[1]} | {name} | " + " | ".join(cells)
+                       + f" | {z_release * 1e3:.1f} | {z_settle * 1e3:.1f} |")
+    return out
+
+
 def plot(png, dem, scm):
     import matplotlib
     matplotlib.use("Agg")
@@ -243,6 +303,7 @@ def main():
     ap.add_argument("--speed", help="a point at half the wheel speed over the same travel "
                     "(sweep_speed.toml)")
     ap.add_argument("--dt", help="a point at half the time step (sweep_dt.toml)")
+    ap.add_argument("--dt4", help="a point at a quarter of the time step (sweep_dt4.toml)")
     ap.add_argument("--wide", help="the active domain's point with a larger distance (its sinkage "
                     "allowance raised), compared with --full-domain's")
     ap.add_argument("--repeat", help="the repeat of the active domain's point on another ranks' "
@@ -303,10 +364,16 @@ def main():
             (a.speed, "The wheel's speed: 1.05 rad/s ({}) against 0.525 rad/s (sweep_speed.toml: "
              "same bed, grains, ranks and travel; window 4-12 s)", "0.525 rad/s"),
             (a.dt, "The time step: 4.4e-5 s ({}) against 2.2e-5 s (sweep_dt.toml: same bed, "
-             "grains and ranks)", "dt 2.2e-5 s")):
+             "grains and ranks)", "dt 2.2e-5 s"),
+            (a.dt4, "The time step: 4.4e-5 s ({}) against 1.1e-5 s (sweep_dt4.toml: same bed, "
+             "grains and ranks)", "dt 1.1e-5 s")):
         if table:
             lines += ["## " + heading.format(a.label), ""]
             lines += point_table(dem, read(table), name, ref=a.label)[0] + [""]
+    steps = [(path, name) for path, name in ((a.dem, a.label), (a.dt, "dt 2.2e-5 s"),
+                                              (a.dt4, "dt 1.1e-5 s")) if path]
+    if len(steps) > 1:
+        lines += press_in_table(steps) + [""]
     text = "\n".join(lines) + "\n"
     if a.md:
         Path(a.md).write_text(text, encoding="utf-8")
