@@ -30,7 +30,8 @@
 # the wheel speed, 0.525 rad/s, over the same travel (sweep_speed.toml: test phase 12 s, window
 # 4-12 s; ~2.4 h estimated, 6 h measured on a slow machine): how much of the case depends on the
 # speed; dt — wheel 1 at 20 % at half the time step, 2.2e-5 s (sweep_dt.toml; ~2.5 h): how much
-# depends on the step. Resumable: a re-run skips
+# depends on the step; dt4 — the same at a quarter of the step, 1.1e-5 s (sweep_dt4.toml; ~5 h):
+# whether it converges. Resumable: a re-run skips
 # finished points. Writes here results.csv (DEM), results_<part>.csv (the others), comparison.md
 # and comparison.png (the case), comparison_active_domain.md (the check) and
 # provenance[_<part>].toml (git hash, command, machine, wall time); finished DEM points are kept in points/ (committed) and restored on the
@@ -60,7 +61,7 @@ while (($#)); do
   esac
 done
 # the parts besides dem: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
-parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide allowance wheel_mu speed dt)
+parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide allowance wheel_mu speed dt dt4)
 for part in ${only//,/ }; do
   [[ " dem ${parts[*]} " == *" $part "* ]] || {
     echo "run.sh: --only: unknown part '$part' (expected dem ${parts[*]})" >&2; exit 2; }
@@ -141,6 +142,7 @@ if [[ -f $here/results.csv ]]; then
   [[ -f $here/results_wheel_mu.csv ]] && extra+=(--wheel-mu "$here/results_wheel_mu.csv")
   [[ -f $here/results_speed.csv ]] && extra+=(--speed "$here/results_speed.csv")
   [[ -f $here/results_dt.csv ]] && extra+=(--dt "$here/results_dt.csv")
+  [[ -f $here/results_dt4.csv ]] && extra+=(--dt4 "$here/results_dt4.csv")
   "$python" "$here/compare.py" "$here/results.csv" "${extra[@]}" \
     --md "$here/comparison.md" --png "$here/comparison.png" || status=1
 fi
