@@ -42,10 +42,12 @@ def release(run_h5, k_N_m, z_release_m, z_settle_m):
     force = np.zeros((z.size, 3))
     force[:, 2] = k_N_m * z
     run_h5.parent.mkdir(parents=True, exist_ok=True)
+    step = np.arange(z.size, dtype=np.int64)
     with h5py.File(run_h5, "w") as f:
-        f["observables/sinkage/value"] = z
-        f["observables/phase/value"] = phase
-        f["observables/contact/force/value"] = force
+        for name, value in (("sinkage", z), ("phase", phase), ("contact/force", force)):
+            f[f"observables/{name}/step"] = step
+            f[f"observables/{name}/time"] = 1e-3 * step
+            f[f"observables/{name}/value"] = value
 
 
 def main():

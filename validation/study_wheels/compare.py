@@ -22,11 +22,13 @@ convention (the table's slip_driving; its signed slip only where s >= 0). Exit 0
 line naming the bad file or column.
 """
 import argparse
+import functools
 import math
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
+sys.path[:0] = [str(Path(__file__).resolve().parents[1] / "common"),
+                str(Path(__file__).resolve().parents[2] / "postprocess")]
 from results_table import read_rows  # noqa: E402
 
 # the active domain's acceptance (issue 12 item 1): window means within 2 % of the full domain's
@@ -48,8 +50,10 @@ def num(v):
         return math.nan
 
 
+@functools.lru_cache(maxsize=None)
 def read(path):
-    """Rows of a results table, each with 'wheel' and 'soil' from its run file's folders."""
+    """Rows of a results table, each with 'wheel' and 'soil' from its run file's folders (each
+    table read once: several sections use the same one; the rows are not changed after)."""
     rows = read_rows(path, NEED, "compare.py")
     for i, r in enumerate(rows):
         parts = Path(r["run_file"]).parts
@@ -194,25 +198,31 @@ def point_table(dem, other, other_name, tolerance=None, ref="sweep.toml"):
     return out, verdicts
 
 
-# the release phase (phase 0 of the run file): the wheel lowered at a fixed speed until it carries
-# its load; the press-in table reads the vertical contact force at these sinkages
+# the release phase (the run file's phase "release"): the wheel lowered at a fixed speed until it
+# carries its load; the press-in table reads the vertical contact force at these sinkages
 PRESS_IN_SINKAGES_M = (0.02, 0.05, 0.10, 0.14, 0.18)
 PRESS_IN_BAND_M = 0.002  # samples within +- this of each sinkage are averaged
 
 
 def release_curve(run_h5):
     """(sinkage [m], vertical contact force [N]) of a run file's release phase, and the sinkage
-    at the end of its release and of its settle phase (phases 0 and 1)."""
-    import h5py
+    at the end of its release and of its settle phase (a PostError if the file cannot give them)."""
     import numpy as np
+    from wheelsim_post.errors import PostError
+    from wheelsim_post.runfile import RunFile
+    from wheelsim_post.steady import PHASES
 
-    with h5py.File(run_h5, "r") as f:
-        o = f["observables"]
-        z, phase = o["sinkage/value"][:], o["phase/value"][:]
-        fz = o["contact/force/value"][:, 2]
-    rel, settle = np.flatnonzero(phase == 0), np.flatnonzero(phase == 1)
+    code = {name: c for c, name in PHASES.items()}
+    with RunFile(run_h5) as f:
+        z = f.observable("sinkage").value
+        phase = np.rint(f.observable("phase").value)
+        fz = f.observable("contact/force").value[:, 2]
+    if not len(z) == len(phase) == len(fz):
+        raise PostError(f"{run_h5}: sinkage, phase and contact/force have different lengths")
+    rel = np.flatnonzero(phase == code["release"])
+    settle = np.flatnonzero(phase == code["settle"])
     if rel.size == 0:
-        raise ValueError("no release phase")
+        raise PostError(f"{run_h5}: no release phase")
     return z[rel], fz[rel], z[rel[-1]], (z[settle[-1]] if settle.size else math.nan)
 
 
@@ -231,6 +241,8 @@ def press_in_table(steps):
            "at the end of the release and of the settle phase.", "",
            f"| point | run | {heads} | end of release [mm] | end of settle [mm] |",
            "|---|---|" + "---|" * len(PRESS_IN_SINKAGES_M) + "---|---|"]
+    from wheelsim_post.errors import PostError
+
     ref = {(r["wheel"], round(num(r["target_slip"]), 4)) for r in read(steps[1][0])}
     for path, name in steps:
         for r in read(path):
@@ -240,7 +252,7 @@ def press_in_table(steps):
             run_h5 = Path(path).resolve().parent / r["run_file"]
             try:
                 z, fz, z_release, z_settle = release_curve(run_h5)
-            except (OSError, KeyError, ValueError) as e:
+            except PostError as e:
                 out.append(f"| {key[0]} s {key[1]} | {name} | {r['run_file']} unreadable ({e}) |"
                            + " |" * (len(PRESS_IN_SINKAGES_M) + 1))
                 continue
