@@ -45,6 +45,7 @@ class Results:
     repose_profiles: List[tuple] = field(default_factory=list)
     repose_error: Optional[str] = None  # why no angle could be fitted (too small a heap, ...)
     quasi_static: List[dict] = field(default_factory=list)  # half-speed comparisons
+    time_step: List[dict] = field(default_factory=list)  # half-step comparisons (--dt-check)
     paired_speed_checks: List[dict] = field(default_factory=list)  # over beds: paired_speed_check
     costs: List[dict] = field(default_factory=list)
     bed_costs: Dict[str, float] = field(default_factory=dict)  # bed name -> wall time [s]
@@ -241,12 +242,15 @@ def read_soil(path):
 
 COST_KEYS = ("wall_s", "steps", "particles", "np", "dt_s")
 #: Quasi-static check: the result at half speed must differ by less than this (docs/soil-lab.md).
+# The checks' tolerances, at half the speed and (--dt-check) at half the time step alike
 QUASI_STATIC_TOLERANCE = {"plate": 0.05, "shear": 0.05, "repose": 1.5}  # relative, relative, deg
+CHECK_SUFFIXES = ("_half", "_halfdt")  # the checks' runs: not points of the lab's own fits
 
 
 def _runs(d, pattern):
-    """The finished runs matching `pattern`, without the half-speed ones."""
-    runs = [(run, _done(run)) for run in sorted(d.glob(pattern)) if not run.name.endswith("_half")]
+    """The finished runs matching `pattern`, without the checks' (half speed, half step)."""
+    runs = [(run, _done(run)) for run in sorted(d.glob(pattern))
+            if not run.name.endswith(CHECK_SUFFIXES)]
     return [(run, done) for run, done in runs if done is not None]
 
 
@@ -853,74 +857,29 @@ def analyse(directory):
     for run, done in _runs(d, "repose"):
         r.repose_fits, r.repose_profiles, r.repose_error = read_repose(run, done, dmax)
 
-    # The quasi-static check: each half-speed run against the run it halves.
-    for run in sorted(d.glob("*_half")):
-        half, full = _done(run), _done(d / run.name[: -len("_half")])
-        if half is None or full is None:
-            continue
-        test = run.name.split("_")[0]
-        full_dir = d / run.name[: -len("_half")]
-        extra = {}
-        if test == "plate":
-            # the full-speed run is one of the lab's plates, read above
-            b_full = _meta(full_dir, full, "b_m", "the plate's width, a number > 0 [m]")
-            plate = next((p for p in r.plates if p["b_m"] == b_full), None) or \
-                read_plate(full_dir, full)
-            za, ma = plate_pressure_profile(plate)
-            zb, mb = plate_pressure_profile(read_plate(run, half))
-            a, b = ma[-1], mb[-1]  # plate_end_pressure of each
-            what, unit, diff = "pressure at the end of loading", "Pa", (b - a) / a
-            # by depth: the half-speed band mean at the full-speed run's band depths
-            extra = {"profile_depth_m": [float(x) for x in za],
-                     "profile_difference": [float(x) for x in np.interp(za, zb, mb) / ma - 1.0]}
-        elif test == "shear":
-            # the full-speed run is one of the lab's boxes, read above
-            sa = next((s for s in r.shears if s["done"] == full), None) or \
-                read_shear(full_dir, full)
-            sb = read_shear(run, half)
-            a, b = sa["peak"].tau_peak_Pa, sb["peak"].tau_peak_Pa
-            what, unit, diff = "peak shear stress", "Pa", (b - a) / a
-            # by displacement: both runs' band means over the full-speed run's travel
-            ja, ma = shear_stress_profile(sa["j"], sa["tau"])
-            _, mb = shear_stress_profile(sb["j"], sb["tau"], j_max_m=float(np.max(sa["j"])))
-            bands = mb / ma - 1.0
-            extra = {"sigma_target_Pa": sa["sigma_target_Pa"], "replicate": sa["replicate"],
-                     "profile_displacement_m": [float(x) for x in ja],
-                     "profile_difference": [float(x) for x in bands],
-                     "profile_changes_sign": profile_changes_sign(bands),
-                     # how far each lid moved over the shear (< 0: the sample compacted): a
-                     # creeping soil compacts more in the slower run's longer time
-                     "lid_full_m": sa["consolidation"]["lid_travel_m"],
-                     "lid_half_m": sb["consolidation"]["lid_travel_m"]}
-            # with replicates: how far the same-speed boxes of this stress lie from the first
-            # bed's, the scatter the half-speed difference is to be read against
-            same = [s["peak"].tau_peak_Pa for s in r.shears
-                    if s["sigma_target_Pa"] == sa["sigma_target_Pa"] and s is not sa]
-            if same:
-                extra["replicate_differences"] = [float((t - a) / a) for t in same]
-                # the half-speed peak against all same-speed boxes of the stress (the first
-                # bed's among them, shear_replicates' row of it): how many of their standard
-                # deviations it lies from their mean
-                row = next(x for x in r.replicates["by_stress"]
-                           if x["sigma_target_Pa"] == sa["sigma_target_Pa"])
-                mean, sd = row["tau_peak_mean_Pa"], row["tau_peak_sd_Pa"]
-                extra.update(replicate_peak_mean_Pa=mean, replicate_peak_sd_Pa=sd,
-                             half_speed_from_mean=float((b - mean) / mean),
-                             half_speed_sds_from_mean=float((b - mean) / sd) if sd > 0
-                             else float("inf"))
-        else:
-            fa, _, ea = read_repose(full_dir, full, dmax)
-            fb, _, eb = read_repose(run, half, dmax)
-            if ea or eb:
+    # The checks: each run at half the speed (the quasi-static check) or at half the time step
+    # (--dt-check) against the run it repeats, on the same bed with the same tools.
+    for suffix, checks in (("_half", r.quasi_static), ("_halfdt", r.time_step)):
+        for run in sorted(d.glob("*" + suffix)):
+            full_dir = d / run.name[: -len(suffix)]
+            half, full = _done(run), _done(full_dir)
+            compared = (None if half is None or full is None
+                        else _compare_runs(r, full_dir, full, run, half, dmax))
+            if compared is None:
                 continue
-            a, b = np.mean([f.angle_deg for f in fa]), np.mean([f.angle_deg for f in fb])
-            what, unit, diff = "angle of repose", "deg", b - a
-        tol = QUASI_STATIC_TOLERANCE[test]
-        r.quasi_static.append({"run": full_dir.name, "quantity": what, "unit": unit,
-                               "full_speed": float(a), "half_speed": float(b),
-                               "difference": float(diff), "tolerance": tol,
-                               "relative": test != "repose", "passed": bool(abs(diff) <= tol),
-                               **extra})
+            test, what, unit, a, b, diff, extra = compared
+            tol = QUASI_STATIC_TOLERANCE[test]
+            entry = {"run": full_dir.name, "quantity": what, "unit": unit,
+                     "difference": float(diff), "tolerance": tol, "relative": test != "repose",
+                     "passed": bool(abs(diff) <= tol)}
+            if suffix == "_half":
+                entry.update(full_speed=float(a), half_speed=float(b), **extra)
+            else:  # the steps from the records; the curves compared, not the box's extras
+                entry.update(full_dt_s=float(full.get("dt_s", float("nan"))),
+                             half_dt_s=float(half.get("dt_s", float("nan"))),
+                             full_step=float(a), half_step=float(b),
+                             **{k: v for k, v in extra.items() if k.startswith("profile_")})
+            checks.append(entry)
     # with --shear-replicates: each bed's half-speed difference at a stress, paired on its bed
     by_target = {}
     for q in r.quasi_static:
@@ -954,6 +913,74 @@ def analyse(directory):
                                                       "a wall time >= 0 [s]", lambda v: v >= 0,
                                                       required=False) or 0.0
     return r
+
+
+
+def _compare_runs(r, full_dir, full, run, half, dmax):
+    """A run (its folder `run`, record `half`) against the run it repeats with one thing changed
+    (`full_dir`, `full`): half the speed (the quasi-static check) or half the time step (the
+    time-step check), on the same bed with the same tools. Returns (test, quantity, unit, value
+    of the full run, of the other, difference, extra), the difference relative (plate: pressure
+    at the end of loading, shear: peak shear stress) or in degrees (repose), or None when a
+    repose heap could not be fitted; `extra` compares the whole curve (by depth, by
+    displacement) and, for a box, its lid and its replicates."""
+    test = run.name.split("_")[0]
+    extra = {}
+    if test == "plate":
+        # the full-speed run is one of the lab's plates, read above
+        b_full = _meta(full_dir, full, "b_m", "the plate's width, a number > 0 [m]")
+        plate = next((p for p in r.plates if p["b_m"] == b_full), None) or \
+            read_plate(full_dir, full)
+        za, ma = plate_pressure_profile(plate)
+        zb, mb = plate_pressure_profile(read_plate(run, half))
+        a, b = ma[-1], mb[-1]  # plate_end_pressure of each
+        what, unit, diff = "pressure at the end of loading", "Pa", (b - a) / a
+        # by depth: the half-speed band mean at the full-speed run's band depths
+        extra = {"profile_depth_m": [float(x) for x in za],
+                 "profile_difference": [float(x) for x in np.interp(za, zb, mb) / ma - 1.0]}
+    elif test == "shear":
+        # the full-speed run is one of the lab's boxes, read above
+        sa = next((s for s in r.shears if s["done"] == full), None) or \
+            read_shear(full_dir, full)
+        sb = read_shear(run, half)
+        a, b = sa["peak"].tau_peak_Pa, sb["peak"].tau_peak_Pa
+        what, unit, diff = "peak shear stress", "Pa", (b - a) / a
+        # by displacement: both runs' band means over the full-speed run's travel
+        ja, ma = shear_stress_profile(sa["j"], sa["tau"])
+        _, mb = shear_stress_profile(sb["j"], sb["tau"], j_max_m=float(np.max(sa["j"])))
+        bands = mb / ma - 1.0
+        extra = {"sigma_target_Pa": sa["sigma_target_Pa"], "replicate": sa["replicate"],
+                 "profile_displacement_m": [float(x) for x in ja],
+                 "profile_difference": [float(x) for x in bands],
+                 "profile_changes_sign": profile_changes_sign(bands),
+                 # how far each lid moved over the shear (< 0: the sample compacted): a
+                 # creeping soil compacts more in the slower run's longer time
+                 "lid_full_m": sa["consolidation"]["lid_travel_m"],
+                 "lid_half_m": sb["consolidation"]["lid_travel_m"]}
+        # with replicates: how far the same-speed boxes of this stress lie from the first
+        # bed's, the scatter the half-speed difference is to be read against
+        same = [s["peak"].tau_peak_Pa for s in r.shears
+                if s["sigma_target_Pa"] == sa["sigma_target_Pa"] and s is not sa]
+        if same:
+            extra["replicate_differences"] = [float((t - a) / a) for t in same]
+            # the half-speed peak against all same-speed boxes of the stress (the first
+            # bed's among them, shear_replicates' row of it): how many of their standard
+            # deviations it lies from their mean
+            row = next(x for x in r.replicates["by_stress"]
+                       if x["sigma_target_Pa"] == sa["sigma_target_Pa"])
+            mean, sd = row["tau_peak_mean_Pa"], row["tau_peak_sd_Pa"]
+            extra.update(replicate_peak_mean_Pa=mean, replicate_peak_sd_Pa=sd,
+                         half_speed_from_mean=float((b - mean) / mean),
+                         half_speed_sds_from_mean=float((b - mean) / sd) if sd > 0
+                         else float("inf"))
+    else:
+        fa, _, ea = read_repose(full_dir, full, dmax)
+        fb, _, eb = read_repose(run, half, dmax)
+        if ea or eb:
+            return None
+        a, b = np.mean([f.angle_deg for f in fa]), np.mean([f.angle_deg for f in fb])
+        what, unit, diff = "angle of repose", "deg", b - a
+    return test, what, unit, a, b, diff, extra
 
 
 def hold_summary(h):
@@ -1061,6 +1088,9 @@ def summary(r: Results):
                                                               "half_speed_sds_from_mean")
                                               if k in q}
                                for q in r.quasi_static}
+    if r.time_step:
+        out["time_step"] = {q["run"]: {k: v for k, v in q.items() if k != "run"}
+                            for q in r.time_step}
     if r.paired_speed_checks:
         out["quasi_static_paired"] = {_paired_key(c): {k: v for k, v in c.items()
                                                        if k != "sigma_target_Pa"}
@@ -1255,7 +1285,8 @@ def plate_speed_statement(r: Results, rate_dependent_ok=False):
     (soil-lab scm --rate-dependent): a Bekker fit at a speed the pressure still depends on."""
     checks = [q for q in r.quasi_static if q["run"].startswith("plate")]
     if not checks:
-        return "plate speed not checked (no --speed-check half-speed plate in the lab)"
+        return ("plate speed not checked (no --speed-check half-speed plate in the lab)"
+                + plate_step_statement(r))
     parts, failed = [], []
     for q in checks:
         verdict = "quasi-static" if q["passed"] else "NOT quasi-static"
@@ -1267,7 +1298,16 @@ def plate_speed_statement(r: Results, rate_dependent_ok=False):
         raise LabResultError(f"{r.directory}: the plates' speed check failed ({'; '.join(failed)}):"
                              f" a Bekker fit at this speed depends on the speed; write it anyway, "
                              f"said in its [source], with --rate-dependent")
-    return "speed check: " + "; ".join(parts)
+    return "speed check: " + "; ".join(parts) + plate_step_statement(r)
+
+
+def plate_step_statement(r: Results):
+    """The plates' time-step check (--dt-check) for the SCM file's Bekker [source], stated, not a
+    reason to refuse (the soil is calibrated at its step): '' without one."""
+    return "".join(f"; time-step check: {q['run']} at half the step ({q['half_dt_s']:.4g} s): "
+                   f"{100 * q['difference']:+.1f} % at the end of loading (tolerance "
+                   f"{100 * q['tolerance']:g} %)" + ("" if q["passed"] else ": step-dependent")
+                   for q in r.time_step if q["run"].startswith("plate"))
 
 
 def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None,

@@ -79,7 +79,7 @@ def _numbers(text, option, expected):
 
 def run_options(a):
     """The options of `soil-lab run` (parsed arguments `a`) as make_plan's keyword arguments
-    (without speed_check), after every check that needs no soil (plan.check_options, and the
+    (without speed_check and dt_check), after every check that needs no soil (plan.check_options, and the
     command line's own): bad input is refused before anything is created or started. Returns
     (tests, options, bed_vars)."""
     tests = _list(a.tests, "--tests")
@@ -150,7 +150,7 @@ def _run(a):
             from None
     soil = lab.soil_info(soil_file)
     p = plan.make_plan(soil, tests, a.preset, bed_vars=bed_vars, speed_check=a.speed_check,
-                       **options)
+                       dt_check=a.dt_check, **options)
     if a.park:
         return lab.park(p)
     if a.estimate:
@@ -302,6 +302,13 @@ def _report(directory, quiet=False):
                  "rate effect": "a rate effect (the whole interval outside it): NOT quasi-static",
                  "cannot tell": "cannot tell (the interval straddles the tolerance; more beds "
                                 "narrow it)"}[c["verdict"]])
+    for q in r.time_step:
+        at = "profile_depth_m" if "profile_depth_m" in q else "profile_displacement_m"
+        print(f"soil-lab: time step: {q['run']}: {q['quantity']} at half the step "
+              f"({q['half_dt_s']:.4g} against {q['full_dt_s']:.4g} s) "
+              f"{100 * q['difference']:+.1f} % (tolerance {100 * q['tolerance']:g} %): "
+              f"{'ok' if q['passed'] else 'STEP-DEPENDENT'}; by "
+              f"{'depth' if at == 'profile_depth_m' else 'displacement'}: {_bands(q, at)}")
     return 0
 
 
@@ -412,6 +419,10 @@ def main(argv=None):
                         "(on every bed with --shear-replicates: a check paired on the bed) and "
                         "the repose test (not in the quick preset) at half speed and report the "
                         "differences")
+    r.add_argument("--dt-check", action="store_true",
+                   help="time-step check: also run the larger plate and the middle normal "
+                        "stress (every bed's box) at half the soil's time step, on the same bed "
+                        "at the same speed, and report the differences")
     r.add_argument("--bed-var", action="append", metavar="NAME=VALUE",
                    help="an inputs/in.soilbin variable for every bed (e.g. compaction=plate)")
     r.add_argument("--bed-hold", type=float, default=bed_hold.DEFAULT_HOLD_S, metavar="S",

@@ -14,6 +14,7 @@ from pathlib import Path
 
 from wheelsim_post import step_archive
 
+from .plan import run_dt_s
 from .progress import _int, run_steps
 
 
@@ -75,7 +76,7 @@ def lab_estimate(plan, out, archive=None):
         if found:
             lines.append(f"{head}: finished before ({found[0]}; the lab compares its inputs)")
             continue
-        steps = run_steps(run, plan.soil.dt_s)
+        steps = run_steps(run, run_dt_s(run, plan.soil.dt_s))
         if steps is None:
             lines.append(f"{head}: to run (length not known beforehand)")
             unknown += 1

@@ -183,7 +183,7 @@ def check_options(tests, preset="standard", normal_stresses_Pa=None, plate_width
 def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None, bed_vars=None,
               plate_widths_m=None, plate_bin_m=None, speed_check=False, shear_travel=None,
               plate_speed=None, shear_speed=None, plate_depth=None, plate_hold=None,
-              plate_hold_stages=None, shear_replicates=None):
+              plate_hold_stages=None, shear_replicates=None, dt_check=False):
     """The beds and runs for `tests` on `soil`. Raises LabInputError for what check_options
     refuses (it needs no soil), and for plates narrower than 2 grains (d_max) or that do not fit
     their bin with 3/4 of a plate width of soil on every side, a plate bin narrower than 8 grains,
@@ -198,7 +198,10 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
     speed (runs named <run>_half), for the quasi-static check. shear_replicates N (default 1):
     the boxes again on beds shear_r2..shear_rN, poured with REPLICATE_SEEDS (runs
     shear_s<σ>_r<k>, meta replicate k); with speed_check, every bed's middle-stress box gets its
-    half-speed twin (shear_s<σ>[_r<k>]_half: a paired check, analysis.paired_speed_checks)."""
+    half-speed twin (shear_s<σ>[_r<k>]_half: a paired check, analysis.paired_speed_checks).
+    dt_check: also the larger plate and the middle normal stress's box (every bed's) at half the
+    soil's time step, on the same bed, at the same speed (runs named <run>_halfdt, meta
+    dt_factor 0.5; run_dt_s), for the time-step check."""
     tests = check_options(tests, preset, normal_stresses_Pa, plate_widths_m, plate_bin_m,
                           shear_travel, plate_speed, shear_speed, plate_depth, plate_hold,
                           plate_hold_stages, shear_replicates)
@@ -345,6 +348,8 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         # from flank to flank (23.7-33.0 deg in CI), so its half-speed twin, the quick lab's
         # longest run (47 s of 177), would compare noise: quick checks the plate and the box only.
         runs += _half_speed_runs(runs, repose=not quick)
+    if dt_check:
+        runs += _half_step_runs(runs)
     return Plan(soil=soil, preset=preset, tests=tests, beds=beds, runs=runs)
 
 
@@ -380,11 +385,10 @@ OUTPUTS = {"plate": {"out_csv": "plate.csv"}, "shear": {"out_csv": "shear.csv"},
            "repose": {"out_dump": "repose.dump"}}  # each test's deck output, in its run folder
 
 
-def _half_speed_runs(runs, repose=True):
-    """The quasi-static check's runs: the larger plate, the middle normal stress (its box on every
-    bed, with --shear-replicates: the half-speed difference is then measured on each bed, and
-    its mean is read against its own scatter), the repose test (if `repose`), each at half its
-    speed (same bed and tools)."""
+def _checked_runs(runs, repose):
+    """The runs a check repeats with one thing changed: the larger plate, the middle normal
+    stress (its box on every bed, with --shear-replicates: the difference is then measured on
+    each bed, and its mean is read against its own scatter), the repose test (if `repose`)."""
     picked = []
     plates = [r for r in runs if r.test == "plate"]
     shears = [r for r in runs if r.test == "shear" and "replicate" not in r.meta]
@@ -396,11 +400,39 @@ def _half_speed_runs(runs, repose=True):
                    r.meta["normal_stress_Pa"] == middle.meta["normal_stress_Pa"]]
     if repose:
         picked += [r for r in runs if r.test == "repose"]
+    return picked
+
+
+def _half_speed_runs(runs, repose=True):
+    """The quasi-static check's runs (_checked_runs), each at half its speed (same bed and
+    tools)."""
     out = []
-    for r in picked:
+    for r in _checked_runs(runs, repose):
         var = SPEED_VARIABLES[r.test]
         half = float(r.variables[var]) / 2
         out.append(Run(name=f"{r.name}_half", test=r.test, deck=r.deck, bed=r.bed,
                        meshes=r.meshes, variables={**r.variables, var: _f(half)},
                        meta={**r.meta, "speed_m_s": half, "half_of": r.name}))
     return out
+
+
+# --dt-check: a run's time step relative to the soil's (meta dt_factor; 1 for every other run).
+# The bed keeps the step it was prepared at; only the test runs at the fraction (runner.Lab.run
+# passes it to LIGGGHTS as a soil file that includes the soil's and sets soil_dt).
+DT_CHECK_FACTOR = 0.5
+
+
+def run_dt_s(run, soil_dt_s):
+    """The time step [s] `run` runs at: the soil's, or DT_CHECK_FACTOR of it (--dt-check)."""
+    return soil_dt_s * float(run.meta.get("dt_factor", 1.0))
+
+
+def _half_step_runs(runs):
+    """The time-step check's runs: the larger plate and the middle normal stress's boxes
+    (_checked_runs; not the repose test: its heap is the longest run of a lab, and a step
+    sensitivity of the soil shows under the tools first), each at DT_CHECK_FACTOR of the soil's
+    time step, at the same speed on the same bed with the same tools."""
+    return [Run(name=f"{r.name}_halfdt", test=r.test, deck=r.deck, bed=r.bed, meshes=r.meshes,
+                variables=dict(r.variables),
+                meta={**r.meta, "dt_factor": DT_CHECK_FACTOR, "half_dt_of": r.name})
+            for r in _checked_runs([r for r in runs if "half_of" not in r.meta], repose=False)]

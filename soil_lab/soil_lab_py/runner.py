@@ -27,7 +27,7 @@ from wheelsim_post import accepted_change, bed_hold, liggghts_log, mpi_launch, s
 from wheelsim_post.deck_files import deck_includes
 
 from .checkpoints import STATE, Checkpoints
-from .plan import OUTPUTS, LabInputError, SoilInfo
+from .plan import OUTPUTS, LabInputError, SoilInfo, run_dt_s
 from .progress import RunProgress, run_length, run_progress
 
 DECKS = Path(__file__).resolve().parent.parent / "decks"
@@ -272,12 +272,13 @@ class Lab:
             d = self.out / run.name
             if run.test not in CHECKPOINTED_TESTS or (d / "done.json").exists():
                 continue
-            ckpt = self._checkpoints(d, run, plan.soil.dt_s)
+            dt_s = run_dt_s(run, plan.soil.dt_s)
+            ckpt = self._checkpoints(d, run, dt_s)
             c = ckpt.newest_complete()
             if c is None:
                 continue
             start, step, path = c
-            progress = run_progress(run, d, (step - start) * plan.soil.dt_s)
+            progress = run_progress(run, d, (step - start) * dt_s)
             kept = self.archive / run.name
             before = step_archive.parked(kept)
             if before is not None and before.get("step") == step:
@@ -289,7 +290,7 @@ class Lab:
             if (d / SHEAR_START_FILE).is_file():
                 files.append(SHEAR_START_FILE)
             written = step_archive.park(d, kept, files, {
-                "step": step, "start_step": start, "time_s": (step - start) * plan.soil.dt_s})
+                "step": step, "start_step": start, "time_s": (step - start) * dt_s})
             parked += 1
             self.say(f"{run.name}: parked at step {step} ({step - start} steps into the run, "
                      f"{progress}; {written / 1e6:.1f} MB in {kept / step_archive.PARKED})")
@@ -425,11 +426,15 @@ class Lab:
         restart = bed.restart
         d = self.out / run.name
         d.mkdir(parents=True, exist_ok=True)
-        base = run.meta.get("half_of", run.name)  # a half-speed run uses its model's meshes
+        # a half-speed or half-step run uses its model's meshes
+        base = run.meta.get("half_of", run.meta.get("half_dt_of", run.name))
         meshes = {var: str(self.mesh(f"{base}_{var}", args)) for var, args in run.meshes.items()}
         outputs = OUTPUTS[run.test]
         variables = {"restart_file": restart, **meshes, **run.variables,
                      **{k: str(d / v) for k, v in outputs.items()}}
+        dt_s = run_dt_s(run, soil.dt_s)
+        if dt_s != soil.dt_s:
+            variables["soil_file"] = str(self._soil_at_step(d, soil, dt_s))
         deck = DECKS / run.deck
         # the bed by its recipe, not its restart's bytes (the module's docstring)
         key = self._key(variables, run.meta, named={"bed recipe": bed.recipe},
@@ -437,7 +442,7 @@ class Lab:
         restored = self.archive is not None and self._restore_step(d, run.name)
         done = self._done(d, key)
         if done is None and self.archive is not None and run.test in CHECKPOINTED_TESTS:
-            self._unpark(d, run, soil.dt_s)
+            self._unpark(d, run, dt_s)
         if done is None and restored:
             self.say(f"{progress}{run.name}: the archived record does not match this lab's inputs "
                      f"(changed: {', '.join(self.changed_inputs(d, key)) or 'unknown'}): runs again")
@@ -453,7 +458,7 @@ class Lab:
         ckpt = None
         if run.test in CHECKPOINTED_TESTS:
             csv = d / outputs["out_csv"]
-            ckpt = Checkpoints(d / "checkpoints", csv, soil.dt_s, key[0])
+            ckpt = Checkpoints(d / "checkpoints", csv, dt_s, key[0])
             resume = ckpt.prepare(restart)
             variables = {**variables, "lab_decks": str(DECKS),
                          "checkpoint_count": self.checkpoints, "checkpoint_dir": str(ckpt.dir),
@@ -464,7 +469,7 @@ class Lab:
                 self.say(f"{progress}{run.name}: resuming from its checkpoint at step "
                          f"{ckpt.resumed_step} ({ckpt.resumed_step - ckpt.start_step} steps done)")
         if not (ckpt and ckpt.resuming):
-            length = run_length(run, soil.dt_s)
+            length = run_length(run, dt_s)
             self.say(f"{progress}{run.name}: running" + (f" ({length})" if length else ""))
         t0 = time.monotonic()
         watch = None
@@ -487,7 +492,7 @@ class Lab:
                        "wall_s_before_resume": round(ckpt.wall_before_s, 1)}
             wall += ckpt.wall_before_s
         self._finish(d, key, wall_s=round(wall, 1), np=self.np, steps=n_steps,
-                     particles=particles, dt_s=soil.dt_s, meta=run.meta,
+                     particles=particles, dt_s=dt_s, meta=run.meta,
                      bed_restart_sha256=bed.restart_sha256, **resumed)
         if ckpt:
             ckpt.clear()
@@ -497,6 +502,18 @@ class Lab:
         self.say(f"{progress}{run.name}: {n_steps} steps, {particles} particles, {wall:.0f} s "
                  f"({rate / 1e6:.2f} M particle-steps/s)")
         return wall
+
+    @staticmethod
+    def _soil_at_step(d, soil, dt_s):
+        """The soil file a run at another time step than the soil's (--dt-check) reads instead of
+        the bed's (resume.in's soil_file): it includes the soil's file, both stages, and then sets
+        soil_dt, which resume.in gives to `timestep` after the restart. Written into the run's
+        folder; the bed and everything else stay the soil's."""
+        f = Path(d) / "soil_at_step.in"
+        f.write_text(f"# written by soil-lab (--dt-check, docs/soil-lab.md \"The time-step check\"): "
+                     f"the soil file\n# {soil.file}\n# with the time step {dt_s!r} s instead of "
+                     f"{soil.dt_s!r} s.\ninclude {soil.file}\nvariable soil_dt equal {dt_s!r}\n")
+        return f
 
     @staticmethod
     def _shear_start(d, ckpt):

@@ -28,6 +28,10 @@
                                      speed, nothing else re-runs; the report's replicate table (2
                                      boxes per stress, each bed's fit), the speed check's
                                      replicate differences and its pairing over the two beds
+  ... --tests plate --dt-check    -> the larger plate again at half the soil's time step on the
+                                     same bed (nothing else re-runs): its record's and the deck's
+                                     step, results.toml [time_step], the report's line, the SCM
+                                     file's [source]
   soil-lab scm DIR --out F.toml   -> an SCM soil file that wheel-rig --check loads unchanged
   bad input                       -> exit 2 naming the unknown soil / test / option
 
@@ -306,6 +310,35 @@ def main():
           f"{paired.get('mean_difference')}, 95 % interval {paired.get('interval_low')} .. "
           f"{paired.get('interval_high')}: {paired.get('verdict')}")
 
+    # The time-step check grows on the finished lab too: the larger plate again at half the
+    # soil's step on the same bed (--dt-check; --tests plate: the plates' runs, the half-speed
+    # one among them, are the lab's own)
+    t0 = time.monotonic()
+    r = lab(*command, "--tests", "plate", "--dt-check", env=env)
+    skipped = len(re.findall(r"done before, skipped", r.stdout))
+    ran = sorted(set(re.findall(r"(\S+): running", r.stdout)))
+    check(r.returncode == 0 and skipped == 4 and ran == ["plate_b0.032_halfdt"],
+          f"--dt-check on the finished lab: the bed, both plates and the half-speed plate kept "
+          f"({skipped} of 4), ran {ran} "
+          f"({time.monotonic() - t0:.1f} s; {r.stderr.strip()[-300:]})")
+    dts = [json.loads((out / n / "done.json").read_text()).get("dt_s")
+           for n in ("plate_b0.032", "plate_b0.032_halfdt") if (out / n / "done.json").is_file()]
+    log = out / "plate_b0.032_halfdt" / "liggghts.log"
+    text = log.read_text() if log.is_file() else ""
+    ran_dt = [float(x) for x in re.findall(r"soil-lab: plate: .*, dt (\S+) s,", text)]
+    check(len(dts) == 2 and dts[1] == 0.5 * dts[0] and len(ran_dt) == 1 and
+          abs(ran_dt[0] / dts[1] - 1) < 1e-9 and "soil_at_step.in" in text,
+          f"the half-step plate ran at half the soil's step on the same bed (records {dts} s, "
+          f"the deck's {ran_dt} s, from its soil_at_step.in)")
+    res = tomllib.loads((out / "results.toml").read_text()) if r.returncode == 0 else {}
+    step_check = res.get("time_step", {}).get("plate_b0.032", {})
+    check(step_check.get("quantity") == "pressure at the end of loading" and
+          -0.5 < step_check.get("difference", 9) < 0.5 and
+          len(step_check.get("profile_difference", [])) == analysis.PLATE_PROFILE_BANDS and
+          "time step: plate_b0.032: pressure at the end of loading at half the step" in r.stdout,
+          f"results.toml [time_step.plate_b0.032] and the report's line "
+          f"({ {k: step_check.get(k) for k in ('difference', 'passed')} })")
+
     scm = out / "ci_fitted.toml"
     scm.unlink(missing_ok=True)
     r = lab("scm", str(out), "--out", str(scm))
@@ -322,6 +355,9 @@ def main():
         check(("NOT quasi-static" if plate_check.get("passed") is False else ": quasi-static")
               in tomllib.loads(scm.read_text())["source"]["bekker"]["n"],
               f"the Bekker [source] states the plates' speed check ({plate_check})")
+        check("time-step check: plate_b0.032 at half the step" in
+              tomllib.loads(scm.read_text())["source"]["bekker"]["n"],
+              "the Bekker [source] states the plates' time-step check")
     if scm.is_file():
         text = (ROOT / "wheel_dynamics" / "examples" / "rig_scm.toml").read_text()
         text = re.sub(r'(?m)^mesh = "[^"]*"', f'mesh = "{build / "meshes" / "test_small.obj"}"', text)

@@ -162,6 +162,41 @@ class Analysis(unittest.TestCase):
         self.assertIn("-20.0 % at the end of loading (tolerance 5 %): NOT quasi-static",
                       scm(0.8, rate_dependent_ok=True))
 
+    def test_plate_time_step_check_compares_the_loading_and_is_stated_in_the_scm_file(self):
+        # The larger plate at half the step carries 12 % more pressure at every depth: the check
+        # reads +12 % at the end of loading and in each band, fails its 5 %, is not a point of the
+        # Bekker fit, and the SCM file's [source] states it (without refusing the fit).
+        r = self.lab(False)
+        bekker = r.bekker
+        full = r.directory / "plate_b0.032"
+        half = r.directory / "plate_b0.032_halfdt"
+        half.mkdir()
+        t = np.loadtxt(full / "plate.csv", ndmin=2)
+        t[:, 2:4] *= 1.12
+        np.savetxt(half / "plate.csv", t, header="time_s sinkage_m force_N pressure_Pa contacts "
+                   "phase")
+        (half / "done.json").write_text(json.dumps(
+            {"meta": {"b_m": 0.032, "dt_factor": 0.5, "half_dt_of": "plate_b0.032"},
+             "wall_s": 4.0, "dt_s": 5e-6}))
+        r = analysis.analyse(r.directory)
+        self.assertEqual(r.quasi_static, [])
+        q, = r.time_step
+        self.assertEqual((q["run"], q["half_dt_s"], q["unit"]), ("plate_b0.032", 5e-6, "Pa"))
+        self.assertAlmostEqual(q["difference"], 0.12, places=9)
+        self.assertFalse(q["passed"])
+        np.testing.assert_allclose(q["profile_difference"], 0.12, atol=1e-9)
+        self.assertEqual(len(r.plates), 2)   # the half-step plate is not a third plate
+        self.assertEqual((r.bekker.n, r.bekker.kc, r.bekker.kphi),
+                         (bekker.n, bekker.kc, bekker.kphi))
+        self.assertAlmostEqual(analysis.summary(r)["time_step"]["plate_b0.032"]["difference"],
+                               0.12, places=9)
+        out = Path(tempfile.mkdtemp()) / "scm.toml"
+        analysis.write_scm(r, out, shear=analysis.shear_strength_from(self.shear_summary(),
+                                                                      "synthetic"))
+        self.assertIn("time-step check: plate_b0.032 at half the step (5e-06 s): +12.0 % at the "
+                      "end of loading (tolerance 5 %): step-dependent",
+                      tomllib.loads(out.read_text())["source"]["bekker"]["n"])
+
     def test_shear_speed_check_compares_the_peaks(self):
         # Three boxes; the one at 10 kPa again at half speed with a 10 % lower, then a 3 % lower
         # plateau: the check reads -10 % (outside its 5 %) and -3 % (inside), relative.

@@ -224,6 +224,29 @@ class Plan(unittest.TestCase):
         self.assertEqual(sorted(r.name for r in quick.runs if r.name.endswith("_half")),
                          ["plate_b0.032_half", "shear_s6000_half"])
 
+    def test_dt_check_repeats_the_larger_plate_and_the_middle_box_at_half_the_step(self):
+        p = make_plan(SAND, ("plate", "shear", "repose"), speed_check=True, dt_check=True)
+        runs = {r.name: r for r in p.runs}
+        halfdt = sorted(n for n in runs if n.endswith("_halfdt"))
+        # not the repose heap, not the half-speed runs: the tools' tests at the soil's speeds
+        self.assertEqual(halfdt, ["plate_b0.064_halfdt", "shear_s10000_halfdt"])
+        for name in halfdt:
+            r, full = runs[name], runs[name[: -len("_halfdt")]]
+            self.assertEqual((r.test, r.deck, r.bed, r.meshes, r.variables),
+                             (full.test, full.deck, full.bed, full.meshes, full.variables))
+            self.assertEqual(r.meta, {**full.meta, "dt_factor": 0.5, "half_dt_of": full.name})
+            self.assertEqual(plan.run_dt_s(r, SAND.dt_s), 0.5 * SAND.dt_s)
+            self.assertEqual(plan.run_dt_s(full, SAND.dt_s), SAND.dt_s)
+        # the other runs are those of the lab without the check (same names, same inputs)
+        self.assertEqual([(r.name, r.variables, r.meta) for r in p.runs
+                          if not r.name.endswith("_halfdt")],
+                         [(r.name, r.variables, r.meta) for r in
+                          make_plan(SAND, ("plate", "shear", "repose"), speed_check=True).runs])
+        # with replicates: every bed's middle box, on its own bed
+        p = make_plan(SAND, ("shear",), shear_replicates=2, dt_check=True)
+        self.assertEqual([(r.name, r.bed) for r in p.runs if r.name.endswith("_halfdt")],
+                         [("shear_s10000_halfdt", "shear"), ("shear_s10000_r2_halfdt", "shear_r2")])
+
     def test_shear_replicates_pour_their_own_beds(self):
         p = make_plan(SAND, ("shear",), shear_replicates=3, speed_check=True)
         self.assertEqual(sorted(p.beds), ["shear", "shear_r2", "shear_r3"])
