@@ -75,6 +75,17 @@ def held_plate_run(directory, b_m, tau_s, stages=3, hold_s=0.5, speed=0.02, dept
     (run / "done.json").write_text(json.dumps({"meta": {"b_m": b_m}, "wall_s": 1.0}))
 
 
+def plate_twin(directory, name, scale, record):
+    """A check's run of the plate b 0.032 m (`name`, e.g. plate_b0.032_half): its CSV with every
+    force and pressure times `scale`, and the done.json `record`."""
+    full, twin = Path(directory) / "plate_b0.032", Path(directory) / name
+    twin.mkdir()
+    t = np.loadtxt(full / "plate.csv", ndmin=2)
+    t[:, 2:4] *= scale
+    np.savetxt(twin / "plate.csv", t, header="time_s sinkage_m force_N pressure_Pa contacts phase")
+    (twin / "done.json").write_text(json.dumps(record))
+
+
 class Analysis(unittest.TestCase):
     def lab(self, noisy):
         d = Path(tempfile.mkdtemp())
@@ -110,14 +121,8 @@ class Analysis(unittest.TestCase):
         # check reads -20 % at the end of loading and in each of the depth bands.
         r = self.lab(False)
         full = r.directory / "plate_b0.032"
-        half = r.directory / "plate_b0.032_half"
-        half.mkdir()
-        t = np.loadtxt(full / "plate.csv", ndmin=2)
-        t[:, 2:4] *= 0.8
-        np.savetxt(half / "plate.csv", t, header="time_s sinkage_m force_N pressure_Pa contacts "
-                   "phase")
-        (half / "done.json").write_text(json.dumps({"meta": {"b_m": 0.032, "half_of":
-                                                              "plate_b0.032"}, "wall_s": 2.0}))
+        plate_twin(r.directory, "plate_b0.032_half", 0.8,
+                   {"meta": {"b_m": 0.032, "half_of": "plate_b0.032"}, "wall_s": 2.0})
         q, = analysis.analyse(r.directory).quasi_static
         self.assertAlmostEqual(q["difference"], -0.2, places=9)
         self.assertFalse(q["passed"])
@@ -139,14 +144,8 @@ class Analysis(unittest.TestCase):
         def scm(scale, **kw):
             r = self.lab(False)
             if scale is not None:
-                full, half = r.directory / "plate_b0.032", r.directory / "plate_b0.032_half"
-                half.mkdir()
-                t = np.loadtxt(full / "plate.csv", ndmin=2)
-                t[:, 2:4] *= scale
-                np.savetxt(half / "plate.csv", t, header="time_s sinkage_m force_N pressure_Pa "
-                           "contacts phase")
-                (half / "done.json").write_text(json.dumps(
-                    {"meta": {"b_m": 0.032, "half_of": "plate_b0.032"}, "wall_s": 2.0}))
+                plate_twin(r.directory, "plate_b0.032_half", scale,
+                           {"meta": {"b_m": 0.032, "half_of": "plate_b0.032"}, "wall_s": 2.0})
                 r = analysis.analyse(r.directory)
             out = Path(tempfile.mkdtemp()) / "scm.toml"
             analysis.write_scm(r, out, shear=shear, **kw)
@@ -168,16 +167,9 @@ class Analysis(unittest.TestCase):
         # Bekker fit, and the SCM file's [source] states it (without refusing the fit).
         r = self.lab(False)
         bekker = r.bekker
-        full = r.directory / "plate_b0.032"
-        half = r.directory / "plate_b0.032_halfdt"
-        half.mkdir()
-        t = np.loadtxt(full / "plate.csv", ndmin=2)
-        t[:, 2:4] *= 1.12
-        np.savetxt(half / "plate.csv", t, header="time_s sinkage_m force_N pressure_Pa contacts "
-                   "phase")
-        (half / "done.json").write_text(json.dumps(
-            {"meta": {"b_m": 0.032, "dt_factor": 0.5, "half_dt_of": "plate_b0.032"},
-             "wall_s": 4.0, "dt_s": 5e-6}))
+        plate_twin(r.directory, "plate_b0.032_halfdt", 1.12,
+                   {"meta": {"b_m": 0.032, "dt_factor": 0.5, "half_dt_of": "plate_b0.032"},
+                    "wall_s": 4.0, "dt_s": 5e-6})
         r = analysis.analyse(r.directory)
         self.assertEqual(r.quasi_static, [])
         q, = r.time_step
