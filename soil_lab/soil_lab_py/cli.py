@@ -308,7 +308,8 @@ def _report(directory, quiet=False):
               f"({q['half_dt_s']:.4g} against {q['full_dt_s']:.4g} s) "
               f"{100 * q['difference']:+.1f} % (tolerance {100 * q['tolerance']:g} %): "
               f"{'ok' if q['passed'] else 'STEP-DEPENDENT'}; by "
-              f"{'depth' if at == 'profile_depth_m' else 'displacement'}: {_bands(q, at)}")
+              f"{'depth' if at == 'profile_depth_m' else 'displacement'}: {_bands(q, at)} "
+              f"(mean {100 * sum(q['profile_difference']) / len(q['profile_difference']):+.1f} %)")
     return 0
 
 
