@@ -79,9 +79,9 @@ def _numbers(text, option, expected):
 
 def run_options(a):
     """The options of `soil-lab run` (parsed arguments `a`) as make_plan's keyword arguments
-    (without speed_check and dt_check), after every check that needs no soil (plan.check_options, and the
-    command line's own): bad input is refused before anything is created or started. Returns
-    (tests, options, bed_vars)."""
+    (without speed_check and dt_check), after every check that needs no soil
+    (plan.check_options, and the command line's own): bad input is refused before anything is
+    created or started. Returns (tests, options, bed_vars)."""
     tests = _list(a.tests, "--tests")
     options = dict(normal_stresses_Pa=_numbers(a.normal_stresses, "--normal-stresses",
                                                "numbers in Pa"),
