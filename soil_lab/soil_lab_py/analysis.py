@@ -241,8 +241,8 @@ def read_soil(path):
 
 
 COST_KEYS = ("wall_s", "steps", "particles", "np", "dt_s")
-#: Quasi-static check: the result at half speed must differ by less than this (docs/soil-lab.md).
-# The checks' tolerances, at half the speed and (--dt-check) at half the time step alike
+#: The checks: the result at half the speed (the quasi-static check) or at half the time step
+#: (--dt-check) must differ by less than this (docs/soil-lab.md).
 QUASI_STATIC_TOLERANCE = {"plate": 0.05, "shear": 0.05, "repose": 1.5}  # relative, relative, deg
 CHECK_SUFFIXES = ("_half", "_halfdt")  # the checks' runs: not points of the lab's own fits
 
@@ -913,7 +913,6 @@ def analyse(directory):
                                                       "a wall time >= 0 [s]", lambda v: v >= 0,
                                                       required=False) or 0.0
     return r
-
 
 
 def _compare_runs(r, full_dir, full, run, half, dmax):

@@ -433,8 +433,11 @@ class Lab:
         variables = {"restart_file": restart, **meshes, **run.variables,
                      **{k: str(d / v) for k, v in outputs.items()}}
         dt_s = run_dt_s(run, soil.dt_s)
-        if dt_s != soil.dt_s:
-            variables["soil_file"] = str(self._soil_at_step(d, soil, dt_s))
+        # a run at another step than the soil's (--dt-check) reads the soil through this file,
+        # written below only when it runs
+        soil_at_step = d / "soil_at_step.in" if dt_s != soil.dt_s else None
+        if soil_at_step:
+            variables["soil_file"] = str(soil_at_step)
         deck = DECKS / run.deck
         # the bed by its recipe, not its restart's bytes (the module's docstring)
         key = self._key(variables, run.meta, named={"bed recipe": bed.recipe},
@@ -455,6 +458,8 @@ class Lab:
             if self.archive is not None:
                 self._keep_step(d, run.name)
             return done.get("wall_s")
+        if soil_at_step:
+            self._write_soil_at_step(soil_at_step, soil, dt_s)
         ckpt = None
         if run.test in CHECKPOINTED_TESTS:
             csv = d / outputs["out_csv"]
@@ -504,16 +509,14 @@ class Lab:
         return wall
 
     @staticmethod
-    def _soil_at_step(d, soil, dt_s):
-        """The soil file a run at another time step than the soil's (--dt-check) reads instead of
-        the bed's (resume.in's soil_file): it includes the soil's file, both stages, and then sets
-        soil_dt, which resume.in gives to `timestep` after the restart. Written into the run's
-        folder; the bed and everything else stay the soil's."""
-        f = Path(d) / "soil_at_step.in"
+    def _write_soil_at_step(f, soil, dt_s):
+        """The soil file `f` a run at another time step than the soil's (--dt-check) reads instead
+        of the bed's (resume.in's soil_file): it includes the soil's file, both stages, and then
+        sets soil_dt, which resume.in gives to `timestep` after the restart. The bed and
+        everything else stay the soil's."""
         f.write_text(f"# written by soil-lab (--dt-check, docs/soil-lab.md \"The time-step check\"): "
                      f"the soil file\n# {soil.file}\n# with the time step {dt_s!r} s instead of "
                      f"{soil.dt_s!r} s.\ninclude {soil.file}\nvariable soil_dt equal {dt_s!r}\n")
-        return f
 
     @staticmethod
     def _shear_start(d, ckpt):
