@@ -46,7 +46,8 @@ class Results:
     repose_error: Optional[str] = None  # why no angle could be fitted (too small a heap, ...)
     quasi_static: List[dict] = field(default_factory=list)  # half-speed comparisons
     time_step: List[dict] = field(default_factory=list)  # half-step comparisons (--dt-check)
-    paired_speed_checks: List[dict] = field(default_factory=list)  # over beds: paired_speed_check
+    paired_speed_checks: List[dict] = field(default_factory=list)  # over beds: paired_check
+    paired_step_checks: List[dict] = field(default_factory=list)  # the same for --dt-check
     costs: List[dict] = field(default_factory=list)
     bed_costs: Dict[str, float] = field(default_factory=dict)  # bed name -> wall time [s]
     bed_holds: Dict[str, dict] = field(default_factory=dict)  # bed name -> bed-hold check result
@@ -668,24 +669,30 @@ REPLICATE_SCATTER_SDS = 2.0
 STUDENT_T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776}
 
 
-def paired_speed_check(differences, tolerance):
-    """The speed check over beds: each bed's box at half speed against its box at full speed
-    (relative peak differences, one per bed, >= 2). A pairing on the bed removes the bed-to-bed
-    scatter (the packings differ, each pair shares one); what is left is the rate effect and each
-    box's own fluctuation, whose spread over the beds is measured. Returns the mean difference,
-    its sample sd and standard error, the 95 % interval (Student's t on n - 1 degrees of freedom)
-    and the verdict: "quasi-static" when the whole interval lies within +-tolerance, "rate
-    effect" when it lies wholly outside, "cannot tell" otherwise (more beds narrow it);
-    `passed` is the single pair's rule (|mean| <= tolerance) on the mean."""
+# A paired check's verdicts: (the whole interval within the tolerance, wholly outside it).
+SPEED_VERDICTS = ("quasi-static", "rate effect")
+STEP_VERDICTS = ("step-converged", "step effect")
+
+
+def paired_check(differences, tolerance, verdicts=SPEED_VERDICTS):
+    """A check over beds: each bed's box with one thing changed (half the speed, half the time
+    step) against its own box (relative peak differences, one per bed, >= 2). A pairing on the
+    bed removes the bed-to-bed scatter (the packings differ, each pair shares one); what is left
+    is the change's effect and each box's own fluctuation, whose spread over the beds is
+    measured. Returns the mean difference, its sample sd and standard error, the 95 % interval
+    (Student's t on n - 1 degrees of freedom) and the verdict: verdicts[0] ("quasi-static",
+    "step-converged") when the whole interval lies within +-tolerance, verdicts[1] ("rate
+    effect", "step effect") when it lies wholly outside, "cannot tell" otherwise (more beds
+    narrow it); `passed` is the single pair's rule (|mean| <= tolerance) on the mean."""
     d = np.asarray(differences, dtype=float)
     if d.size < 2 or d.size - 1 not in STUDENT_T95:
-        raise ValueError(f"a paired speed check needs 2..{max(STUDENT_T95) + 1} beds, got {d.size}")
+        raise ValueError(f"a paired check needs 2..{max(STUDENT_T95) + 1} beds, got {d.size}")
     mean, sd = float(d.mean()), float(d.std(ddof=1))
     sem = sd / np.sqrt(d.size)
     t = STUDENT_T95[d.size - 1]
     lo, hi = mean - t * sem, mean + t * sem
-    verdict = ("quasi-static" if -tolerance <= lo and hi <= tolerance else
-               "rate effect" if lo > tolerance or hi < -tolerance else "cannot tell")
+    verdict = (verdicts[0] if -tolerance <= lo and hi <= tolerance else
+               verdicts[1] if lo > tolerance or hi < -tolerance else "cannot tell")
     return {"beds": int(d.size), "differences": [float(x) for x in d],
             "mean_difference": mean, "sd_difference": sd, "sem_difference": float(sem),
             "t95": t, "interval_low": float(lo), "interval_high": float(hi),
@@ -874,25 +881,29 @@ def analyse(directory):
                      "passed": bool(abs(diff) <= tol)}
             if suffix == "_half":
                 entry.update(full_speed=float(a), half_speed=float(b), **extra)
-            else:  # the steps from the records; the curves compared, not the box's extras
+            else:  # the steps from the records; the curves compared and the box's bed, not
+                # the half-speed box's lid and replicate extras
                 entry.update(full_dt_s=float(full.get("dt_s", float("nan"))),
                              half_dt_s=float(half.get("dt_s", float("nan"))),
                              full_step=float(a), half_step=float(b),
-                             **{k: v for k, v in extra.items() if k.startswith("profile_")})
+                             **{k: v for k, v in extra.items() if k.startswith("profile_")
+                                or k in ("sigma_target_Pa", "replicate")})
             checks.append(entry)
-    # with --shear-replicates: each bed's half-speed difference at a stress, paired on its bed
-    by_target = {}
-    for q in r.quasi_static:
-        if "replicate" in q:   # a shear box's comparison
-            by_target.setdefault(q["sigma_target_Pa"], []).append(q)
-    for target, pairs in sorted(by_target.items()):
-        if len(pairs) >= 2:
-            pairs.sort(key=lambda q: q["replicate"])
-            r.paired_speed_checks.append({
-                "sigma_target_Pa": float(target), "runs": [q["run"] for q in pairs],
-                "replicates": [q["replicate"] for q in pairs],
-                **paired_speed_check([q["difference"] for q in pairs],
-                                     QUASI_STATIC_TOLERANCE["shear"])})
+    # with --shear-replicates: each bed's difference at a stress, paired on its bed
+    for checks, paired, verdicts in ((r.quasi_static, r.paired_speed_checks, SPEED_VERDICTS),
+                                     (r.time_step, r.paired_step_checks, STEP_VERDICTS)):
+        by_target = {}
+        for q in checks:
+            if "replicate" in q:   # a shear box's comparison
+                by_target.setdefault(q["sigma_target_Pa"], []).append(q)
+        for target, pairs in sorted(by_target.items()):
+            if len(pairs) >= 2:
+                pairs.sort(key=lambda q: q["replicate"])
+                paired.append({
+                    "sigma_target_Pa": float(target), "runs": [q["run"] for q in pairs],
+                    "replicates": [q["replicate"] for q in pairs],
+                    **paired_check([q["difference"] for q in pairs],
+                                   QUASI_STATIC_TOLERANCE["shear"], verdicts)})
 
     for run, done in [(q, _done(q)) for q in sorted(d.iterdir()) if q.is_dir()]:
         if done is not None and "steps" in done:
@@ -1090,10 +1101,11 @@ def summary(r: Results):
     if r.time_step:
         out["time_step"] = {q["run"]: {k: v for k, v in q.items() if k != "run"}
                             for q in r.time_step}
-    if r.paired_speed_checks:
-        out["quasi_static_paired"] = {_paired_key(c): {k: v for k, v in c.items()
-                                                       if k != "sigma_target_Pa"}
-                                      for c in r.paired_speed_checks}
+    for name, paired in (("quasi_static_paired", r.paired_speed_checks),
+                         ("time_step_paired", r.paired_step_checks)):
+        if paired:
+            out[name] = {_paired_key(c): {k: v for k, v in c.items() if k != "sigma_target_Pa"}
+                         for c in paired}
     if r.bed_holds:
         out["bed_hold"] = r.bed_holds
     if r.costs:
@@ -1107,8 +1119,8 @@ def summary(r: Results):
 
 
 def _paired_key(c):
-    """results.toml's key of a paired speed check: shear_s<target stress [Pa]> (its full-speed
-    boxes on the first bed are named so)."""
+    """results.toml's key of a paired check: shear_s<target stress [Pa]> (the first bed's box
+    at the soil's speed and step is named so)."""
     return f"shear_s{c['sigma_target_Pa']:g}"
 
 
@@ -1143,9 +1155,11 @@ def write_report(r: Results, quiet=False):
                 at = f"s{b['sigma_target_Pa']:g}"
                 for k in ("tau_peak_mean_Pa", "tau_peak_sd_Pa", "tau_peak_spread"):
                     w.writerow(["shear", f"replicates_{at}_{k}", f"{b[k]:.6g}"])
-        for c in r.paired_speed_checks:  # results.toml [quasi_static_paired.<key>], flattened
-            for k in ("mean_difference", "sem_difference", "interval_low", "interval_high"):
-                w.writerow(["quasi_static_paired", f"{_paired_key(c)}_{k}", f"{c[k]:.6g}"])
+        for test, paired in (("quasi_static_paired", r.paired_speed_checks),
+                             ("time_step_paired", r.paired_step_checks)):
+            for c in paired:  # results.toml [<test>.<key>], flattened
+                for k in ("mean_difference", "sem_difference", "interval_low", "interval_high"):
+                    w.writerow([test, f"{_paired_key(c)}_{k}", f"{c[k]:.6g}"])
     written.append(d / "results.csv")
     name = r.soil.get("name", "?")
     if r.plates:

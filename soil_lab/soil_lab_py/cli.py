@@ -290,18 +290,10 @@ def _report(directory, quiet=False):
                           "soil compacts more: compare the lids); replicates at the same speed "
                           "(--shear-replicates) would measure the fluctuation")
     for c in r.paired_speed_checks:
-        print(f"soil-lab: quasi-static over {c['beds']} beds at "
-              f"{c['sigma_target_Pa'] / 1e3:.3g} kPa (each bed's box at half speed against its "
-              "box at full speed: "
-              + ", ".join(f"{100 * x:+.1f} %" for x in c["differences"])
-              + f"): mean {100 * c['mean_difference']:+.1f} % ± {100 * c['sem_difference']:.1f} % "
-              f"(standard error), 95 % interval {100 * c['interval_low']:+.1f} to "
-              f"{100 * c['interval_high']:+.1f} % against the tolerance "
-              f"±{100 * c['tolerance']:g} %: "
-              + {"quasi-static": "quasi-static (the whole interval within it)",
-                 "rate effect": "a rate effect (the whole interval outside it): NOT quasi-static",
-                 "cannot tell": "cannot tell (the interval straddles the tolerance; more beds "
-                                "narrow it)"}[c["verdict"]])
+        _print_paired(c, "quasi-static", "at half speed against its box at full speed",
+                      {"quasi-static": "quasi-static (the whole interval within it)",
+                       "rate effect": "a rate effect (the whole interval outside it): NOT "
+                                      "quasi-static"})
     for q in r.time_step:
         at = "profile_depth_m" if "profile_depth_m" in q else "profile_displacement_m"
         print(f"soil-lab: time step: {q['run']}: {q['quantity']} at half the step "
@@ -310,7 +302,25 @@ def _report(directory, quiet=False):
               f"{'ok' if q['passed'] else 'STEP-DEPENDENT'}; by "
               f"{'depth' if at == 'profile_depth_m' else 'displacement'}: {_bands(q, at)} "
               f"(mean {100 * sum(q['profile_difference']) / len(q['profile_difference']):+.1f} %)")
+    for c in r.paired_step_checks:
+        _print_paired(c, "time step", "at half the step against its box at the soil's step",
+                      {"step-converged": "step-converged (the whole interval within it)",
+                       "step effect": "a step effect (the whole interval outside it): "
+                                      "STEP-DEPENDENT"})
     return 0
+
+
+def _print_paired(c, check, pair, verdicts):
+    """The report's line on a check paired over beds (analysis.paired_check's result `c`;
+    `verdicts`: the text of each verdict but "cannot tell")."""
+    print(f"soil-lab: {check} over {c['beds']} beds at {c['sigma_target_Pa'] / 1e3:.3g} kPa "
+          f"(each bed's box {pair}: "
+          + ", ".join(f"{100 * x:+.1f} %" for x in c["differences"])
+          + f"): mean {100 * c['mean_difference']:+.1f} % ± {100 * c['sem_difference']:.1f} % "
+          f"(standard error), 95 % interval {100 * c['interval_low']:+.1f} to "
+          f"{100 * c['interval_high']:+.1f} % against the tolerance ±{100 * c['tolerance']:g} %: "
+          + verdicts.get(c["verdict"],
+                         "cannot tell (the interval straddles the tolerance; more beds narrow it)"))
 
 
 def _print_replicates(rep):
@@ -423,7 +433,8 @@ def main(argv=None):
     r.add_argument("--dt-check", action="store_true",
                    help="time-step check: also run the larger plate and the middle normal "
                         "stress (every bed's box) at half the soil's time step, on the same bed "
-                        "at the same speed, and report the differences")
+                        "at the same speed, and report the differences (with --shear-replicates: "
+                        "the boxes' check paired on the bed)")
     r.add_argument("--bed-var", action="append", metavar="NAME=VALUE",
                    help="an inputs/in.soilbin variable for every bed (e.g. compaction=plate)")
     r.add_argument("--bed-hold", type=float, default=bed_hold.DEFAULT_HOLD_S, metavar="S",

@@ -684,15 +684,52 @@ class Analysis(unittest.TestCase):
         self.assertAlmostEqual(rows["quasi_static_paired", "shear_s10000_mean_difference"],
                                c["mean_difference"], places=5)
         # the verdicts: an interval within +-5 %, one wholly outside it; a single bed is refused
-        ok = analysis.paired_speed_check([-0.01, 0.0, 0.01], 0.05)
+        ok = analysis.paired_check([-0.01, 0.0, 0.01], 0.05)
         self.assertEqual(ok["verdict"], "quasi-static")
         self.assertAlmostEqual(ok["interval_high"], 4.303 * 0.01 / np.sqrt(3), places=6)
-        rate = analysis.paired_speed_check([-0.12, -0.10, -0.14], 0.05)
+        rate = analysis.paired_check([-0.12, -0.10, -0.14], 0.05)
         self.assertEqual((rate["verdict"], rate["passed"]), ("rate effect", False))
-        self.assertEqual(analysis.paired_speed_check([0.20, 0.08], 0.05)["verdict"],
+        self.assertEqual(analysis.paired_check([0.20, 0.08], 0.05)["verdict"],
                          "cannot tell")   # two beds: t 12.7, a wide interval
         with self.assertRaisesRegex(ValueError, "2..5 beds, got 1"):
-            analysis.paired_speed_check([0.01], 0.05)
+            analysis.paired_check([0.01], 0.05)
+
+    def test_the_time_step_check_over_beds_pairs_each_beds_boxes(self):
+        # Three beds 0 / +10 / -10 % strong, each with its middle box at half the step +12 / +10
+        # / +14 % stronger than its own bed's: mean +12 %, sd 2 %, 95 % interval 12 +- 4.303 x
+        # 1.155 = +7.03 .. +16.97 %, wholly outside +-5 %: "step effect". The same beds at
+        # +1 / 0 / -1 %: "step-converged". The speed check's verdict words are not used.
+        for steps, verdict, low in (((1.12, 1.10, 1.14), "step effect", 0.0703),
+                                    ((1.01, 1.00, 0.99), "step-converged", -0.0248)):
+            d = Path(tempfile.mkdtemp())
+            (d / "soil.toml").write_text('name = "synthetic"\npreset = "standard"\n'
+                                         'dmax_m = 0.004\n')
+            for k, scale, step in zip((1, 2, 3), (1.0, 1.1, 0.9), steps):
+                for sigma in (5e3, 1e4, 2e4):
+                    syn.shear_run(d, sigma, tau_scale=scale, replicate=k)
+                name = "shear_s10000" + ("" if k == 1 else f"_r{k}") + "_halfdt"
+                syn.shear_run(d, 1e4, name=name, tau_scale=scale * step, replicate=k)
+                record = json.loads((d / name / "done.json").read_text())
+                record.update(dt_s=5e-6, meta={**record["meta"], "dt_factor": 0.5})
+                (d / name / "done.json").write_text(json.dumps(record))
+            r = analysis.analyse(d)
+            self.assertEqual((r.quasi_static, r.paired_speed_checks), ([], []))
+            self.assertEqual([(q["run"], q["replicate"], q["half_dt_s"]) for q in r.time_step],
+                             [("shear_s10000", 1, 5e-6), ("shear_s10000_r2", 2, 5e-6),
+                              ("shear_s10000_r3", 3, 5e-6)])
+            c, = r.paired_step_checks
+            self.assertEqual((c["beds"], c["replicates"], c["sigma_target_Pa"]), (3, [1, 2, 3], 1e4))
+            np.testing.assert_allclose(c["differences"], np.array(steps) - 1, atol=1e-3)
+            self.assertAlmostEqual(c["interval_low"], low, delta=2e-3)
+            self.assertEqual(c["verdict"], verdict)
+            s = analysis.summary(r)
+            self.assertEqual(s["time_step_paired"]["shear_s10000"]["verdict"], verdict)
+            self.assertNotIn("quasi_static_paired", s)
+            analysis.write_report(r)
+            rows = {(t, q): float(v) for t, q, v in
+                    (line.split(",") for line in (d / "results.csv").read_text().splitlines()[1:])}
+            self.assertAlmostEqual(rows["time_step_paired", "shear_s10000_interval_low"],
+                                   c["interval_low"], places=5)
 
     def test_an_unstable_shear_box_is_named(self):
         j = np.linspace(0.0, 0.008, 400)

@@ -222,6 +222,17 @@ class DamagedLab(unittest.TestCase):
                       "against its box at full speed: +30.0 %, +28.0 %): mean +29.0 % ± 1.0 % "
                       "(standard error), 95 % interval +16.3 to +41.7 % against the tolerance "
                       "±5 %: a rate effect (the whole interval outside it): NOT quasi-static", out)
+        # both beds' boxes at half the time step, +3 % and -2 %: the time-step check paired over
+        # the two beds (mean +0.5 %, se 2.5 %, t 12.7: -31.3 .. +32.3 %), its own line
+        shear_run(self.lab, 1e4, name="shear_s10000_halfdt", tau_scale=1.03)
+        shear_run(self.lab, 1e4, name="shear_s10000_r2_halfdt", tau_scale=1.1 * 0.98, replicate=2)
+        rc, out, err = main("report", self.lab)
+        self.assertEqual((rc, err), (0, ""))
+        self.assertIn("soil-lab: time step over 2 beds at 10 kPa (each bed's box at half the step "
+                      "against its box at the soil's step: +3.0 %, -2.0 %): mean +0.5 % ± 2.5 % "
+                      "(standard error), 95 % interval -31.3 to +32.3 % against the tolerance "
+                      "±5 %: cannot tell (the interval straddles the tolerance; more beds narrow "
+                      "it)", out)
 
     def test_a_corrupt_soil_toml(self):
         (self.lab / "soil.toml").write_text('name = "synthetic"\ndmax_m = = 0.004\n')
