@@ -1316,11 +1316,19 @@ def plate_speed_statement(r: Results, rate_dependent_ok=False):
 
 def plate_step_statement(r: Results):
     """The plates' time-step check (--dt-check) for the SCM file's Bekker [source], stated, not a
-    reason to refuse (the soil is calibrated at its step): '' without one."""
+    reason to refuse (the soil is calibrated at its step); without one, that it was not checked
+    and the step the plates ran at (the fit holds at it: on cdt soils the plate pressure moves
+    with the step, docs/soil-lab.md "The time-step check")."""
+    checks = [q for q in r.time_step if q["run"].startswith("plate")]
+    if not checks:
+        steps = sorted({v for p in r.plates
+                        if isinstance(v := (p.get("done") or {}).get("dt_s"), (int, float))})
+        at = f", fitted at dt {', '.join(f'{v:.4g}' for v in steps)} s" if steps else ""
+        return f"; time step not checked (no --dt-check half-step plate in the lab{at})"
     return "".join(f"; time-step check: {q['run']} at half the step ({q['half_dt_s']:.4g} s): "
                    f"{100 * q['difference']:+.1f} % at the end of loading (tolerance "
                    f"{100 * q['tolerance']:g} %)" + ("" if q["passed"] else ": step-dependent")
-                   for q in r.time_step if q["run"].startswith("plate"))
+                   for q in checks)
 
 
 def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None,

@@ -36,7 +36,7 @@ def plate_run(directory, b_m, noisy_peak):
     run.mkdir(parents=True)
     np.savetxt(run / "plate.csv", np.column_stack([t, z, p * b_m * b_m, p, 10 + 0 * z, phase]),
                header="time_s sinkage_m force_N pressure_Pa contacts phase")
-    (run / "done.json").write_text(json.dumps({"meta": {"b_m": b_m}, "wall_s": 1.0}))
+    (run / "done.json").write_text(json.dumps({"meta": {"b_m": b_m}, "wall_s": 1.0, "dt_s": 1e-5}))
 
 
 RELAXED = 0.8  # the held synthetic soil relaxes to this fraction of its pressure at speed
@@ -152,6 +152,9 @@ class Analysis(unittest.TestCase):
             return tomllib.loads(out.read_text())["source"]["bekker"]["n"]
         self.assertIn("plate speed not checked (no --speed-check half-speed plate in the lab)",
                       scm(None))
+        # nor its time step: said, with the step the plates ran at (their records' dt_s)
+        self.assertIn("; time step not checked (no --dt-check half-step plate in the lab, fitted "
+                      "at dt 1e-05 s)", scm(None))
         self.assertIn("speed check: plate_b0.032 at half speed: -2.0 % at the end of loading "
                       "(tolerance 5 %): quasi-static", scm(0.98))
         with self.assertRaisesRegex(analysis.LabResultError,
