@@ -18,7 +18,8 @@ for run, label in (("shear_s10000", "dt 4.87e-5 s (the soil's)"),
     d = np.loadtxt(archive / run / "shear.csv")
     s = d[d[:, 6] == 2]   # the shear phase
     j = 1e3 * (s[:, 1] - s[0, 1])
-    ax.plot(j, s[:, 3] / 1e3, lw=0.8, label=f"{label}: unsmoothed max {s[:, 3].max() / 1e3:.2f} kPa")
+    ax.plot(j, s[:, 3] / 1e3, lw=0.8,
+            label=f"{label}: unsmoothed max {s[:, 3].max() / 1e3:.2f} kPa")
     lid.plot(j, 1e3 * (s[:, 5] - s[0, 5]), lw=1.0, label=label)
 ax.set_ylabel("shear stress τ [kPa]")
 ax.set_title("dry_sand_coarse (cdt, μr 0.45): 10 kPa box at the soil's step and at half of it")
