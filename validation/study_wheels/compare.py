@@ -226,15 +226,16 @@ def release_curve(run_h5):
     return z[rel], fz[rel], z[rel[-1]], (z[settle[-1]] if settle.size else math.nan)
 
 
-def press_in_table(steps):
+def press_in_table(steps, model="cdt"):
     """Markdown: the resistance the wheel meets while it is pressed in (its release phase, at the
     same fixed speed in every run), at a few sinkages, for the same point at each time step:
     where a difference in the time step first shows. steps: (results table, its name); the run
-    files are found from each table's run_file column, relative to the table."""
+    files are found from each table's run_file column, relative to the table. model: the soil's
+    rolling model, for the heading."""
     import numpy as np
 
     heads = " | ".join(f"{z * 1e3:.0f} mm" for z in PRESS_IN_SINKAGES_M)
-    out = ["## The wheel pressed in, at each time step", "",
+    out = [f"## The wheel pressed in, at each time step ({model})", "",
            "The release phase: the wheel lowered at the rig's fixed release speed until it carries "
            "its load. Vertical contact force [kN] at each sinkage (mean of the samples within "
            f"±{PRESS_IN_BAND_M * 1e3:.0f} mm; — where the release ended above it), and the sinkage "
@@ -316,6 +317,9 @@ def main():
                     "(sweep_speed.toml)")
     ap.add_argument("--dt", help="a point at half the time step (sweep_dt.toml)")
     ap.add_argument("--dt4", help="a point at a quarter of the time step (sweep_dt4.toml)")
+    ap.add_argument("--epsdt", help="a point on the epsdt recipe of the sand (sweep_epsdt.toml)")
+    ap.add_argument("--epsdt-dt", help="the epsdt point at half the time step "
+                    "(sweep_epsdt_dt.toml)")
     ap.add_argument("--wide", help="the active domain's point with a larger distance (its sinkage "
                     "allowance raised), compared with --full-domain's")
     ap.add_argument("--repeat", help="the repeat of the active domain's point on another ranks' "
@@ -378,14 +382,25 @@ def main():
             (a.dt, "The time step: 4.4e-5 s ({}) against 2.2e-5 s (sweep_dt.toml: same bed, "
              "grains and ranks)", "dt 2.2e-5 s"),
             (a.dt4, "The time step: 4.4e-5 s ({}) against 1.1e-5 s (sweep_dt4.toml: same bed, "
-             "grains and ranks)", "dt 1.1e-5 s")):
+             "grains and ranks)", "dt 1.1e-5 s"),
+            (a.epsdt, "The rolling model: cdt, μr 0.45 ({}) against epsdt, μr 0.03 poured at 0.1 "
+             "(sweep_epsdt.toml: the same grains and bulk density, a bed of its own)",
+             "epsdt")):
         if table:
             lines += ["## " + heading.format(a.label), ""]
             lines += point_table(dem, read(table), name, ref=a.label)[0] + [""]
-    steps = [(path, name) for path, name in ((a.dem, a.label), (a.dt, "dt 2.2e-5 s"),
-                                              (a.dt4, "dt 1.1e-5 s")) if path]
-    if len(steps) > 1:
-        lines += press_in_table(steps) + [""]
+    if a.epsdt and a.epsdt_dt:
+        lines += ["## The time step on epsdt: 4.4e-5 s (sweep_epsdt.toml) against 2.2e-5 s "
+                  "(sweep_epsdt_dt.toml: same bed, grains and ranks)", ""]
+        lines += point_table(read(a.epsdt), read(a.epsdt_dt), "epsdt, dt 2.2e-5 s",
+                             ref="sweep_epsdt.toml")[0] + [""]
+    for steps, model in (([(a.dem, a.label), (a.dt, "dt 2.2e-5 s"), (a.dt4, "dt 1.1e-5 s")],
+                          "cdt"),
+                         ([(a.epsdt, "sweep_epsdt.toml"), (a.epsdt_dt, "epsdt, dt 2.2e-5 s")],
+                          "epsdt")):
+        steps = [(path, name) for path, name in steps if path]
+        if len(steps) > 1:
+            lines += press_in_table(steps, model) + [""]
     text = "\n".join(lines) + "\n"
     if a.md:
         Path(a.md).write_text(text, encoding="utf-8")

@@ -31,7 +31,10 @@
 # 4-12 s; ~2.4 h estimated, 6 h measured on a slow machine): how much of the case depends on the
 # speed; dt — wheel 1 at 20 % at half the time step, 2.2e-5 s (sweep_dt.toml; ~2.5 h): how much
 # depends on the step; dt4 — the same at a quarter of the step, 1.1e-5 s (sweep_dt4.toml; ~5 h):
-# whether it converges. Resumable: a re-run skips
+# whether it converges; epsdt — wheel 1 at 20 % on the epsdt recipe of the sand (a capped rolling
+# spring; sweep_epsdt.toml, its own bed; ~1.5 h with the bed), epsdt_dt — the same at half the step
+# (sweep_epsdt_dt.toml; ~2.6 h): whether the wheel converges in the step on a rolling spring as the
+# lab's plate does. Resumable: a re-run skips
 # finished points. Writes here results.csv (DEM), results_<part>.csv (the others), comparison.md
 # and comparison.png (the case), comparison_active_domain.md (the check) and
 # provenance[_<part>].toml (git hash, command, machine, wall time); finished DEM points are kept in points/ (committed) and restored on the
@@ -61,7 +64,7 @@ while (($#)); do
   esac
 done
 # the parts besides dem: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
-parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide allowance wheel_mu speed dt dt4)
+parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide allowance wheel_mu speed dt dt4 epsdt epsdt_dt)
 for part in ${only//,/ }; do
   [[ " dem ${parts[*]} " == *" $part "* ]] || {
     echo "run.sh: --only: unknown part '$part' (expected dem ${parts[*]})" >&2; exit 2; }
@@ -143,6 +146,8 @@ if [[ -f $here/results.csv ]]; then
   [[ -f $here/results_speed.csv ]] && extra+=(--speed "$here/results_speed.csv")
   [[ -f $here/results_dt.csv ]] && extra+=(--dt "$here/results_dt.csv")
   [[ -f $here/results_dt4.csv ]] && extra+=(--dt4 "$here/results_dt4.csv")
+  [[ -f $here/results_epsdt.csv ]] && extra+=(--epsdt "$here/results_epsdt.csv")
+  [[ -f $here/results_epsdt_dt.csv ]] && extra+=(--epsdt-dt "$here/results_epsdt_dt.csv")
   "$python" "$here/compare.py" "$here/results.csv" "${extra[@]}" \
     --md "$here/comparison.md" --png "$here/comparison.png" || status=1
 fi
