@@ -121,6 +121,19 @@ def main():
     check(press[:2] == want, f"press-in rows\n{press}\nexpected (the first two)\n{want}")
     check(len(press) == 3 and "unreadable" in press[2],
           f"a run file that is not there is named, not fatal ({press[2:]})")
+    # the epsdt recipe: its point against the case's (the rolling model), its own step check
+    # against its half-step point, and a press-in table of its own beside cdt's
+    r = run_script(SCRIPT, dem, "--dt", dt2, "--epsdt", dt2, "--epsdt-dt", dt2, "--md", md)
+    text = md.read_text() if r.returncode == 0 and md.is_file() else ""
+    check("## The rolling model: cdt, μr 0.45 (sweep.toml) against epsdt" in text
+          and "## The time step on epsdt: 4.4e-5 s (sweep_epsdt.toml) against 2.2e-5 s" in text,
+          f"the epsdt sections (exit {r.returncode})")
+    check("| wheel1 s 0.2 | drawbar pull [kN] | -0.6 ± 0.05 | -0.6 ± 0.05 | +0.00 % |" in text,
+          "the epsdt step row: sweep_epsdt.toml's point against its half-step point")
+    heads = [l for l in text.splitlines() if l.startswith("## The wheel pressed in")]
+    check(heads == ["## The wheel pressed in, at each time step (cdt)",
+                    "## The wheel pressed in, at each time step (epsdt)"],
+          f"a press-in table per rolling model: {heads}")
     # a skid point: TE = (DP / F_T)(1 - s) needs the driving convention, the table's
     # slip_driving (-1 at skid slip -0.5: v = 2 omega R_eff), not its signed slip (-0.5)
     skid = work / "skid.csv"
