@@ -19,6 +19,7 @@ import sys
 from pathlib import Path
 
 from wheelsim_post import bed_hold, mpi_launch
+from wheelsim_sweep import estimate as sweep_estimate
 from wheelsim_post.deck_files import deck_includes
 from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
 
@@ -154,7 +155,14 @@ def _run(a):
     if a.park:
         return lab.park(p)
     if a.estimate:
-        for line in estimate.lab_estimate(p, out, a.archive):
+        try:
+            machine = estimate.MachineRate.of_this_machine(
+                lab.liggghts, a.np, soil.file, REPO / "inputs", REPO / "inputs" / "in.soilbin")
+        except sweep_estimate.EstimateError as e:
+            machine = None
+            lab.say(f"estimate: this machine's rate not available ({e}): what the lab has no "
+                    "pace of is not priced")
+        for line in estimate.lab_estimate(p, out, a.archive, machine):
             lab.say(line)
         return 0
     # The soil file as the checkout names it (inputs/soils/x.in), so results do not carry the

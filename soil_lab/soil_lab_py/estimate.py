@@ -5,14 +5,18 @@ archive; its inputs are not compared: the lab does that when it runs), or was pa
 done); the wall time left at a pace measured on this lab: a parked run's own last attempt (steps
 from its resume to its parked checkpoint over that wall time), else the mean steps per second of
 the lab's finished and parked runs on the same bed (the same particles; a plate's or box's size
-moves the cost per step a little). Beds still to prepare are named (their cost is not
-estimated)."""
+moves the cost per step a little). A run with no such pace, and a bed still to prepare, are priced
+at this machine's particle-step rate (`MachineRate`: wheel-sweep's `--measure-rate` cache, or its
+defaults, said so) when the lab can give one; else they are named without a cost."""
 
 import json
 import lzma
+import math
 from pathlib import Path
 
 from wheelsim_post import step_archive
+from wheelsim_sweep import estimate as sweep_estimate
+from wheelsim_sweep import rate as sweep_rate
 
 from .plan import run_dt_s
 from .progress import _int, run_steps
@@ -54,9 +58,69 @@ def _parked_pace(kept):
         return done, None
 
 
-def lab_estimate(plan, out, archive=None):
-    """The estimate's lines (without the 'soil-lab: ' prefix)."""
+class MachineRate:
+    """This machine's LIGGGHTS throughput (a wheel-sweep Rate: particle-steps per second per rank,
+    its 2-rank efficiency, its bed rate) for the runs and beds this lab has no pace of: a run's
+    pace is rate x np x efficiency / its bed's spheres. `sv` is the soil file's variables
+    (wheel-sweep's soil query: sieve classes, density, dt) and `defaults` in.soilbin's, for the
+    spheres of a bed not prepared yet (its bin x fill height x fill solid fraction / the mean
+    grain: an estimate) and its preparation's steps (in.soilbin's upper bounds)."""
+
+    def __init__(self, rate, np_, sv, defaults):
+        self.rate, self.np, self.sv, self.defaults = rate, np_, sv, defaults
+
+    @classmethod
+    def of_this_machine(cls, liggghts, np_, soil_file, inputs_dir, soilbin):
+        """The cached rate (or wheel-sweep's defaults, said in `source`); an EstimateError (from
+        wheel-sweep) when LIGGGHTS or the soil cannot be asked."""
+        key = sweep_rate.machine_key(sweep_rate.liggghts_version(liggghts))
+        rate = sweep_rate.lookup(sweep_rate.cache_path(), key)
+        sv = sweep_estimate.soil_vars(liggghts, soil_file, inputs_dir)
+        return cls(rate, np_, sv, sweep_estimate.soilbin_defaults(soilbin))
+
+    def pace(self, spheres, bed=False):
+        """Steps per second of a run (or a bed's preparation) on `spheres` spheres."""
+        per_rank = self.rate.bed_rate_per_rank if bed else self.rate.rate_per_rank
+        return (per_rank * self.np * sweep_estimate.efficiency(self.np, self.rate.efficiency_np2)
+                / spheres)
+
+    def _recipe(self, bed):
+        return {"bin_length": bed.length_m, "bin_width": bed.width_m,
+                "fill_height": bed.fill_height_m, **bed.extra_vars}
+
+    def bed_spheres(self, bed):
+        """(spheres, how) of a bed to prepare: an estimate from its recipe."""
+        vol, how = sweep_estimate.mean_grain_volume(self.sv)
+        r = self._recipe(bed)
+        fill = float(r.get("fill_solid_fraction", self.defaults.get("fill_solid_fraction", 0.6)))
+        n = bed.length_m * bed.width_m * bed.fill_height_m * fill / vol
+        how = f"bin x fill solid fraction {fill:g} / mean grain, {how}"
+        if self.sv.get("soil_multisphere"):
+            # the sieve classes count a clump once, its cost goes by its spheres (loose sand's
+            # plate bed: 32 067 particles, 67 348 spheres)
+            how += "; multisphere: clumps counted once, so low by their extra spheres"
+        return n, how
+
+    def bed_steps(self, bed):
+        """Steps of preparing `bed` (in.soilbin's upper bounds at the soil's dt)."""
+        parts = sweep_estimate.bed_prep_times(self._recipe(bed), self.defaults, self.sv)
+        return math.ceil(sum(parts.values()) / self.sv["soil_dt"] - 1e-9)
+
+
+def _bed_spheres(out, name):
+    """Spheres of a bed prepared here (its done.json), None if not known."""
+    done = _json(Path(out) / "beds" / name / "done.json") or {}
+    try:
+        return int(float(done["result"]["spheres"]))
+    except (KeyError, TypeError, ValueError):
+        return None
+
+
+def lab_estimate(plan, out, archive=None, machine=None):
+    """The estimate's lines (without the 'soil-lab: ' prefix). machine: a MachineRate for what
+    this lab has no pace of (None: left unpriced)."""
     lines, total_steps, total_wall, unknown = [], 0, 0.0, 0
+    machine_used = False
     paces = {}   # bed -> steps/s of the lab's finished and parked runs on it
     parked = {}
     for run in plan.runs:
@@ -67,9 +131,21 @@ def lab_estimate(plan, out, archive=None):
             parked[run.name] = _parked_pace(Path(archive) / run.name)
             if parked[run.name] and parked[run.name][1]:
                 paces.setdefault(run.bed, []).append(parked[run.name][1])
-    for name in plan.beds:
-        if not (Path(out) / "beds" / name / "done.json").is_file():
+    for name, bed in plan.beds.items():
+        if (Path(out) / "beds" / name / "done.json").is_file():
+            continue
+        if machine is None or bed is None:
             lines.append(f"estimate: bed '{name}': to prepare here (its cost is not estimated)")
+            continue
+        spheres, how = machine.bed_spheres(bed)
+        steps = machine.bed_steps(bed)
+        wall = steps / machine.pace(spheres, bed=True)
+        total_wall += wall
+        machine_used = True
+        lines.append(f"estimate: bed '{name}': to prepare here, ~{_int(int(round(spheres, -2)))} "
+                     f"spheres ({how}), <= {_int(steps)} steps, <= "
+                     f"{sweep_estimate.fmt_time(wall)} at this machine's rate (+ its bed-hold "
+                     "check)")
     for i, run in enumerate(plan.runs, 1):
         head = f"estimate: [{i}/{len(plan.runs)}] {run.name}"
         found = _finished(run, out, archive)
@@ -89,15 +165,36 @@ def lab_estimate(plan, out, archive=None):
         if pace is None and paces.get(run.bed):
             pace = sum(paces[run.bed]) / len(paces[run.bed])
         text = f"{head}: {_int(left)} steps to run" + (f" ({how})" if how else "")
+        at = ""
+        if pace is None and machine is not None and plan.beds.get(run.bed) is not None:
+            spheres = _bed_spheres(out, run.bed)
+            if spheres is not None:
+                count = f"its bed's {_int(spheres)} spheres"
+            else:
+                spheres = machine.bed_spheres(plan.beds[run.bed])[0]
+                count = f"~{_int(int(round(spheres, -2)))} spheres estimated" + (
+                    ", clumps counted once: low" if machine.sv.get("soil_multisphere") else "")
+            pace = machine.pace(spheres)
+            at = f" (this machine's rate, {count})"
+            machine_used = True
         if pace:
-            text += f", ~{left / pace / 60:.0f} min at {pace:.0f} steps/s"
-            total_wall += left / pace
+            wall = left / pace
+            text += (f", ~{wall / 60:.0f} min" if wall >= 60 else f", ~{wall:.0f} s") + \
+                f" at {pace:.0f} steps/s{at}"
+            total_wall += wall
         else:
             text += ", pace unknown (no finished or parked run of this lab on its bed)"
             unknown += 1
         total_steps += left
         lines.append(text)
+    if machine_used:
+        r = machine.rate
+        lines.append(f"estimate: this machine's rate: {r.rate_per_rank:.3g} particle-steps/s per "
+                     f"rank (beds {r.bed_rate_per_rank:.3g}), {machine.np} rank(s), np-2 "
+                     f"efficiency {r.efficiency_np2:.2f}: {r.source}")
     lines.append(f"estimate: {_int(total_steps)} steps to run, ~{total_wall / 3600:.1f} h of wall "
-                 f"time at the measured paces" + (f" + {unknown} run(s) of unknown length or pace"
-                                                  if unknown else "") + "; nothing was run")
+                 "time at the measured paces" + (" and this machine's rate" if machine_used
+                                                 else "")
+                 + (f" + {unknown} run(s) of unknown length or pace" if unknown else "")
+                 + "; nothing was run")
     return lines

@@ -143,6 +143,18 @@ def main():
                "--out", str(out), "--np", a.np]
     box = out / "shear_s3000"
     Path(a.work).mkdir(parents=True, exist_ok=True)
+    # --estimate before anything ran: no pace of its own, so the beds and runs are priced at
+    # this machine's rate (here wheel-sweep's defaults: no rate cache), the beds' spheres
+    # estimated from their recipes (checked against the prepared beds below)
+    r = lab(*command, "--estimate",
+            env={**env, "WHEELSIM_RATE_CACHE": str(Path(a.work) / "no_rate_cache.toml")})
+    estimated = {b: int(n.replace(" ", "")) for b, n in
+                 re.findall(r"bed '(\w+)': to prepare here, ~([\d ]+) spheres", r.stdout)}
+    check(r.returncode == 0 and sorted(estimated) == ["plate", "repose", "shear"]
+          and "pace unknown" not in r.stdout and "DEFAULT" in r.stdout
+          and "h of wall time at the measured paces and this machine's rate" in r.stdout,
+          f"--estimate of a lab not started prices its beds and runs at the machine's rate "
+          f"({r.stdout[-600:]} {r.stderr[-300:]})")
     with open(Path(a.work) / "killed_lab.log", "w") as log:
         p = subprocess.Popen([str(LAB), *command], stdout=log, stderr=subprocess.STDOUT, env=env)
         deadline = time.monotonic() + 600
@@ -255,6 +267,13 @@ def main():
     total = res.get("cost_total", {})
     check(len(total.get("beds", {})) == 6 and total.get("lab_wall_s", 0) > total.get("runs_wall_s", 0) > 0,
           f"lab wall time = beds (3, each with its bed-hold check) + runs ({total})")
+    spheres = {b: int(float(json.loads((out / "beds" / b / "done.json").read_text())
+                            ["result"]["spheres"])) for b in estimated
+               if (out / "beds" / b / "done.json").is_file()}
+    check(len(spheres) == 3 and all(abs(estimated[b] - n) <= 0.05 * n + 50
+                                    for b, n in spheres.items()),
+          f"the estimate's spheres per bed within 5 % of the prepared beds' ({estimated} against "
+          f"{spheres})")
     holds_bed = res.get("bed_hold", {})
     check(sorted(holds_bed) == ["plate", "repose", "shear"] and
           all(0 <= h["settlement"] < 0.01 for h in holds_bed.values()),

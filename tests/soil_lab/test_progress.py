@@ -134,6 +134,44 @@ class Estimate(unittest.TestCase):
         self.assertTrue(lines[-1].endswith("+ 3 run(s) of unknown length or pace; nothing was "
                                            "run"), lines[-1])
 
+    def test_a_lab_not_started_is_priced_at_the_machine_rate(self):
+        # one sieve class of 10 mm spheres at 2000 kg/m^3, dt 1e-4 s; a 0.2 x 0.2 m bin filled
+        # 0.1 m at solid fraction 0.6 / (pi/6 1e-6 m^3) = 4584 spheres; the bed settles for at
+        # most 0.3 s (3 checks of 0.1 s): 3000 steps
+        sv = {"soil_d1": 0.01, "soil_w1": 1.0, "soil_density": 2000.0, "soil_dt": 1e-4,
+              "soil_dref": 0.01}
+        defaults = {"fill_solid_fraction": "0.6", "check_time": "0.1", "max_settle_time": "0.3",
+                    "compaction": "none"}
+        rate = SimpleNamespace(rate_per_rank=1e6, bed_rate_per_rank=5e5, efficiency_np2=0.8,
+                               source="test rate")
+        bed = plan.Bed("plate", 0.2, 0.2, 0.1)
+        plate = {"plate_speed": "0.02", "gap": "0.005", "depth1": "0.04", "unload": "0.01",
+                 "depth2": "0.06"}   # 4.25 s: 42 500 steps at 1e-4 s
+        lab = SimpleNamespace(runs=[plan.Run("plate_b0.1", "plate", "in.lab_plate", "plate", {},
+                                             plate, {})],
+                              beds={"plate": bed}, soil=SimpleNamespace(dt_s=1e-4))
+        with tempfile.TemporaryDirectory() as tmp:
+            # two ranks: 1e6 x 2 x 0.8 / 4584 spheres = 349 steps/s; the bed 5e5 x 1.6 / 4584
+            machine = estimate.MachineRate(rate, 2, sv, defaults)
+            lines = estimate.lab_estimate(lab, Path(tmp), None, machine)
+            self.assertEqual(lines[0], "estimate: bed 'plate': to prepare here, ~4 600 spheres "
+                             "(bin x fill solid fraction 0.6 / mean grain, 1 sieve classes by mass "
+                             "fraction), <= 3 000 steps, <= 17.2 s at this machine's rate (+ its "
+                             "bed-hold check)")
+            self.assertEqual(lines[1], "estimate: [1/1] plate_b0.1: 42 500 steps to run, ~2 min "
+                             "at 349 steps/s (this machine's rate, ~4 600 spheres estimated)")
+            self.assertIn("1e+06 particle-steps/s per rank (beds 5e+05), 2 rank(s)", lines[2])
+            self.assertIn("test rate", lines[2])
+            self.assertTrue(lines[3].endswith("at the measured paces and this machine's rate; "
+                                              "nothing was run"), lines[3])
+            # once the bed is prepared its own sphere count prices the run
+            (Path(tmp) / "beds" / "plate").mkdir(parents=True)
+            (Path(tmp) / "beds" / "plate" / "done.json").write_text(
+                json.dumps({"result": {"spheres": "8000"}}))
+            lines = estimate.lab_estimate(lab, Path(tmp), None, machine)
+            self.assertEqual(lines[0], "estimate: [1/1] plate_b0.1: 42 500 steps to run, ~4 min "
+                             "at 200 steps/s (this machine's rate, its bed's 8 000 spheres)")
+
 
 if __name__ == "__main__":
     unittest.main()
