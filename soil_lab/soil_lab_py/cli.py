@@ -19,9 +19,9 @@ import sys
 from pathlib import Path
 
 from wheelsim_post import bed_hold, mpi_launch
-from wheelsim_sweep import estimate as sweep_estimate
 from wheelsim_post.deck_files import deck_includes
 from wheelsim_post.usage import EXIT_USAGE, UsageParser, add_version
+from wheelsim_sweep import estimate as sweep_estimate
 
 from . import analysis, compare, estimate, plan, runner, scm_file
 from ._inputs import FitInputError
