@@ -131,13 +131,24 @@ def lab_estimate(plan, out, archive=None, machine=None):
             parked[run.name] = _parked_pace(Path(archive) / run.name)
             if parked[run.name] and parked[run.name][1]:
                 paces.setdefault(run.bed, []).append(parked[run.name][1])
+    # each bed's spheres for the machine's rate, read or estimated once: (spheres, as the run
+    # lines name them)
+    counts = {}
     for name, bed in plan.beds.items():
-        if (Path(out) / "beds" / name / "done.json").is_file():
+        prepared = (Path(out) / "beds" / name / "done.json").is_file()
+        if machine is not None and bed is not None:
+            spheres = _bed_spheres(out, name) if prepared else None
+            if spheres is not None:
+                counts[name] = spheres, f"its bed's {_int(spheres)} spheres"
+            else:
+                spheres, how = machine.bed_spheres(bed)
+                counts[name] = spheres, f"~{_int(int(round(spheres, -2)))} spheres estimated" + (
+                    ", clumps counted once: low" if machine.sv.get("soil_multisphere") else "")
+        if prepared:
             continue
         if machine is None or bed is None:
             lines.append(f"estimate: bed '{name}': to prepare here (its cost is not estimated)")
             continue
-        spheres, how = machine.bed_spheres(bed)
         steps = machine.bed_steps(bed)
         wall = steps / machine.pace(spheres, bed=True)
         total_wall += wall
@@ -166,14 +177,8 @@ def lab_estimate(plan, out, archive=None, machine=None):
             pace = sum(paces[run.bed]) / len(paces[run.bed])
         text = f"{head}: {_int(left)} steps to run" + (f" ({how})" if how else "")
         at = ""
-        if pace is None and machine is not None and plan.beds.get(run.bed) is not None:
-            spheres = _bed_spheres(out, run.bed)
-            if spheres is not None:
-                count = f"its bed's {_int(spheres)} spheres"
-            else:
-                spheres = machine.bed_spheres(plan.beds[run.bed])[0]
-                count = f"~{_int(int(round(spheres, -2)))} spheres estimated" + (
-                    ", clumps counted once: low" if machine.sv.get("soil_multisphere") else "")
+        if pace is None and run.bed in counts:
+            spheres, count = counts[run.bed]
             pace = machine.pace(spheres)
             at = f" (this machine's rate, {count})"
             machine_used = True
