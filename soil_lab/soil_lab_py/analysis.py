@@ -31,16 +31,17 @@ class Results:
     soil: dict
     directory: Path
     bulk: Optional[dict] = None
-    plates: List[dict] = field(default_factory=list)  # b_m, t, z, p, phase, done
+    plates: List[dict] = field(default_factory=list)  # b_m, replicate, run, t, z, p, phase, done
     bekker: Optional[fits.BekkerFit] = None
-    holds: Dict[float, List[dict]] = field(default_factory=dict)  # by b_m: plate_holds
+    holds: Dict[float, List[dict]] = field(default_factory=dict)  # by b_m (first bed): plate_holds
     bekker_relaxed: Optional[fits.BekkerFit] = None  # on the pressures at the ends of the holds
-    unload: Dict[float, fits.UnloadFit] = field(default_factory=dict)  # by b_m
+    unload: Dict[float, fits.UnloadFit] = field(default_factory=dict)  # by b_m (first bed)
     unload_errors: Dict[float, str] = field(default_factory=dict)  # by b_m: why no Ke was fitted
     shears: List[dict] = field(default_factory=list)  # sigma_Pa, j, tau, peak, janosi, done
     mc_peak: Optional[fits.MohrCoulombFit] = None
     mc_residual: Optional[fits.MohrCoulombFit] = None
     replicates: Optional[dict] = None  # with --shear-replicates: shear_replicates' summary
+    plate_replicates: Optional[dict] = None  # with --plate-replicates: plate_replicates' summary
     repose_fits: List[repose.ReposeFit] = field(default_factory=list)
     repose_profiles: List[tuple] = field(default_factory=list)
     repose_error: Optional[str] = None  # why no angle could be fitted (too small a heap, ...)
@@ -263,8 +264,19 @@ def read_plate(run, done):
                              f"below the surface (sinkage_m > 0) in its {len(t['phase'])} rows: "
                              "expected a finished run's record (a truncated file?)")
     return {"b_m": _meta(run, done, "b_m", "the plate's width, a number > 0 [m]"),
+            "replicate": _replicate(run, done, "plate"), "run": Path(run).name,
             "t": t["time_s"], "z": t["sinkage_m"], "p": t["pressure_Pa"], "phase": t["phase"],
             "done": done}
+
+
+def _replicate(run, done, tool):
+    """A run's bed among a lab's replicate beds (meta replicate; 1, the lab's first bed, when
+    absent); a LabResultError when it is not a whole number >= 1."""
+    replicate = (done.get("meta") or {}).get("replicate", 1)
+    if isinstance(replicate, bool) or not isinstance(replicate, int) or replicate < 1:
+        raise LabResultError(f"{Path(run) / 'done.json'}: meta.replicate = {replicate!r}: expected "
+                             f"a whole number >= 1 (the {tool}'s bed: 1 the lab's first)")
+    return replicate
 
 
 #: in.lab_plate's phase codes
@@ -477,10 +489,7 @@ def read_shear(run, done):
     log = run / "liggghts.log"
     text = log.read_text(errors="replace") if log.is_file() else ""
     counts = shear_particle_counts(text) if text else None
-    replicate = (done.get("meta") or {}).get("replicate", 1)
-    if isinstance(replicate, bool) or not isinstance(replicate, int) or replicate < 1:
-        raise LabResultError(f"{run / 'done.json'}: meta.replicate = {replicate!r}: expected a "
-                             "whole number >= 1 (the box's bed: 1 the lab's first)")
+    replicate = _replicate(run, done, "box")
     return {"sigma_Pa": float(np.mean(sigma)), "sigma_target_Pa": sigma_target,
             "replicate": replicate,
             "j": j, "tau": tau, "lid_dz": t["lid_z_m"][s] - t["lid_z_m"][s][0], "peak": peak,
@@ -586,6 +595,55 @@ def shear_replicates(shears):
     if len(per) >= 2:
         out["friction_sd_deg"] = float(np.std([phi for _, phi, _ in per], ddof=1))
         out["cohesion_sd_Pa"] = float(np.std([c for _, _, c in per], ddof=1))
+    return out
+
+
+def plate_replicates(plates, directory=None):
+    """How much the plates scatter from bed to bed, for a lab with replicate plate beds
+    (--plate-replicates; None without a second bed): per plate width the pressures at the end of
+    loading (plate_end_pressure): count, mean, sample standard deviation and spread ((max - min) /
+    mean); per bed with both widths its own Bekker fit (n, kc, kphi) and, with `directory`, its
+    bed's bulk density as poured (beds/<bed>/done.json, the core cell's where measured); the
+    sample standard deviations of n, kc, kphi over the beds."""
+    reps = sorted({q["replicate"] for q in plates})
+    if len(reps) < 2:
+        return None
+    by_width = []
+    for b in sorted({q["b_m"] for q in plates}):
+        ends = np.array([plate_end_pressure(q) for q in plates if q["b_m"] == b])
+        mean = float(ends.mean())
+        by_width.append({"b_m": float(b), "plates": int(ends.size), "p_end_mean_Pa": mean,
+                         "p_end_sd_Pa": float(ends.std(ddof=1)) if ends.size > 1 else 0.0,
+                         "p_end_spread": float(np.ptp(ends) / mean) if mean > 0 else 0.0})
+    out = {"replicates": reps, "by_width": by_width, "fitted_replicates": [], "n": [],
+           "kc_N_m_n1": [], "kphi_N_m_n2": []}
+    for k in reps:
+        group = [q for q in plates if q["replicate"] == k]
+        if len({q["b_m"] for q in group}) < 2:
+            continue
+        f = fits.fit_bekker([(q["b_m"], *loading_branch(q)) for q in group])
+        out["fitted_replicates"].append(k)
+        out["n"].append(f.n)
+        out["kc_N_m_n1"].append(f.kc)
+        out["kphi_N_m_n2"].append(f.kphi)
+    if len(out["fitted_replicates"]) >= 2:
+        for key in ("n", "kc_N_m_n1", "kphi_N_m_n2"):
+            out[f"{key}_sd"] = float(np.std(out[key], ddof=1))
+    if directory is not None:
+        densities = {}
+        for k in reps:
+            done = _done(Path(directory) / "beds" / plan.plate_bed_name(k))
+            res = (done or {}).get("result")
+            where = Path(directory) / "beds" / plan.plate_bed_name(k) / "done.json"
+            rho = None
+            if isinstance(res, dict):
+                rho = next((v for key in ("core_bulk_density", "bulk_density") if (
+                    v := _number(where, res, key, "a density > 0 [kg/m3]", lambda v: v > 0,
+                                 text=True, required=False, prefix="result.")) is not None), None)
+            if rho is not None:
+                densities[k] = rho
+        if densities:
+            out["bed_bulk_density_kg_m3"] = {f"bed{k}": v for k, v in densities.items()}
     return out
 
 
@@ -826,10 +884,16 @@ def analyse(directory):
 
     for run, done in _runs(d, "plate_b*"):
         r.plates.append(read_plate(run, done))
-    if len(r.plates) >= 2:
+    r.plates.sort(key=lambda p: (p["replicate"], p["b_m"]))
+    # the first bed's plates: the elastic stiffness and the holds (with --plate-replicates the
+    # other beds' plates enter the Bekker fit and the scatter, not these)
+    first = [p for p in r.plates if p["replicate"] == 1]
+    if len({p["b_m"] for p in r.plates}) >= 2:
+        # every plate of every bed is a set of points of one fit (as every box is of Mohr-Coulomb)
         loading = [(p["b_m"], *loading_branch(p)) for p in r.plates]
         r.bekker = fits.fit_bekker(loading)
-        for p in r.plates:
+        r.plate_replicates = plate_replicates(r.plates, d)
+        for p in first:
             # The unloading branch starts at the turning point (the last sample before the unload:
             # of the loading, or of the hold at its end): a noisy pressure maximum earlier in the
             # loading must not be taken for the start of unloading.
@@ -848,7 +912,7 @@ def analyse(directory):
                 r.holds[p["b_m"]] = holds
         # The relaxed curve: the pressures at the ends of the holds, when each plate held at 2
         # depths or more (docs/soil-lab.md, "Held plates").
-        if len(r.holds) == len(r.plates) and all(len(h) >= 2 for h in r.holds.values()):
+        if first and len(r.holds) == len(first) and all(len(h) >= 2 for h in r.holds.values()):
             r.bekker_relaxed = fits.fit_bekker(
                 [(b, [h["z_m"] for h in hs], [h["p_end_Pa"] for h in hs])
                  for b, hs in r.holds.items()])
@@ -887,23 +951,27 @@ def analyse(directory):
                              half_dt_s=float(half.get("dt_s", float("nan"))),
                              full_step=float(a), half_step=float(b),
                              **{k: v for k, v in extra.items() if k.startswith("profile_")
-                                or k in ("sigma_target_Pa", "replicate")})
+                                or k in ("sigma_target_Pa", "b_m", "replicate")})
             checks.append(entry)
-    # with --shear-replicates: each bed's difference at a stress, paired on its bed
+    # with --plate-replicates, --shear-replicates: each bed's difference for a plate width or at
+    # a stress, paired on its bed
     for checks, paired, verdicts in ((r.quasi_static, r.paired_speed_checks, SPEED_VERDICTS),
                                      (r.time_step, r.paired_step_checks, STEP_VERDICTS)):
-        by_target = {}
+        groups = {}
         for q in checks:
-            if "replicate" in q:   # a shear box's comparison
-                by_target.setdefault(q["sigma_target_Pa"], []).append(q)
-        for target, pairs in sorted(by_target.items()):
+            if "replicate" in q:   # a plate's or a shear box's comparison (not the heap's)
+                key = ("b_m", q["b_m"]) if "b_m" in q else ("sigma_target_Pa",
+                                                            q["sigma_target_Pa"])
+                groups.setdefault(key, []).append(q)
+        for (what, value), pairs in sorted(groups.items()):
             if len(pairs) >= 2:
                 pairs.sort(key=lambda q: q["replicate"])
+                test = "plate" if what == "b_m" else "shear"
                 paired.append({
-                    "sigma_target_Pa": float(target), "runs": [q["run"] for q in pairs],
+                    "test": test, what: float(value), "runs": [q["run"] for q in pairs],
                     "replicates": [q["replicate"] for q in pairs],
                     **paired_check([q["difference"] for q in pairs],
-                                   QUASI_STATIC_TOLERANCE["shear"], verdicts)})
+                                   QUASI_STATIC_TOLERANCE[test], verdicts)})
 
     for run, done in [(q, _done(q)) for q in sorted(d.iterdir()) if q.is_dir()]:
         if done is not None and "steps" in done:
@@ -937,9 +1005,8 @@ def _compare_runs(r, full_dir, full, run, half, dmax):
     test = run.name.split("_")[0]
     extra = {}
     if test == "plate":
-        # the full-speed run is one of the lab's plates, read above
-        b_full = _meta(full_dir, full, "b_m", "the plate's width, a number > 0 [m]")
-        plate = next((p for p in r.plates if p["b_m"] == b_full), None) or \
+        # the full-speed run is one of the lab's plates, read above (that of its own bed)
+        plate = next((p for p in r.plates if p["run"] == full_dir.name), None) or \
             read_plate(full_dir, full)
         za, ma = plate_pressure_profile(plate)
         zb, mb = plate_pressure_profile(read_plate(run, half))
@@ -947,7 +1014,8 @@ def _compare_runs(r, full_dir, full, run, half, dmax):
         what, unit, diff = "pressure at the end of loading", "Pa", (b - a) / a
         # by depth: the half-speed band mean at the full-speed run's band depths
         extra = {"profile_depth_m": [float(x) for x in za],
-                 "profile_difference": [float(x) for x in np.interp(za, zb, mb) / ma - 1.0]}
+                 "profile_difference": [float(x) for x in np.interp(za, zb, mb) / ma - 1.0],
+                 "b_m": plate["b_m"], "replicate": plate["replicate"]}
     elif test == "shear":
         # the full-speed run is one of the lab's boxes, read above
         sa = next((s for s in r.shears if s["done"] == full), None) or \
@@ -1021,6 +1089,8 @@ def summary(r: Results):
                         "r2": b.r2, "points": b.n_points, "plate_widths_m": list(b.widths_m),
                         "at_bound": list(b.at_bound),
                         "elastic_K_Pa_m": {f"b{w:.4g}": u.Ke_Pa_m for w, u in r.unload.items()}}
+        if r.plate_replicates:
+            out["plate"]["replicates"] = r.plate_replicates
         if r.unload_errors:
             out["plate"]["elastic_K_errors"] = {f"b{w:.4g}": e for w, e in r.unload_errors.items()}
         if r.holds:
@@ -1104,7 +1174,8 @@ def summary(r: Results):
     for name, paired in (("quasi_static_paired", r.paired_speed_checks),
                          ("time_step_paired", r.paired_step_checks)):
         if paired:
-            out[name] = {_paired_key(c): {k: v for k, v in c.items() if k != "sigma_target_Pa"}
+            out[name] = {_paired_key(c): {k: v for k, v in c.items()
+                                          if k not in ("sigma_target_Pa", "test")}
                          for c in paired}
     if r.bed_holds:
         out["bed_hold"] = r.bed_holds
@@ -1119,8 +1190,10 @@ def summary(r: Results):
 
 
 def _paired_key(c):
-    """results.toml's key of a paired check: shear_s<target stress [Pa]> (the first bed's box
-    at the soil's speed and step is named so)."""
+    """results.toml's key of a paired check: shear_s<target stress [Pa]> or plate_b<width [m]>
+    (the first bed's box or plate at the soil's speed and step is named so)."""
+    if c["test"] == "plate":
+        return f"plate_b{plan._f(c['b_m'])}"
     return f"shear_s{c['sigma_target_Pa']:g}"
 
 
@@ -1155,6 +1228,17 @@ def write_report(r: Results, quiet=False):
                 at = f"s{b['sigma_target_Pa']:g}"
                 for k in ("tau_peak_mean_Pa", "tau_peak_sd_Pa", "tau_peak_spread"):
                     w.writerow(["shear", f"replicates_{at}_{k}", f"{b[k]:.6g}"])
+        prep = r.plate_replicates or {}
+        if prep:  # the replicate plates' scatter (results.toml [plate.replicates]), flattened
+            for k in ("n_sd", "kc_N_m_n1_sd", "kphi_N_m_n2_sd"):
+                if k in prep:
+                    w.writerow(["plate", f"replicates_{k}", f"{prep[k]:.6g}"])
+            for i, k in enumerate(prep["fitted_replicates"]):
+                for key in ("n", "kc_N_m_n1", "kphi_N_m_n2"):
+                    w.writerow(["plate", f"bed{k}_{key}", f"{prep[key][i]:.6g}"])
+            for b in prep["by_width"]:
+                for k in ("p_end_mean_Pa", "p_end_sd_Pa", "p_end_spread"):
+                    w.writerow(["plate", f"replicates_b{plan._f(b['b_m'])}_{k}", f"{b[k]:.6g}"])
         for test, paired in (("quasi_static_paired", r.paired_speed_checks),
                              ("time_step_paired", r.paired_step_checks)):
             for c in paired:  # results.toml [<test>.<key>], flattened
@@ -1164,7 +1248,8 @@ def write_report(r: Results, quiet=False):
     name = r.soil.get("name", "?")
     if r.plates:
         report.plot_pressure_sinkage(d / "plate.png", name,
-                                     [(p["b_m"], p["z"], p["p"]) for p in r.plates], r.bekker)
+                                     [(p["b_m"], p["z"], p["p"], p["replicate"])
+                                      for p in r.plates], r.bekker)
         written.append(d / "plate.png")
     if r.holds:
         report.plot_holds(d / "plate_holds.png", name, r.holds)
@@ -1301,11 +1386,19 @@ def plate_speed_statement(r: Results, rate_dependent_ok=False):
         return ("plate speed not checked (no --speed-check half-speed plate in the lab)"
                 + plate_step_statement(r))
     parts, failed = [], []
+    # with --plate-replicates the verdict is the check paired over the beds (a single pair's
+    # difference holds the plate's own fluctuation too)
+    paired = [c for c in r.paired_speed_checks if c["test"] == "plate"]
     for q in checks:
-        verdict = "quasi-static" if q["passed"] else "NOT quasi-static"
+        verdict = ("" if paired else
+                   ": quasi-static" if q["passed"] else ": NOT quasi-static")
         parts.append(f"{q['run']} at half speed: {100 * q['difference']:+.1f} % at the end of "
-                     f"loading (tolerance {100 * q['tolerance']:g} %): {verdict}")
-        if not q["passed"]:
+                     f"loading (tolerance {100 * q['tolerance']:g} %){verdict}")
+        if not q["passed"] and not paired:
+            failed.append(parts[-1])
+    for c in paired:
+        parts.append(_paired_statement(c, "rate effect", "NOT quasi-static"))
+        if c["verdict"] == "rate effect":
             failed.append(parts[-1])
     if failed and not rate_dependent_ok:
         raise LabResultError(f"{r.directory}: the plates' speed check failed ({'; '.join(failed)}):"
@@ -1325,10 +1418,24 @@ def plate_step_statement(r: Results):
                         if isinstance(v := (p.get("done") or {}).get("dt_s"), (int, float))})
         at = f", fitted at dt {', '.join(f'{v:.4g}' for v in steps)} s" if steps else ""
         return f"; time step not checked (no --dt-check half-step plate in the lab{at})"
+    paired = [c for c in r.paired_step_checks if c["test"] == "plate"]
     return "".join(f"; time-step check: {q['run']} at half the step ({q['half_dt_s']:.4g} s): "
                    f"{100 * q['difference']:+.1f} % at the end of loading (tolerance "
-                   f"{100 * q['tolerance']:g} %)" + ("" if q["passed"] else ": step-dependent")
-                   for q in checks)
+                   f"{100 * q['tolerance']:g} %)"
+                   + ("" if q["passed"] or paired else ": step-dependent")
+                   for q in checks) + "".join(
+        "; time-step check " + _paired_statement(c, "step effect", "step-dependent")
+        for c in paired)
+
+
+def _paired_statement(c, effect, effect_words):
+    """A plate check paired over beds (paired_check's result `c`) in the SCM file's [source]:
+    its mean, 95 % interval and verdict (`effect`, the verdict read as `effect_words`)."""
+    verdict = effect_words if c["verdict"] == effect else c["verdict"]
+    return (f"over {c['beds']} beds (plate b {c['b_m']:.4g} m, each paired on its bed): mean "
+            f"{100 * c['mean_difference']:+.1f} %, 95 % interval {100 * c['interval_low']:+.1f} "
+            f"to {100 * c['interval_high']:+.1f} % (tolerance {100 * c['tolerance']:g} %): "
+            f"{verdict}")
 
 
 def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None,

@@ -90,7 +90,8 @@ def run_options(a):
                    plate_bin_m=a.plate_bin, shear_travel=a.shear_travel,
                    plate_speed=a.plate_speed, shear_speed=a.shear_speed,
                    plate_depth=a.plate_depth, plate_hold=a.plate_hold,
-                   plate_hold_stages=a.plate_hold_stages, shear_replicates=a.shear_replicates)
+                   plate_hold_stages=a.plate_hold_stages, shear_replicates=a.shear_replicates,
+                   plate_replicates=a.plate_replicates)
     bed_vars = {}
     for item in a.bed_var or []:
         if "=" not in item or item.startswith("="):
@@ -233,6 +234,8 @@ def _report(directory, quiet=False):
             print(f"soil-lab: warning: {w}")
         if r.replicates:
             _print_replicates(r.replicates)
+        if r.plate_replicates:
+            _print_plate_replicates(r.plate_replicates)
         for bed, h in sorted(r.bed_holds.items()):
             # a failed check in the report: the lab ran on with --bed-hold 0
             failed = bed_hold.failure(h, bed, Path(directory) / "beds" / bed / "hold" /
@@ -298,7 +301,7 @@ def _report(directory, quiet=False):
                           "soil compacts more: compare the lids); replicates at the same speed "
                           "(--shear-replicates) would measure the fluctuation")
     for c in r.paired_speed_checks:
-        _print_paired(c, "quasi-static", "at half speed against its box at full speed",
+        _print_paired(c, "quasi-static", "at half speed against its {tool} at full speed",
                       {"quasi-static": "quasi-static (the whole interval within it)",
                        "rate effect": "a rate effect (the whole interval outside it): NOT "
                                       "quasi-static"})
@@ -311,7 +314,7 @@ def _report(directory, quiet=False):
               f"{'depth' if at == 'profile_depth_m' else 'displacement'}: {_bands(q, at)} "
               f"(mean {100 * sum(q['profile_difference']) / len(q['profile_difference']):+.1f} %)")
     for c in r.paired_step_checks:
-        _print_paired(c, "time step", "at half the step against its box at the soil's step",
+        _print_paired(c, "time step", "at half the step against its {tool} at the soil's step",
                       {"step-converged": "step-converged (the whole interval within it)",
                        "step effect": "a step effect (the whole interval outside it): "
                                       "STEP-DEPENDENT"})
@@ -321,14 +324,34 @@ def _report(directory, quiet=False):
 def _print_paired(c, check, pair, verdicts):
     """The report's line on a check paired over beds (analysis.paired_check's result `c`;
     `verdicts`: the text of each verdict but "cannot tell")."""
-    print(f"soil-lab: {check} over {c['beds']} beds at {c['sigma_target_Pa'] / 1e3:.3g} kPa "
-          f"(each bed's box {pair}: "
+    at, tool = ((f"plate b {c['b_m']:.4g} m", "plate") if c["test"] == "plate" else
+                (f"{c['sigma_target_Pa'] / 1e3:.3g} kPa", "box"))
+    print(f"soil-lab: {check} over {c['beds']} beds at {at} "
+          f"(each bed's {tool} {pair.format(tool=tool)}: "
           + ", ".join(f"{100 * x:+.1f} %" for x in c["differences"])
           + f"): mean {100 * c['mean_difference']:+.1f} % ± {100 * c['sem_difference']:.1f} % "
           f"(standard error), 95 % interval {100 * c['interval_low']:+.1f} to "
           f"{100 * c['interval_high']:+.1f} % against the tolerance ±{100 * c['tolerance']:g} %: "
           + verdicts.get(c["verdict"],
                          "cannot tell (the interval straddles the tolerance; more beds narrow it)"))
+
+
+def _print_plate_replicates(rep):
+    """The report's lines on replicate plates (analysis.plate_replicates' summary)."""
+    for b in rep["by_width"]:
+        print(f"soil-lab: plate replicates b {b['b_m']:.4g} m: {b['plates']} plates, pressure at "
+              f"the end of loading {b['p_end_mean_Pa'] / 1e3:.4g} kPa, sd "
+              f"{b['p_end_sd_Pa'] / 1e3:.3g} kPa, spread {100 * b['p_end_spread']:.1f} %")
+    if rep["fitted_replicates"]:
+        rho = rep.get("bed_bulk_density_kg_m3", {})
+        print("soil-lab: plate replicates, each bed's own fit: " + "; ".join(
+            f"bed {k}: n {n:.3g}, kc {kc:.4g}, kphi {kphi:.4g}"
+            + (f" ({rho[f'bed{k}']:.4g} kg/m3)" if f"bed{k}" in rho else "")
+            for k, n, kc, kphi in zip(rep["fitted_replicates"], rep["n"], rep["kc_N_m_n1"],
+                                      rep["kphi_N_m_n2"]))
+            + ("" if "n_sd" not in rep else
+               f" (sd n {rep['n_sd']:.3g}, kc {rep['kc_N_m_n1_sd']:.3g}, kphi "
+               f"{rep['kphi_N_m_n2_sd']:.3g})"))
 
 
 def _print_replicates(rep):
@@ -433,16 +456,24 @@ def main(argv=None):
                         f"seed (1..{plan.MAX_SHEAR_REPLICATES}; default 1): the report gives the "
                         "scatter of the peaks per stress and of c and phi between beds; N times "
                         "the boxes' cost (docs/soil-lab.md \"Replicate boxes\")")
+    r.add_argument("--plate-replicates", type=int, metavar="N",
+                   help="the two plates on N plate beds of the same recipe, each poured with its "
+                        f"own seed (1..{plan.MAX_PLATE_REPLICATES}; default 1): the Bekker fit "
+                        "takes every bed's plates, the report gives the scatter of the pressures "
+                        "and of n, kc, kphi between beds, and the checks pair each bed's larger "
+                        "plate with its own; N times the plates' cost (docs/soil-lab.md "
+                        "\"Replicate plates\")")
     r.add_argument("--speed-check", action="store_true",
                    help="quasi-static check: also run the larger plate, the middle normal stress "
-                        "(on every bed with --shear-replicates: a check paired on the bed) and "
+                        "(on every bed with --plate-replicates, --shear-replicates: a check "
+                        "paired on the bed) and "
                         "the repose test (not in the quick preset) at half speed and report the "
                         "differences")
     r.add_argument("--dt-check", action="store_true",
                    help="time-step check: also run the larger plate and the middle normal "
                         "stress (every bed's box) at half the soil's time step, on the same bed "
-                        "at the same speed, and report the differences (with --shear-replicates: "
-                        "the boxes' check paired on the bed)")
+                        "at the same speed, and report the differences (with "
+                        "--plate-replicates, --shear-replicates: the check paired on the bed)")
     r.add_argument("--bed-var", action="append", metavar="NAME=VALUE",
                    help="an inputs/in.soilbin variable for every bed (e.g. compaction=plate)")
     r.add_argument("--bed-hold", type=float, default=bed_hold.DEFAULT_HOLD_S, metavar="S",

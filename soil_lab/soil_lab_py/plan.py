@@ -82,14 +82,45 @@ MAX_HOLD_STAGES = 20
 # --shear-replicates N: the shear boxes again on N - 1 more beds of the same recipe, each poured
 # with its own insertion seed (in.soilbin's `seed`, a prime > 10000; the first bed keeps the
 # recipe's), so that the report can say how much one box per stress scatters (docs/soil-lab.md,
-# "Replicate boxes"). Each replicate costs as much as the boxes themselves.
+# "Replicate boxes"). Each replicate costs as much as the boxes themselves. --plate-replicates N:
+# the same for the two plates, on N - 1 more plate beds poured with the same seeds ("Replicate
+# plates").
 MAX_SHEAR_REPLICATES = 5
+MAX_PLATE_REPLICATES = MAX_SHEAR_REPLICATES
 REPLICATE_SEEDS = (67867967, 86028121, 104395301, 122949823)   # replicates 2..5 (primes)
 
 
 def shear_bed_name(replicate):
     """The bed the boxes of replicate k are sheared on: the lab's `shear` bed for the first."""
     return "shear" if replicate == 1 else f"shear_r{replicate}"
+
+
+def plate_bed_name(replicate):
+    """The bed the plates of replicate k press into: the lab's `plate` bed for the first."""
+    return "plate" if replicate == 1 else f"plate_r{replicate}"
+
+
+def _add_replicate_beds(beds, first, bed_name, count, option):
+    """Beds 2..count of the bed `first` into `beds` (named bed_name(k)): the same bin and depth,
+    each poured with its REPLICATE_SEEDS seed. A user's --bed-var seed that one of them is poured
+    with is refused (LabInputError naming `option`)."""
+    if count > 1 and first.extra_vars.get("seed") in {str(x) for x in REPLICATE_SEEDS}:
+        raise LabInputError(f"--bed-var seed={first.extra_vars['seed']}: a replicate bed's seed "
+                            f"({option} pours its beds with "
+                            f"{', '.join(str(x) for x in REPLICATE_SEEDS)}): choose another")
+    for k in range(2, count + 1):
+        beds[bed_name(k)] = Bed(bed_name(k), first.length_m, first.width_m, first.fill_height_m,
+                                {**first.extra_vars, "seed": str(REPLICATE_SEEDS[k - 2])})
+
+
+def _replicates(value, option, test, maximum):
+    """The checked replicate count of `option` (None: not given); a LabInputError naming it."""
+    if value is None:
+        return
+    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= maximum:
+        what = "boxes at each normal stress" if test == "shear" else "two plates"
+        raise LabInputError(f"{option} {value}: expected a whole number in 1..{maximum} (the "
+                            f"{what}, each on its own bed; 1: no replicate)")
 
 
 def _speed(value, default, option):
@@ -117,7 +148,7 @@ def _finite_positive(x):
 def check_options(tests, preset="standard", normal_stresses_Pa=None, plate_widths_m=None,
                   plate_bin_m=None, shear_travel=None, plate_speed=None, shear_speed=None,
                   plate_depth=None, plate_hold=None, plate_hold_stages=None,
-                  shear_replicates=None):
+                  shear_replicates=None, plate_replicates=None):
     """The checks of make_plan's options that need no soil (the same arguments, None: the
     default): `soil-lab run` makes them before it creates or starts anything, make_plan again
     before the checks that need the soil's grain sizes and stiffness (a plate wider than its bin,
@@ -128,7 +159,8 @@ def check_options(tests, preset="standard", normal_stresses_Pa=None, plate_width
     not a finite length > 0, a hold outside (0, MAX_PLATE_HOLD] s or stages outside
     1..MAX_HOLD_STAGES or without a hold; with the shear box fewer than 3 normal stresses, one not
     a finite stress > 0, a travel outside (0, 0.5], replicates outside 1..MAX_SHEAR_REPLICATES;
-    replicates without the shear box. Returns the tests as a tuple."""
+    replicates without the shear box; plate replicates outside 1..MAX_PLATE_REPLICATES or without
+    the plates. Returns the tests as a tuple."""
     tests = tuple(tests)
     if not tests:
         raise LabInputError(f"--tests: expected at least one test of {', '.join(TEST_NAMES)}")
@@ -169,21 +201,20 @@ def check_options(tests, preset="standard", normal_stresses_Pa=None, plate_width
         if shear_travel is not None and not 0 < shear_travel <= 0.5:  # also NaN
             raise LabInputError(f"--shear-travel {shear_travel:g} is outside (0, 0.5] (a fraction "
                                 f"of the box side: the upper frame must stay over the lower one)")
-    if shear_replicates is not None:
-        if "shear" not in tests:
-            raise LabInputError("--shear-replicates repeats the shear boxes: add shear to --tests")
-        if isinstance(shear_replicates, bool) or not isinstance(shear_replicates, int) or \
-                not 1 <= shear_replicates <= MAX_SHEAR_REPLICATES:
-            raise LabInputError(f"--shear-replicates {shear_replicates}: expected a whole number "
-                                f"in 1..{MAX_SHEAR_REPLICATES} (the boxes at each normal stress, "
-                                f"each on its own bed; 1: no replicate)")
+    if shear_replicates is not None and "shear" not in tests:
+        raise LabInputError("--shear-replicates repeats the shear boxes: add shear to --tests")
+    _replicates(shear_replicates, "--shear-replicates", "shear", MAX_SHEAR_REPLICATES)
+    if plate_replicates is not None and "plate" not in tests:
+        raise LabInputError("--plate-replicates repeats the plates: add plate to --tests")
+    _replicates(plate_replicates, "--plate-replicates", "plate", MAX_PLATE_REPLICATES)
     return tests
 
 
 def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None, bed_vars=None,
               plate_widths_m=None, plate_bin_m=None, speed_check=False, shear_travel=None,
               plate_speed=None, shear_speed=None, plate_depth=None, plate_hold=None,
-              plate_hold_stages=None, shear_replicates=None, dt_check=False):
+              plate_hold_stages=None, shear_replicates=None, dt_check=False,
+              plate_replicates=None):
     """The beds and runs for `tests` on `soil`. Raises LabInputError for what check_options
     refuses (it needs no soil), and for plates narrower than 2 grains (d_max) or that do not fit
     their bin with 3/4 of a plate width of soil on every side, a plate bin narrower than 8 grains,
@@ -199,12 +230,15 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
     the boxes again on beds shear_r2..shear_rN, poured with REPLICATE_SEEDS (runs
     shear_s<σ>_r<k>, meta replicate k); with speed_check, every bed's middle-stress box gets its
     half-speed twin (shear_s<σ>[_r<k>]_half: a paired check, analysis.paired_speed_checks).
+    plate_replicates N (default 1): the two plates again on beds plate_r2..plate_rN, poured with
+    REPLICATE_SEEDS (runs plate_b<b>_r<k>, meta replicate k); the checks take every bed's larger
+    plate (paired on its bed).
     dt_check: also the larger plate and the middle normal stress's box (every bed's) at half the
     soil's time step, on the same bed, at the same speed (runs named <run>_halfdt, meta
     dt_factor 0.5; run_dt_s), for the time-step check."""
     tests = check_options(tests, preset, normal_stresses_Pa, plate_widths_m, plate_bin_m,
                           shear_travel, plate_speed, shear_speed, plate_depth, plate_hold,
-                          plate_hold_stages, shear_replicates)
+                          plate_hold_stages, shear_replicates, plate_replicates)
     quick = preset == "quick"
     plate_speed = _speed(plate_speed, PLATE_SPEED[preset], "--plate-speed")
     shear_speed = _speed(shear_speed, SHEAR_SPEED[preset], "--shear-speed")
@@ -248,15 +282,21 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
             depth1, unload = depth2 * 2.0 / 3.0, depth2 / 6.0
             speed = plate_speed
             thickness = max(0.5 * d, 0.005)
-            for b in (b1, b2):
+            replicates = plate_replicates or 1
+            _add_replicate_beds(beds, beds["plate"], plate_bed_name, replicates,
+                                "--plate-replicates")
+            for k, b in [(k, b) for k in range(1, replicates + 1) for b in (b1, b2)]:
+                # the first bed's plates keep their names and records (as the boxes')
+                suffix, rep_meta = ("", {}) if k == 1 else (f"_r{k}", {"replicate": k})
                 runs.append(Run(
-                    name=f"plate_b{_f(b)}", test="plate", deck="in.lab_plate", bed="plate",
+                    name=f"plate_b{_f(b)}{suffix}", test="plate", deck="in.lab_plate",
+                    bed=plate_bed_name(k),
                     meshes={"plate_mesh": ["plate-rect", _f(b), _f(b), _f(thickness)]},
                     variables={"plate_area": _f(b * b), "plate_thickness": _f(thickness),
                                "plate_speed": _f(speed), "gap": _f(0.25 * d),
                                "depth1": _f(depth1), "unload": _f(unload), "depth2": _f(depth2),
                                **hold_vars},
-                    meta={"b_m": b, "area_m2": b * b, "speed_m_s": speed}))
+                    meta={"b_m": b, "area_m2": b * b, "speed_m_s": speed, **rep_meta}))
 
     if "shear" in tests:
         # Square box of inner side L >= 10 d_max (ASTM D3080), soil height >= 6 d_max, the shear
@@ -294,13 +334,7 @@ def make_plan(soil: SoilInfo, tests, preset="standard", normal_stresses_Pa=None,
         # plate margin: at 0.25 L on 16-40 mm grains 1-2 % of the grains were lost by the peaks.
         rim = max(wall, distance + wall + d)
         replicates = shear_replicates or 1
-        if replicates > 1 and bed_vars.get("seed") in {str(x) for x in REPLICATE_SEEDS}:
-            raise LabInputError(f"--bed-var seed={bed_vars['seed']}: a replicate bed's seed "
-                                f"(--shear-replicates pours its beds with "
-                                f"{', '.join(str(x) for x in REPLICATE_SEEDS)}): choose another")
-        for k in range(2, replicates + 1):
-            beds[shear_bed_name(k)] = Bed(shear_bed_name(k), L, L, H,
-                                          {**bed_vars, "seed": str(REPLICATE_SEEDS[k - 2])})
+        _add_replicate_beds(beds, beds["shear"], shear_bed_name, replicates, "--shear-replicates")
         for k, s in [(k, s) for k in range(1, replicates + 1) for s in stresses]:
             # the first replicate's runs keep their names and records (labs run before
             # --shear-replicates existed stay valid)
@@ -386,14 +420,16 @@ OUTPUTS = {"plate": {"out_csv": "plate.csv"}, "shear": {"out_csv": "shear.csv"},
 
 
 def _checked_runs(runs, repose):
-    """The runs a check repeats with one thing changed: the larger plate, the middle normal
-    stress (its box on every bed, with --shear-replicates: the difference is then measured on
-    each bed, and its mean is read against its own scatter), the repose test (if `repose`)."""
+    """The runs a check repeats with one thing changed: the larger plate and the middle normal
+    stress's box, each on every bed (with --plate-replicates, --shear-replicates: the difference
+    is then measured on each bed, and its mean is read against its own scatter), the repose test
+    (if `repose`)."""
     picked = []
     plates = [r for r in runs if r.test == "plate"]
     shears = [r for r in runs if r.test == "shear" and "replicate" not in r.meta]
     if plates:
-        picked.append(max(plates, key=lambda r: r.meta["b_m"]))
+        b_max = max(r.meta["b_m"] for r in plates)
+        picked += [r for r in plates if r.meta["b_m"] == b_max]
     if shears:
         middle = sorted(shears, key=lambda r: r.meta["normal_stress_Pa"])[len(shears) // 2]
         picked += [r for r in runs if r.test == "shear" and

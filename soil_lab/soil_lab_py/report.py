@@ -41,24 +41,30 @@ def plot_pressure_sinkage(path, soil_name, plates, fit=None):
     """Pressure–sinkage curves of the plates (markers) with the Bekker fit (lines).
 
     plates: sequence of (b_m, z_m, p_Pa) as given to fits.fit_bekker (whole curves may be given,
-    unloading included); fit: its BekkerFit or None. x: sinkage z [mm]; y: pressure p [kPa]."""
+    unloading included), or (b_m, z_m, p_Pa, bed) for a lab with replicate plate beds (a colour
+    per width, a marker per bed); fit: its BekkerFit or None. x: sinkage z [mm]; y: pressure p
+    [kPa]."""
     fig = _figure(figsize=(7, 5))
     ax = fig.add_subplot()
-    for k, (b, z, p) in enumerate(plates):
+    widths = sorted({float(q[0]) for q in plates})
+    beds = sorted({q[3] for q in plates if len(q) > 3})
+    markers = ".xo+^"
+    for q in plates:
+        b, z, p = q[:3]
+        bed = q[3] if len(q) > 3 else None
         z = np.asarray(z, float)
         p = np.asarray(p, float)
-        color = f"C{k}"
-        ax.plot(z * 1e3, p / 1e3, ".", ms=3, color=color, label=f"plate b = {b * 1e3:g} mm (DEM)")
-        if fit is not None:
-            zz = np.linspace(0.0, max(float(z.max()), 0.0), 200)
-            ax.plot(
-                zz * 1e3,
-                (fit.kc / b + fit.kphi) * zz**fit.n / 1e3,
-                "-",
-                color=color,
-                label=f"Bekker fit, b = {b * 1e3:g} mm",
-            )
+        color = f"C{widths.index(float(b))}"
+        many = len(beds) > 1
+        ax.plot(z * 1e3, p / 1e3, markers[beds.index(bed) % len(markers)] if many else ".",
+                ms=3, color=color, alpha=0.6 if many else 1.0,
+                label=f"plate b = {b * 1e3:g} mm (DEM" + (f", bed {bed})" if many else ")"))
     if fit is not None:
+        for b in widths:
+            zmax = max(float(np.max(q[1])) for q in plates if float(q[0]) == b)
+            zz = np.linspace(0.0, max(zmax, 0.0), 200)
+            ax.plot(zz * 1e3, (fit.kc / b + fit.kphi) * zz**fit.n / 1e3, "-",
+                    color=f"C{widths.index(b)}", label=f"Bekker fit, b = {b * 1e3:g} mm")
         ax.plot([], [], " ", label=_bekker_text(fit))
     _axes(ax, "sinkage z [mm]", "pressure p [kPa]",
           f"{soil_name}: plate sinkage, p [kPa] vs z [mm]")

@@ -33,6 +33,10 @@
                                      step, results.toml [time_step], the report's line, the SCM
                                      file's [source]
   soil-lab scm DIR --out F.toml   -> an SCM soil file that wheel-rig --check loads unchanged
+  ... --plate-replicates 2        -> the finished lab grows a second plate bed (its own seed), its two
+                                     plates and its larger plate at half speed and at half the
+                                     step: each bed's Bekker fit, the checks paired over the two
+                                     beds, the SCM file's [source] saying so
   bad input                       -> exit 2 naming the unknown soil / test / option
 
 Exit 0 pass, 1 fail, 77 skip (liggghts-wheel not built).
@@ -387,6 +391,48 @@ def main():
                            capture_output=True, text=True)
         check(r.returncode == 0, f"wheel-rig --check loads the fitted soil ({r.stderr.strip()})")
         check("fitted from the DEM soil 'ci'" in scm.read_text(), "[source] names the DEM soil")
+
+    # Replicate plates grow on the finished lab too (docs/soil-lab.md "Replicate plates"): a
+    # second plate bed with its own seed, its two plates, its larger plate at half speed and at
+    # half the step; both checks then paired over the two beds, and the SCM file says so
+    t0 = time.monotonic()
+    r = lab(*command, "--tests", "plate", "--dt-check", "--plate-replicates", "2", env=env)
+    skipped = len(re.findall(r"done before, skipped", r.stdout))
+    ran = sorted(set(re.findall(r"(\S+): running", r.stdout)))
+    check(r.returncode == 0 and skipped == 5 and
+          ran == ["plate_b0.02_r2", "plate_b0.032_r2", "plate_b0.032_r2_half",
+                  "plate_b0.032_r2_halfdt"],
+          f"--plate-replicates 2 on the finished lab: the first bed and its 4 plates kept "
+          f"({skipped} of 5), ran {ran} ({time.monotonic() - t0:.1f} s; "
+          f"{r.stderr.strip()[-300:]})")
+    res = tomllib.loads((out / "results.toml").read_text()) if r.returncode == 0 else {}
+    rep = res.get("plate", {}).get("replicates", {})
+    rho = rep.get("bed_bulk_density_kg_m3", {})
+    check(rep.get("fitted_replicates") == [1, 2] and
+          [b.get("plates") for b in rep.get("by_width", [])] == [2, 2] and
+          all(0.1 < n < 2 for n in rep.get("n", [])) and len(rho) == 2 and
+          rho.get("bed1") != rho.get("bed2") and
+          len(res.get("plate", {}).get("elastic_K_Pa_m", {})) +
+          len(res.get("plate", {}).get("elastic_K_errors", {})) == 2,   # the first bed's
+          f"plate replicate table: each bed's n {rep.get('n')}, kphi {rep.get('kphi_N_m_n2')}, "
+          f"beds {rho} kg/m3, the end pressures' spread "
+          f"{[round(b.get('p_end_spread', -1), 3) for b in rep.get('by_width', [])]}")
+    pairs = {name: res.get(name, {}).get("plate_b0.032", {})
+             for name in ("quasi_static_paired", "time_step_paired")}
+    check(all(c.get("runs") == ["plate_b0.032", "plate_b0.032_r2"] and c.get("beds") == 2 and
+              c.get("interval_low", 1) <= c.get("mean_difference", 0) <= c.get("interval_high", -1)
+              for c in pairs.values()) and
+          "time step over 2 beds at plate b 0.032 m" in r.stdout,
+          "the plate's speed and step checks paired over the two beds: "
+          + "; ".join(f"{k}: {c.get('differences')} -> {c.get('verdict')}"
+                      for k, c in pairs.items()))
+    scm.unlink(missing_ok=True)
+    rate = pairs["quasi_static_paired"].get("verdict") == "rate effect"
+    r = lab("scm", str(out), "--out", str(scm), *(["--rate-dependent"] if rate else []))
+    source = tomllib.loads(scm.read_text())["source"]["bekker"]["n"] if scm.is_file() else ""
+    check(r.returncode == 0 and "over 2 beds (plate b 0.032 m, each paired on its bed)" in source
+          and "; time-step check over 2 beds" in source,
+          f"the Bekker [source] states both checks over the two beds ({r.stderr.strip()})")
 
     for args, message in ((("run", "nosuch"), "unknown soil 'nosuch'"),
                           (("run", "ci", "--tests", "plate,sheer"), "did you mean 'shear'?"),

@@ -192,6 +192,98 @@ class Analysis(unittest.TestCase):
                       "end of loading (tolerance 5 %): step-dependent",
                       tomllib.loads(out.read_text())["source"]["bekker"]["n"])
 
+    def test_replicate_plates_give_each_beds_fit_and_pair_the_step_check_on_its_bed(self):
+        # Three plate beds 0 / +10 / -10 % stiff (kc and kphi scaled, n 1.1), each with its larger
+        # plate at half the step +1 / 0 / -1 % against its own: every plate enters one Bekker fit
+        # (the mean soil: kc 1e4, kphi 5e5); each bed's own fit recovers its scale; the pressure
+        # at the end of loading scatters 10 % (sd) and 20 % (spread) per width; the step check
+        # paired over the beds: mean 0, sd 1 %, 95 % interval +-4.303 x 1 / sqrt 3 = +-2.48 %,
+        # within 5 %: "step-converged", said so in the SCM file's [source].
+        d = Path(tempfile.mkdtemp())
+        (d / "soil.toml").write_text('name = "synthetic"\npreset = "standard"\ndmax_m = 0.004\n')
+        src = Path(tempfile.mkdtemp())
+        plate_run(src, 0.02, False)
+        plate_run(src, 0.032, False)
+
+        def plate(name, b, k, scale, **meta):
+            run = d / name
+            run.mkdir()
+            table = np.loadtxt(src / f"plate_b{b:g}" / "plate.csv", ndmin=2)
+            table[:, 2:4] *= scale
+            np.savetxt(run / "plate.csv", table,
+                       header="time_s sinkage_m force_N pressure_Pa contacts phase")
+            (run / "done.json").write_text(json.dumps({
+                "meta": {"b_m": b, **({} if k == 1 else {"replicate": k}), **meta},
+                "wall_s": 1.0, "dt_s": 5e-6 if meta else 1e-5}))
+        for k, scale, step in ((1, 1.0, 1.01), (2, 1.1, 1.0), (3, 0.9, 0.99)):
+            suffix = "" if k == 1 else f"_r{k}"
+            for b in (0.02, 0.032):
+                plate(f"plate_b{b:g}{suffix}", b, k, scale)
+            plate(f"plate_b0.032{suffix}_halfdt", 0.032, k, scale * step, dt_factor=0.5,
+                  half_dt_of=f"plate_b0.032{suffix}")
+            bed = d / "beds" / plan.plate_bed_name(k)
+            bed.mkdir(parents=True)
+            (bed / "done.json").write_text(json.dumps({"result": {
+                "bulk_density": "700", "porosity": "0.5", "bed_depth": "0.1",
+                "core_bulk_density": f"{750 + k}"}}))
+        r = analysis.analyse(d)
+        self.assertEqual([(p["run"], p["replicate"]) for p in r.plates],
+                         [("plate_b0.02", 1), ("plate_b0.032", 1), ("plate_b0.02_r2", 2),
+                          ("plate_b0.032_r2", 2), ("plate_b0.02_r3", 3), ("plate_b0.032_r3", 3)])
+        self.assertAlmostEqual(r.bekker.n, 1.1, delta=1e-3)
+        self.assertAlmostEqual(r.bekker.kc / 1e4, 1.0, delta=0.01)
+        self.assertAlmostEqual(r.bekker.kphi / 5e5, 1.0, delta=0.01)
+        self.assertEqual(sorted(r.unload), [0.02, 0.032])   # the first bed's plates
+        rep = r.plate_replicates
+        self.assertEqual((rep["replicates"], rep["fitted_replicates"]), ([1, 2, 3], [1, 2, 3]))
+        for i, scale in enumerate((1.0, 1.1, 0.9)):
+            self.assertAlmostEqual(rep["n"][i], 1.1, delta=1e-3)
+            self.assertAlmostEqual(rep["kc_N_m_n1"][i] / (scale * 1e4), 1.0, delta=0.01)
+            self.assertAlmostEqual(rep["kphi_N_m_n2"][i] / (scale * 5e5), 1.0, delta=0.01)
+        self.assertAlmostEqual(rep["kphi_N_m_n2_sd"] / 5e5, 0.1, delta=0.002)
+        self.assertEqual(rep["bed_bulk_density_kg_m3"], {"bed1": 751.0, "bed2": 752.0,
+                                                         "bed3": 753.0})
+        for b in rep["by_width"]:
+            self.assertEqual(b["plates"], 3)
+            self.assertAlmostEqual(b["p_end_sd_Pa"] / b["p_end_mean_Pa"], 0.1, delta=1e-6)
+            self.assertAlmostEqual(b["p_end_spread"], 0.2, delta=1e-6)
+        # each bed's half-step plate against its own bed's plate, not the first bed's
+        self.assertEqual([(q["run"], q["replicate"]) for q in r.time_step],
+                         [("plate_b0.032", 1), ("plate_b0.032_r2", 2), ("plate_b0.032_r3", 3)])
+        np.testing.assert_allclose([q["difference"] for q in r.time_step], [0.01, 0.0, -0.01],
+                                   atol=1e-9)
+        c, = r.paired_step_checks
+        self.assertEqual((c["test"], c["b_m"], c["beds"]), ("plate", 0.032, 3))
+        self.assertAlmostEqual(c["interval_high"], 4.303 * 0.01 / np.sqrt(3), places=4)
+        self.assertEqual(c["verdict"], "step-converged")
+        s = analysis.summary(r)
+        self.assertEqual(s["time_step_paired"]["plate_b0.032"]["verdict"], "step-converged")
+        self.assertEqual(s["plate"]["replicates"]["fitted_replicates"], [1, 2, 3])
+        analysis.write_report(r)
+        rows = {(t, q): float(v) for t, q, v in
+                (line.split(",") for line in (d / "results.csv").read_text().splitlines()[1:])}
+        self.assertAlmostEqual(rows["plate", "bed2_kphi_N_m_n2"] / 5.5e5, 1.0, delta=0.01)
+        self.assertAlmostEqual(rows["plate", "replicates_b0.032_p_end_spread"], 0.2, delta=1e-5)
+        self.assertAlmostEqual(rows["time_step_paired", "plate_b0.032_mean_difference"], 0.0,
+                               delta=1e-6)
+        out = Path(tempfile.mkdtemp()) / "scm.toml"
+        analysis.write_scm(r, out, shear=analysis.shear_strength_from(self.shear_summary(),
+                                                                      "synthetic"))
+        source = tomllib.loads(out.read_text())["source"]["bekker"]["n"]
+        self.assertIn("; time-step check over 3 beds (plate b 0.032 m, each paired on its bed): "
+                      "mean +0.0 %, 95 % interval -2.5 to +2.5 % (tolerance 5 %): step-converged",
+                      source)
+        self.assertNotIn("step-dependent", source)
+        # one bed of three without its larger plate: two beds fitted, no pairs to pool
+        for run in ("plate_b0.032_r3", "plate_b0.032_r3_halfdt"):
+            for f in (d / run).iterdir():
+                f.unlink()
+            (d / run).rmdir()
+        r = analysis.analyse(d)
+        self.assertEqual(r.plate_replicates["fitted_replicates"], [1, 2])
+        self.assertEqual([b["plates"] for b in r.plate_replicates["by_width"]], [3, 2])
+        self.assertEqual(r.paired_step_checks[0]["beds"], 2)
+
     def test_shear_speed_check_compares_the_peaks(self):
         # Three boxes; the one at 10 kPa again at half speed with a 10 % lower, then a 3 % lower
         # plateau: the check reads -10 % (outside its 5 %) and -3 % (inside), relative.

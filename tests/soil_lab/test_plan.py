@@ -286,6 +286,39 @@ class Plan(unittest.TestCase):
             plan.check_options(("plate",), shear_replicates=2)
         self.assertEqual(len(plan.REPLICATE_SEEDS), plan.MAX_SHEAR_REPLICATES - 1)
 
+    def test_plate_replicates_press_into_their_own_beds(self):
+        p = make_plan(SAND, ("plate",), plate_replicates=3, speed_check=True, dt_check=True)
+        self.assertEqual(sorted(p.beds), ["plate", "plate_r2", "plate_r3"])
+        self.assertNotIn("seed", p.beds["plate"].extra_vars)
+        self.assertEqual([p.beds[b].extra_vars["seed"] for b in ("plate_r2", "plate_r3")],
+                         [str(x) for x in plan.REPLICATE_SEEDS[:2]])
+        for b in ("plate_r2", "plate_r3"):   # the same bin and depth as the first bed
+            self.assertEqual((p.beds[b].length_m, p.beds[b].width_m, p.beds[b].fill_height_m),
+                             (p.beds["plate"].length_m, p.beds["plate"].width_m,
+                              p.beds["plate"].fill_height_m))
+        self.assertEqual([(r.name, r.bed) for r in p.runs], [
+            ("plate_b0.04", "plate"), ("plate_b0.064", "plate"),
+            ("plate_b0.04_r2", "plate_r2"), ("plate_b0.064_r2", "plate_r2"),
+            ("plate_b0.04_r3", "plate_r3"), ("plate_b0.064_r3", "plate_r3"),
+            # every bed's larger plate at half speed and at half the step, on its own bed
+            ("plate_b0.064_half", "plate"), ("plate_b0.064_r2_half", "plate_r2"),
+            ("plate_b0.064_r3_half", "plate_r3"),
+            ("plate_b0.064_halfdt", "plate"), ("plate_b0.064_r2_halfdt", "plate_r2"),
+            ("plate_b0.064_r3_halfdt", "plate_r3")])
+        runs = {r.name: r for r in p.runs}
+        self.assertEqual(runs["plate_b0.064_r3"].meta["replicate"], 3)
+        self.assertEqual(runs["plate_b0.064_r3"].variables, runs["plate_b0.064"].variables)
+        self.assertEqual(runs["plate_b0.064_r2_halfdt"].meta["replicate"], 2)
+        # the first bed's plates keep their records as before (no replicate key: same run key)
+        self.assertEqual(runs["plate_b0.064"].meta, make_plan(SAND, ("plate",)).runs[1].meta)
+        with self.assertRaisesRegex(LabInputError, "seed=86028121.*--plate-replicates"):
+            make_plan(SAND, ("plate",), plate_replicates=3, bed_vars={"seed": "86028121"})
+        for bad in (0, plan.MAX_PLATE_REPLICATES + 1, 2.5, True):
+            with self.assertRaisesRegex(LabInputError, "--plate-replicates"):
+                plan.check_options(("plate",), plate_replicates=bad)
+        with self.assertRaisesRegex(LabInputError, "add plate to --tests"):
+            plan.check_options(("bulk", "shear"), plate_replicates=2)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -49,9 +49,18 @@ class ReportTest(unittest.TestCase):
                             for t in texts), texts)
         self.assertEqual(len(fig.axes[0].get_lines()), 5)  # 2 plates x (data, fit) + the text
         # The fit line of the 50 mm plate ends at the Bekker pressure (kPa) at 30 mm.
-        line = fig.axes[0].get_lines()[1]
+        line, = [x for x in fig.axes[0].get_lines() if x.get_label() == "Bekker fit, b = 50 mm"]
         self.assertAlmostEqual(line.get_ydata()[-1],
                                (fit.kc / 0.05 + fit.kphi) * 0.03**fit.n / 1e3, places=6)
+        # replicate beds (--plate-replicates): a marker set per plate and bed, one fit line per
+        # width, the bed named in the legend
+        beds = [(b, z, p, bed) for bed, seed in ((1, 1), (2, 7))
+                for b, z, p in syn.bekker_plates(0.79, 102e3, 5301e3, (0.05, 0.10), seed=seed)]
+        fig = report.plot_pressure_sinkage(self.png("ps_beds.png"), SOIL, beds, fit)
+        labels = [x.get_label() for x in fig.axes[0].get_lines()]
+        self.assertEqual(len(labels), 7)   # 4 plates + 2 fit lines + the text
+        self.assertIn("plate b = 100 mm (DEM, bed 2)", labels)
+        self.assertEqual(sum(x.startswith("Bekker fit, b =") for x in labels), 2)
 
     def test_shear_curves_and_mohr_coulomb(self):
         j = np.linspace(0.0, 0.05, 80)
