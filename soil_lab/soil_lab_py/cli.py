@@ -381,14 +381,18 @@ def _compare(a):
         raise plan.LabInputError(f"--at: expected shear displacements > 0 [mm], got '{a.at}'")
     target = a.target and compare.check_target(
         _numbers(a.target, "--target", "C_PA,PHI_DEG (numbers)"))
-    labs = compare.load([compare.parse_source(s) for s in a.sources])
+    labs, plate_labs = compare.load_all([compare.parse_source(s) for s in a.sources])
     if not (0 < a.tolerance < 90):
         raise plan.LabInputError(f"--tolerance: expected a friction angle tolerance in (0, 90) "
                                  f"[deg], got {a.tolerance:g}")
-    text = compare.table(labs, at, target, a.tolerance)
+    with_boxes = [(label, bs) for label, bs in labs if bs]
+    with_plates = [(label, ps) for label, ps in plate_labs if ps]
+    text = "\n".join(([compare.table(with_boxes, at, target, a.tolerance)] if with_boxes else [])
+                     + ([compare.plate_table(with_plates)] if with_plates else []))
     print(text, end="")
     for option, path, write in (("--md", a.md, lambda p: Path(p).write_text(text)),
-                                ("--png", a.png, lambda p: compare.plot(p, labs))):
+                                ("--png", a.png,
+                                 lambda p: compare.plot(p, with_boxes, with_plates))):
         if path:
             try:
                 write(path)
@@ -535,10 +539,11 @@ def main(argv=None):
     s.add_argument("--relaxed", action="store_true",
                    help="fit Bekker to the pressures at the ends of the plates' holds (a lab run "
                         "with --plate-hold and --plate-hold-stages >= 2) instead of the loading")
-    c = sub.add_parser("compare", help="the shear boxes of several labs side by side (trials)")
+    c = sub.add_parser("compare", help="the shear boxes and plates of several labs side by side "
+                                       "(trials)")
     c.add_argument("sources", nargs="+", metavar="LABEL=DIR",
-                   help="a lab directory or a folder of finished boxes (shear_s<stress>/), with "
-                        "the label its rows get")
+                   help="a lab directory, a folder of finished runs (shear_s<stress>/, "
+                        "plate_b<width>/) or one run's folder, with the label its rows get")
     c.add_argument("--at", default=",".join(f"{v:g}" for v in compare.DEFAULT_AT_MM),
                    metavar="MM,MM,...", help="shear displacements to read tau at [mm] (default "
                                              "%(default)s)")
@@ -549,7 +554,8 @@ def main(argv=None):
                    metavar="DEG", help="with --target: the fitted phi is judged within +-DEG of "
                                        "the target's (default %(default)g)")
     c.add_argument("--md", metavar="FILE", help="also write the tables to FILE (Markdown)")
-    c.add_argument("--png", metavar="FILE", help="plot tau(j) of every source, a panel per stress")
+    c.add_argument("--png", metavar="FILE", help="plot tau(j) of every source, a panel per "
+                                                  "stress, and p(z), a panel per plate width")
     a = ap.parse_args(argv)
     if getattr(a, "np", 1) < 1:
         ap.error(f"--np must be >= 1, got {a.np}")

@@ -1,9 +1,10 @@
-"""`soil-lab compare`: the shear boxes of several labs (or archived boxes) side by side, at equal
-normal stress and equal shear displacement, as a calibration trial is judged (docs/soil-lab.md
-"Comparing trials").
+"""`soil-lab compare`: the shear boxes and the plates of several labs (or archived runs) side by
+side, at equal normal stress and equal shear displacement, at equal plate width and equal
+sinkage, as a calibration trial is judged (docs/soil-lab.md "Comparing trials").
 
-A source is LABEL=DIR, DIR a lab directory or a folder of finished boxes (shear_s<σ>/ with its
-shear.csv and done.json, e.g. `soil-lab run --archive`'s). Boxes are matched by their target
+A source is LABEL=DIR, DIR a lab directory, a folder of finished runs (shear_s<σ>/ with its
+shear.csv and done.json, plate_b<b>/ with its plate.csv, e.g. `soil-lab run --archive`'s), or one
+run's own folder (e.g. a check's plate_b0.32_halfdt/). Boxes are matched by their target
 normal stress (done.json meta.normal_stress_Pa); of a lab with replicate boxes, the first bed's. Per box: τ at each displacement asked (the mean
 over ±AT_HALF_WIDTH_M of it), the lab's peak (5 % running mean) and where, the normal stress on the
 plane, the lid's travel over the shear and, where DIR/beds/shear/done.json is there, the sample's
@@ -14,6 +15,12 @@ Last, per source with boxes at three or more stresses, the Mohr–Coulomb fit th
 (fits.fit_mohr_coulomb: φ and c with their standard errors) and, with a target, φ against it:
 inside or outside the tolerance, and whether one standard error of the fit reaches across the
 tolerance's edge (then that bed alone does not decide).
+
+Plates are matched by width (done.json meta.b_m; of a lab with replicate plates, the first bed's).
+Per plate: the mean pressure of its loading branch in the depth bands of the first source's plate
+of that width (analysis.band_means: the lab's five bands, the last its "end of loading"), the last
+band against the first source's, the run's time step and speed; per source with two widths, its
+Bekker fit (fits.fit_bekker over the loading branches).
 """
 from pathlib import Path
 
@@ -38,10 +45,18 @@ def parse_source(text):
     return label.strip(), d
 
 
-def boxes(directory):
+def boxes(directory, required=True):
     """{target normal stress [Pa]: box} of the finished boxes in `directory` (analysis.read_shears'
-    records), each with `particle_density_kg_m3` from the lab's soil.toml (None without it)."""
-    found, _ = analysis.read_shears(directory)
+    records; a box's own folder: that box), each with `particle_density_kg_m3` from the lab's
+    soil.toml (None without it). None found: a LabInputError if `required`, else {}."""
+    d = Path(directory)
+    done = _run_record(d, "shear.csv", "box")
+    if done is not None:
+        found = [analysis.read_shear(d, done)]
+    else:
+        found, _ = analysis.read_shears(d)
+    if not found and not required:
+        return {}
     if not found:
         raise plan.LabInputError(f"{directory}: no finished shear box (shear_s*/ with done.json): "
                                  "expected a lab directory or a folder of archived boxes")
@@ -56,9 +71,94 @@ def boxes(directory):
             for b in found if b["replicate"] == 1}
 
 
+def _run_record(d, csv_name, tool):
+    """The done.json of `d` when it is one run's own folder (its `csv_name` in it), else None; a
+    LabInputError when that run's record is missing (an unfinished run)."""
+    if not (d / csv_name).is_file():
+        return None
+    done = analysis._done(d)
+    if done is None:
+        raise plan.LabInputError(f"{d}: a {tool}'s folder without its done.json (unfinished?)")
+    return done
+
+
 def load(sources):
     """[(label, boxes)] of the (label, directory) sources, each read once."""
     return [(label, boxes(d)) for label, d in sources]
+
+
+def plates(directory):
+    """{plate width [m]: plate} of the finished plates in `directory` (analysis.read_plate's
+    records, the first bed's; a plate run's own folder: that plate); {} when there is none."""
+    d = Path(directory)
+    done = _run_record(d, "plate.csv", "plate")
+    if done is not None:
+        found = [analysis.read_plate(d, done)]
+    else:
+        found = [analysis.read_plate(run, done) for run, done in analysis._runs(d, "plate_b*")]
+    return {q["b_m"]: q for q in found if q["replicate"] == 1}
+
+
+def load_all(sources):
+    """([(label, boxes)], [(label, plates)]) of the (label, directory) sources: the command's
+    reading; a LabInputError naming a source with neither a finished box nor a plate."""
+    box_labs, plate_labs = [], []
+    for label, d in sources:
+        bs, ps = boxes(d, required=False), plates(d)
+        if not bs and not ps:
+            raise plan.LabInputError(f"{label}={d}: no finished shear box (shear_s*/) nor plate "
+                                     "(plate_b*/) with its done.json: expected a lab directory, a "
+                                     "folder of archived runs or one run's folder")
+        box_labs.append((label, bs))
+        plate_labs.append((label, ps))
+    return box_labs, plate_labs
+
+
+def plate_table(plate_labs):
+    """Markdown: a table per plate width, a row per source that has that plate (its loading
+    branch's mean pressure in the first source's five depth bands, the last against the first
+    source's, its time step and speed); then each source's Bekker fit where it has two widths."""
+    widths = sorted({b for _, ps in plate_labs for b in ps})
+    lines = []
+    for b in widths:
+        rows = [(label, ps[b]) for label, ps in plate_labs if b in ps]
+        z_top = float(np.max(analysis.loading_branch(rows[0][1])[0]))
+        centres = analysis.band_means([0.0], [0.0], z_top, analysis.PLATE_PROFILE_BANDS)[0]
+        lines += [f"### Plate b {b * 1e3:g} mm", "",
+                  "| source | " + " | ".join(f"p at {z * 1e3:.3g} mm [kPa]" for z in centres)
+                  + f" | end of loading against {rows[0][0]} | dt [s] | speed [m/s] |",
+                  "|---" * (len(centres) + 4) + "|"]
+        first_end = None
+        for label, q in rows:
+            z, p = analysis.loading_branch(q)
+            means = analysis.band_means(z, p, z_top, analysis.PLATE_PROFILE_BANDS)[1]
+            end = means[-1]
+            first_end = end if first_end is None else first_end
+            meta = (q.get("done") or {}).get("meta") or {}
+            dt, speed = (q.get("done") or {}).get("dt_s"), meta.get("speed_m_s")
+            lines.append(f"| {label} | " + " | ".join(
+                "–" if not np.isfinite(m) else f"{m / 1e3:.2f}" for m in means)
+                + " | " + ("–" if not (np.isfinite(end) and np.isfinite(first_end))
+                           else f"{round(100 * (end / first_end - 1), 1) + 0.0:+.1f} %")
+                + " | " + ("–" if not isinstance(dt, (int, float)) else f"{dt:.4g}")
+                + " | " + ("–" if not isinstance(speed, (int, float)) else f"{speed:g}") + " |")
+        lines.append("")
+    lines += [f"p at z: the mean pressure of the loading branch in the depth bands of the first "
+              f"source's plate of that width (its sinkage range cut into "
+              f"{analysis.PLATE_PROFILE_BANDS}; '–': that plate did not reach the band); the last "
+              "band is the lab's pressure at the end of loading.", "",
+              "### Bekker fits", "",
+              "| source | n | kc [kN/m^(n+1)] | kφ [kN/m^(n+2)] | RMS [kPa] | R² |",
+              "|---|---|---|---|---|---|"]
+    for label, ps in plate_labs:
+        if len(ps) < 2:
+            if ps:
+                lines.append(f"| {label} | – (needs plates of 2 widths) | – | – | – | – |")
+            continue
+        f = fits.fit_bekker([(b, *analysis.loading_branch(q)) for b, q in sorted(ps.items())])
+        lines.append(f"| {label} | {f.n:.3f} | {f.kc / 1e3:.4g} | {f.kphi / 1e3:.4g} | "
+                     f"{f.rms_Pa / 1e3:.3g} | {f.r2:.3f} |")
+    return "\n".join(lines) + "\n"
 
 
 def tau_at(box, j_m):
@@ -180,11 +280,21 @@ def _against_target(box, target):
     return f" {line / 1e3:.2f} ({excess:+.1f} %) |"
 
 
-def plot(path, labs):
-    """τ(j) of every source (load's), a panel per target normal stress (PNG)."""
+def plot(path, labs, plate_labs=()):
+    """τ(j) of every source (load's), a panel per target normal stress, then p(z) of the plates'
+    loading branches, a panel per plate width (PNG)."""
     stresses = sorted({s for _, bs in labs for s in bs})
-    fig = report._figure(figsize=(6.5, 3.2 * len(stresses)))
-    axes = fig.subplots(len(stresses), 1, squeeze=False)[:, 0]
+    widths = sorted({b for _, ps in plate_labs for b in ps})
+    fig = report._figure(figsize=(6.5, 3.2 * (len(stresses) + len(widths))))
+    axes = fig.subplots(len(stresses) + len(widths), 1, squeeze=False)[:, 0]
+    for ax, b in zip(axes[len(stresses):], widths):
+        for k, (label, ps) in enumerate(plate_labs):
+            if b in ps:
+                z, p = analysis.loading_branch(ps[b])
+                ax.plot(np.asarray(z) * 1e3, np.asarray(p) / 1e3, "-", lw=0.8, color=f"C{k}",
+                        label=label)
+        report._axes(ax, "sinkage z [mm]", "pressure p [kPa]",
+                     f"plate b {b * 1e3:g} mm, loading")
     for ax, sigma in zip(axes, stresses):
         for k, (label, bs) in enumerate(labs):
             b = bs.get(sigma)

@@ -88,3 +88,30 @@ def repose_run(directory, angle_deg, name="repose", height_m=0.02, radius_m=0.00
         {"meta": {"base_m": base_m}, "wall_s": 2.0, "steps": 1000, "particles": int(x.size),
          "np": 1, "dt_s": 1e-5}))
     return base_m
+
+
+KE_Pa_m = 2.0e7  # the synthetic soil's unloading stiffness
+
+
+def plate_run(directory, b_m, noisy_peak=False, scale=1.0, name=None, meta=None, dt_s=1e-5):
+    """A load (Bekker, n = 1.1, kc 1e4, kphi 5e5, every pressure times `scale`), unload by 2 mm
+    with slope KE_Pa_m, reload; with noisy_peak a pressure spike at 60 % of the loading, above the
+    pressure at the turning point. Its folder `name` (default plate_b<b_m>), done.json's meta
+    b_m and `meta`, dt_s."""
+    z1 = np.linspace(0.0, 0.02, 200)
+    p1 = scale * (1e4 / b_m + 5e5) * z1 ** 1.1
+    if noisy_peak:
+        p1[120] = 1.3 * p1[-1]
+    z2 = np.linspace(0.02, 0.018, 40)
+    p2 = p1[-1] - KE_Pa_m * (0.02 - z2)
+    z3 = np.linspace(0.018, 0.03, 100)
+    p3 = p2[-1] + (z3 - 0.018) * 3e5
+    z, p = np.concatenate([z1, z2, z3]), np.concatenate([p1, p2, p3])
+    phase = np.repeat([1, 2, 3], [len(z1), len(z2), len(z3)])
+    t = np.arange(len(z)) * 1e-3
+    run = Path(directory) / (name or f"plate_b{b_m:g}")
+    run.mkdir(parents=True)
+    np.savetxt(run / "plate.csv", np.column_stack([t, z, p * b_m * b_m, p, 10 + 0 * z, phase]),
+               header="time_s sinkage_m force_N pressure_Pa contacts phase")
+    (run / "done.json").write_text(json.dumps({"meta": {"b_m": b_m, **(meta or {})},
+                                               "wall_s": 1.0, "dt_s": dt_s}))

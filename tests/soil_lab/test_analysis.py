@@ -13,31 +13,8 @@ from types import SimpleNamespace
 import numpy as np
 
 import synthetic as syn
+from synthetic import KE_Pa_m, plate_run
 from soil_lab_py import analysis, fits, plan
-
-KE_Pa_m = 2.0e7  # the synthetic soil's unloading stiffness
-
-
-def plate_run(directory, b_m, noisy_peak):
-    """A load (Bekker, n = 1.1), unload by 2 mm with slope KE_Pa_m, reload; with noisy_peak a
-    pressure spike at 60 % of the loading, above the pressure at the turning point."""
-    z1 = np.linspace(0.0, 0.02, 200)
-    p1 = (1e4 / b_m + 5e5) * z1 ** 1.1
-    if noisy_peak:
-        p1[120] = 1.3 * p1[-1]
-    z2 = np.linspace(0.02, 0.018, 40)
-    p2 = p1[-1] - KE_Pa_m * (0.02 - z2)
-    z3 = np.linspace(0.018, 0.03, 100)
-    p3 = p2[-1] + (z3 - 0.018) * 3e5
-    z, p = np.concatenate([z1, z2, z3]), np.concatenate([p1, p2, p3])
-    phase = np.repeat([1, 2, 3], [len(z1), len(z2), len(z3)])
-    t = np.arange(len(z)) * 1e-3
-    run = Path(directory) / f"plate_b{b_m:g}"
-    run.mkdir(parents=True)
-    np.savetxt(run / "plate.csv", np.column_stack([t, z, p * b_m * b_m, p, 10 + 0 * z, phase]),
-               header="time_s sinkage_m force_N pressure_Pa contacts phase")
-    (run / "done.json").write_text(json.dumps({"meta": {"b_m": b_m}, "wall_s": 1.0, "dt_s": 1e-5}))
-
 
 RELAXED = 0.8  # the held synthetic soil relaxes to this fraction of its pressure at speed
 
@@ -201,26 +178,13 @@ class Analysis(unittest.TestCase):
         # within 5 %: "step-converged", said so in the SCM file's [source].
         d = Path(tempfile.mkdtemp())
         (d / "soil.toml").write_text('name = "synthetic"\npreset = "standard"\ndmax_m = 0.004\n')
-        src = Path(tempfile.mkdtemp())
-        plate_run(src, 0.02, False)
-        plate_run(src, 0.032, False)
-
-        def plate(name, b, k, scale, **meta):
-            run = d / name
-            run.mkdir()
-            table = np.loadtxt(src / f"plate_b{b:g}" / "plate.csv", ndmin=2)
-            table[:, 2:4] *= scale
-            np.savetxt(run / "plate.csv", table,
-                       header="time_s sinkage_m force_N pressure_Pa contacts phase")
-            (run / "done.json").write_text(json.dumps({
-                "meta": {"b_m": b, **({} if k == 1 else {"replicate": k}), **meta},
-                "wall_s": 1.0, "dt_s": 5e-6 if meta else 1e-5}))
         for k, scale, step in ((1, 1.0, 1.01), (2, 1.1, 1.0), (3, 0.9, 0.99)):
-            suffix = "" if k == 1 else f"_r{k}"
+            suffix, rep = ("", {}) if k == 1 else (f"_r{k}", {"replicate": k})
             for b in (0.02, 0.032):
-                plate(f"plate_b{b:g}{suffix}", b, k, scale)
-            plate(f"plate_b0.032{suffix}_halfdt", 0.032, k, scale * step, dt_factor=0.5,
-                  half_dt_of=f"plate_b0.032{suffix}")
+                plate_run(d, b, scale=scale, name=f"plate_b{b:g}{suffix}", meta=rep)
+            plate_run(d, 0.032, scale=scale * step, name=f"plate_b0.032{suffix}_halfdt",
+                      meta={**rep, "dt_factor": 0.5, "half_dt_of": f"plate_b0.032{suffix}"},
+                      dt_s=5e-6)
             bed = d / "beds" / plan.plate_bed_name(k)
             bed.mkdir(parents=True)
             (bed / "done.json").write_text(json.dumps({"result": {

@@ -23,8 +23,7 @@ from pathlib import Path
 from unittest import mock
 
 from soil_lab_py import cli, runner
-from synthetic import shear_run
-from test_analysis import plate_run
+from synthetic import plate_run, shear_run
 
 REPO = Path(__file__).resolve().parents[2]
 SOIL_LAB = REPO / "soil_lab" / "soil-lab"

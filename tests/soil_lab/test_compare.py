@@ -1,4 +1,5 @@
-"""soil-lab compare (soil_lab_py.compare): two synthetic labs of Janosi boxes with known answers.
+"""soil-lab compare (soil_lab_py.compare): two synthetic labs of Janosi boxes with known answers,
+and synthetic Bekker plates (a lab's, an archive's, one run's folder).
 τ at a displacement is the curve's value there (mean over ±0.25 mm), '–' past the box's travel;
 boxes are matched by target normal stress, a box one lab lacks gives no row; the sample density
 appears only where the lab's shear-bed record is, its solid fraction where soil.toml is too; peaks
@@ -169,6 +170,62 @@ class Compare(unittest.TestCase):
         empty.mkdir()
         with self.assertRaisesRegex(plan.LabInputError, "no finished shear box"):
             compare.boxes(empty)
+
+    def test_plates_by_width_and_depth_band(self):
+        # Lab A's two plates (Bekker n 1.1, kc 1e4, kphi 5e5); an archive folder B with only the
+        # 32 mm plate, 20 % stiffer; A's 32 mm plate at half the step as one run's folder, 10 %
+        # stiffer. Matched by width; the pressure in A's five depth bands; the end of loading
+        # against A: +20 % and +10 %; the run's step; A's Bekker fit recovered, B none (one width).
+        root = Path(self.tmp.name)
+        for b in (0.02, 0.032):
+            syn.plate_run(self.a, b)
+        syn.plate_run(root / "plates_b", 0.032, scale=1.2)
+        syn.plate_run(self.a, 0.032, scale=1.1, name="plate_b0.032_halfdt", dt_s=5e-6,
+                      meta={"dt_factor": 0.5, "half_dt_of": "plate_b0.032"})
+        sources = [("A", self.a), ("B", root / "plates_b"),
+                   ("A_halfdt", self.a / "plate_b0.032_halfdt")]
+        box_labs, plate_labs = compare.load_all(sources)
+        self.assertEqual([sorted(ps) for _, ps in plate_labs], [[0.02, 0.032], [0.032], [0.032]])
+        self.assertEqual([sorted(bs) for _, bs in box_labs], [[5e3, 1e4, 2e4], [], []])
+        text = compare.plate_table(plate_labs)
+        rows = self.rows(text, "Plate b 32 mm")
+        self.assertEqual(sorted(rows), ["A", "A_halfdt", "B"])
+        # the last band: z in [16, 20] mm of the 20 mm loading; the mean of the loading samples
+        z = np.linspace(0.0, 0.02, 200)
+        last = (1e4 / 0.032 + 5e5) * z[z >= 0.016] ** 1.1
+        self.assertAlmostEqual(float(rows["A"][4]), last.mean() / 1e3, places=2)
+        self.assertAlmostEqual(float(rows["B"][4]), 1.2 * last.mean() / 1e3, places=2)
+        self.assertEqual([rows[k][5] for k in ("A", "B", "A_halfdt")],
+                         ["+0.0 %", "+20.0 %", "+10.0 %"])
+        self.assertEqual((rows["A"][6], rows["A_halfdt"][6]), ("1e-05", "5e-06"))
+        self.assertIn("| p at 2 mm [kPa] | p at 6 mm [kPa] |", text)
+        fits_rows = self.rows(text, "Bekker fits")
+        n, kc, kphi = (float(x) for x in fits_rows["A"][:3])
+        self.assertAlmostEqual(n, 1.1, places=3)
+        self.assertAlmostEqual(kc, 10.0, delta=0.1)
+        self.assertAlmostEqual(kphi, 500.0, delta=5)
+        self.assertEqual(fits_rows["B"][0], "– (needs plates of 2 widths)")
+        # a source with neither a box nor a plate, and a run's folder without its record
+        empty = root / "empty"
+        empty.mkdir()
+        with self.assertRaisesRegex(plan.LabInputError, r"E=.*empty: no finished shear box .*nor "
+                                                        r"plate"):
+            compare.load_all([("E", empty)])
+        (self.a / "plate_b0.032_halfdt" / "done.json").unlink()
+        with self.assertRaisesRegex(plan.LabInputError, "a plate's folder without its done.json"):
+            compare.plates(self.a / "plate_b0.032_halfdt")
+        # the command: a plates-only source beside a lab; the PNG has a panel per stress and
+        # per plate width
+        png = root / "plates.png"
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            rc = cli.main(["compare", f"A={self.a}", f"B={root / 'plates_b'}", "--png", str(png)])
+        self.assertEqual(rc, 0)
+        self.assertIn("### Box at 10 kPa", out.getvalue())
+        self.assertIn("### Plate b 20 mm", out.getvalue())
+        self.assertIn("B", self.rows(out.getvalue(), "Plate b 32 mm"))
+        self.assertNotIn("B", self.rows(out.getvalue(), "Box at 10 kPa"))
+        self.assertGreater(png.stat().st_size, 10000)
 
     def test_the_command(self):
         md, png = Path(self.tmp.name) / "cmp.md", Path(self.tmp.name) / "cmp.png"
