@@ -1455,7 +1455,16 @@ def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None
     # speed check is stated, not a reason to refuse
     speed_text = (f"pressed at {', '.join(f'{v:g}' for v in speeds)} m/s; " if speeds else "") + \
         plate_speed_statement(r, rate_dependent_ok or relaxed)
-    widths = ", ".join(f"{p['b_m']:.3g}" for p in r.plates)
+    widths = ", ".join(f"{b:.3g}" for b in sorted({p["b_m"] for p in r.plates}))
+    rep = r.plate_replicates or {}
+    if rep and not relaxed:   # --plate-replicates: every bed's plates in one fit, and how far
+        # the beds' own fits differ (the holds, and so a relaxed fit, are the first bed's)
+        widths += f" m on {len(rep['replicates'])} beds of the recipe" + (
+            "" if "kphi_N_m_n2_sd" not in rep else
+            f" (each bed's own fit: n sd {rep['n_sd']:.3g}, kphi sd "
+            f"{100 * rep['kphi_N_m_n2_sd'] / np.mean(rep['kphi_N_m_n2']):.3g} %)")
+    else:
+        widths += " m"
     if relaxed:
         bekker = r.bekker_relaxed
         if bekker is None:
@@ -1469,14 +1478,14 @@ def write_scm(r: Results, path, name=None, shear: Optional[ShearStrength] = None
                                  f"their holds ({'; '.join(open_)}): their end pressures are not "
                                  f"the relaxed ones; hold longer (--plate-hold)")
         z_fitted = max(h["z_m"] for h in stages)
-        how = (f"square plates b = {widths} m, the pressures at the ends of holds of "
+        how = (f"square plates b = {widths}, the pressures at the ends of holds of "
                f"{min(h['hold_s'] for h in stages):.3g} s at {len(stages)} depths to "
                f"z = {z_fitted:.3g} m (stress relaxation; deeper sinkage extrapolates)")
     else:
         bekker = r.bekker
         # the deepest loading sample: SCM below it extrapolates the fit (docs/soil-lab.md)
         z_fitted = max(float(np.max(loading_branch(p)[0])) for p in r.plates)
-        how = (f"square plates b = {widths} m, loading branches to z = {z_fitted:.3g} m (deeper "
+        how = (f"square plates b = {widths}, loading branches to z = {z_fitted:.3g} m (deeper "
                f"sinkage extrapolates)")
     if shear is not None and r.mc_peak is not None:
         raise LabResultError(f"{r.directory} has shear boxes of its own; leave out --shear-from "

@@ -238,6 +238,9 @@ class Analysis(unittest.TestCase):
                       "mean +0.0 %, 95 % interval -2.5 to +2.5 % (tolerance 5 %): step-converged",
                       source)
         self.assertNotIn("step-dependent", source)
+        self.assertIn("square plates b = 0.02, 0.032 m on 3 beds of the recipe (each bed's own "
+                      "fit: n sd ", source)
+        self.assertRegex(source, r"kphi sd 10(\.0)? %\), loading branches")
         # one bed of three without its larger plate: two beds fitted, no pairs to pool
         for run in ("plate_b0.032_r3", "plate_b0.032_r3_halfdt"):
             for f in (d / run).iterdir():
