@@ -206,6 +206,87 @@ def soil_vars(liggghts, soil_file, inputs_dir):
     return {k: (v if k == "soil_name" else float(v)) for k, v in out.items()}
 
 
+# A multisphere soil's particles carry several spheres each, and LIGGGHTS' cost goes by spheres:
+# its particle distribution (the templates' nspheres, the number-based weights) says how many.
+_TEMPLATE_RE = re.compile(r"^[ \t]*fix\s+(\S+)\s+\S+\s+particletemplate/(sphere|multisphere)\b"
+                          r"([^\n]*)", re.M)
+_DIST_RE = re.compile(r"^[ \t]*fix\s+(\S+)\s+\S+\s+particledistribution/discrete(/numberbased)?"
+                      r"\s+\S+\s+(\d+)\s+([^\n]*)", re.M)
+_DIST_NAME_RE = re.compile(r"^[ \t]*variable\s+soil_distribution\s+string\s+(\S+)", re.M)
+
+
+def particle_mix(text):
+    """The soil's particle distribution read from its deck text (the soil file and what it
+    includes; `&` continuations joined, comments dropped): (number-based?, [(template, weight
+    token, spheres per particle)]) of the distribution fix named by `soil_distribution` (else the
+    last one), or a str saying why it cannot be read (no distribution, a template not found, a
+    multisphere template without nspheres). Weight tokens are as written (`0.1`, `${soil_n1}`)."""
+    text = re.sub(r"&[ \t]*\r?\n", " ", text)
+    text = re.sub(r"#[^\n]*", "", text)
+    spheres = {}
+    for tid, kind, rest in _TEMPLATE_RE.findall(text):
+        m = re.search(r"\bnspheres\s+(\d+)", rest)
+        spheres[tid] = 1 if kind == "sphere" else int(m.group(1)) if m else None
+    dists = {fid: (bool(nb), int(n), rest.split()) for fid, nb, n, rest in _DIST_RE.findall(text)}
+    if not dists:
+        return "no particledistribution/discrete in the soil file"
+    named = _DIST_NAME_RE.findall(text)
+    fid = named[-1] if named and named[-1] in dists else list(dists)[-1]
+    numberbased, n, words = dists[fid]
+    pairs = list(zip(words[0:2 * n:2], words[1:2 * n:2]))
+    if len(pairs) != n:
+        return f"distribution {fid}: {n} templates announced, {len(pairs)} given"
+    for tid, _ in pairs:
+        if spheres.get(tid) is None:
+            return (f"distribution {fid}: template {tid} not found"
+                    if tid not in spheres else f"template {tid}: no nspheres")
+    return numberbased, [(tid, w, spheres[tid]) for tid, w in pairs]
+
+
+def spheres_per_particle(liggghts, soil_file, inputs_dir):
+    """(spheres per particle, how) of a soil's particle distribution (particle_mix), its weights
+    evaluated by LIGGGHTS as the soil file defines them (soil_vars_only = 1); (None, why) when it
+    cannot be told: a mass-based distribution of clumps (that needs the clumps' volumes), weights
+    the variables stage does not define, no distribution. 1.0 for a soil of single spheres."""
+    files = [Path(soil_file)] + deck_includes(soil_file, {"inputs_dir": str(inputs_dir)})
+    mix = particle_mix("\n".join(f.read_text(errors="replace") for f in files))
+    if isinstance(mix, str):
+        return None, mix
+    numberbased, pairs = mix
+    if all(k == 1 for _, _, k in pairs):
+        return 1.0, "single spheres"
+    if not numberbased:
+        return None, "a mass-based distribution of clumps (their volumes are not known here)"
+    with tempfile.TemporaryDirectory(prefix="wheel-sweep-mix-") as tmp:
+        deck = Path(tmp) / "in.soil_mix"
+        deck.write_text("variable soil_vars_only equal 1\n"
+                        f"include {soil_file}\n"
+                        + "".join(f'print "wheel_sweep_w {i} {w}"\n'
+                                  for i, (_, w, _) in enumerate(pairs)))
+        try:
+            r = subprocess.run([str(liggghts), "-in", str(deck), "-log", "none", "-echo", "none",
+                                "-var", "inputs_dir", str(inputs_dir)], cwd=tmp,
+                               capture_output=True, text=True, stdin=subprocess.DEVNULL,
+                               timeout=SOIL_QUERY_TIMEOUT_S)
+        except (OSError, subprocess.SubprocessError) as e:
+            return None, f"LIGGGHTS could not be asked for the weights: {e}"
+    weights = {}
+    for line in r.stdout.splitlines():
+        f = line.split()
+        if len(f) == 3 and f[0] == "wheel_sweep_w":
+            try:
+                weights[int(f[1])] = float(f[2])
+            except ValueError:
+                pass
+    if r.returncode != 0 or len(weights) != len(pairs) or sum(weights.values()) <= 0:
+        return None, "the distribution's weights are not defined by the soil's variables stage"
+    total = sum(weights.values())
+    ratio = sum(weights[i] * k for i, (_, _, k) in enumerate(pairs)) / total
+    clumps = ", ".join(f"{tid} {weights[i] / total:.3g} x {k}" for i, (tid, _, k)
+                       in enumerate(pairs) if k > 1)
+    return ratio, f"{ratio:.3g} spheres per particle (number fractions: {clumps} spheres)"
+
+
 def mean_grain_volume(sv):
     """Mean volume [m^3] of one grain, and how it was found. Sieve classes soil_d<i> with mass
     fractions soil_w<i>: number fractions ~ w_i / V_i, so the mean is sum(w) / sum(w_i / V_i);

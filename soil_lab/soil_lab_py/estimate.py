@@ -64,10 +64,19 @@ class MachineRate:
     pace is rate x np x efficiency / its bed's spheres. `sv` is the soil file's variables
     (wheel-sweep's soil query: sieve classes, density, dt) and `defaults` in.soilbin's, for the
     spheres of a bed not prepared yet (its bin x fill height x fill solid fraction / the mean
-    grain: an estimate) and its preparation's steps (in.soilbin's upper bounds)."""
+    grain: an estimate) and its preparation's steps (in.soilbin's upper bounds). A multisphere
+    soil's particles are counted in spheres: `mix` is wheel-sweep's spheres_per_particle (ratio,
+    how), the ratio None when the distribution does not tell it."""
 
-    def __init__(self, rate, np_, sv, defaults):
+    def __init__(self, rate, np_, sv, defaults, mix=(1.0, "single spheres")):
         self.rate, self.np, self.sv, self.defaults = rate, np_, sv, defaults
+        self.mix = mix
+
+    @property
+    def clumps_uncounted(self):
+        """True for a multisphere soil whose spheres per particle are not known (its estimate is
+        low by the clumps' extra spheres)."""
+        return bool(self.sv.get("soil_multisphere")) and self.mix[0] is None
 
     @classmethod
     def of_this_machine(cls, liggghts, np_, soil_file, inputs_dir, soilbin):
@@ -76,7 +85,9 @@ class MachineRate:
         key = sweep_rate.machine_key(sweep_rate.liggghts_version(liggghts))
         rate = sweep_rate.lookup(sweep_rate.cache_path(), key)
         sv = sweep_estimate.soil_vars(liggghts, soil_file, inputs_dir)
-        return cls(rate, np_, sv, sweep_estimate.soilbin_defaults(soilbin))
+        mix = (sweep_estimate.spheres_per_particle(liggghts, soil_file, inputs_dir)
+               if sv.get("soil_multisphere") else (1.0, "single spheres"))
+        return cls(rate, np_, sv, sweep_estimate.soilbin_defaults(soilbin), mix)
 
     def pace(self, spheres, bed=False):
         """Steps per second of a run (or a bed's preparation) on `spheres` spheres."""
@@ -95,10 +106,16 @@ class MachineRate:
         fill = float(r.get("fill_solid_fraction", self.defaults.get("fill_solid_fraction", 0.6)))
         n = bed.length_m * bed.width_m * bed.fill_height_m * fill / vol
         how = f"bin x fill solid fraction {fill:g} / mean grain, {how}"
-        if self.sv.get("soil_multisphere"):
+        if self.clumps_uncounted:
             # the sieve classes count a clump once, its cost goes by its spheres (loose sand's
             # plate bed: 32 067 particles, 67 348 spheres)
-            how += "; multisphere: clumps counted once, so low by their extra spheres"
+            how += (f"; multisphere: clumps counted once, so low by their extra spheres "
+                    f"({self.mix[1]})")
+        elif self.sv.get("soil_multisphere"):
+            # the particles (a clump's volume taken as a sieve-class grain's) times the spheres
+            # each carries on average (loose sand's plate bed: 32 067 particles x 2.1 = 67 348)
+            n *= self.mix[0]
+            how += f"; multisphere: x {self.mix[1]}"
         return n, how
 
     def bed_steps(self, bed):
@@ -143,7 +160,7 @@ def lab_estimate(plan, out, archive=None, machine=None):
             else:
                 spheres, how = machine.bed_spheres(bed)
                 counts[name] = spheres, f"~{_int(int(round(spheres, -2)))} spheres estimated" + (
-                    ", clumps counted once: low" if machine.sv.get("soil_multisphere") else "")
+                    ", clumps counted once: low" if machine.clumps_uncounted else "")
         if prepared:
             continue
         if machine is None or bed is None:

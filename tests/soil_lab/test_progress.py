@@ -13,6 +13,8 @@ import unittest
 from pathlib import Path
 from types import SimpleNamespace
 
+import numpy as np
+
 import synthetic as syn
 from soil_lab_py import estimate, plan, progress
 
@@ -171,6 +173,27 @@ class Estimate(unittest.TestCase):
             lines = estimate.lab_estimate(lab, Path(tmp), None, machine)
             self.assertEqual(lines[0], "estimate: [1/1] plate_b0.1: 42 500 steps to run, ~4 min "
                              "at 200 steps/s (this machine's rate, its bed's 8 000 spheres)")
+
+    def test_a_multisphere_soil_is_priced_by_its_spheres(self):
+        # the same bed of a multisphere soil: 4584 particles x 2.1 spheres each (the
+        # distribution's, wheel-sweep's spheres_per_particle) = 9626 spheres; without the ratio
+        # the particles are priced and the line says it is low
+        sv = {"soil_d1": 0.01, "soil_w1": 1.0, "soil_density": 2000.0, "soil_dt": 1e-4,
+              "soil_dref": 0.01, "soil_multisphere": 1.0}
+        defaults = {"fill_solid_fraction": "0.6"}
+        rate = SimpleNamespace(rate_per_rank=1e6, bed_rate_per_rank=5e5, efficiency_np2=0.8,
+                               source="test rate")
+        bed = plan.Bed("plate", 0.2, 0.2, 0.1)
+        known = estimate.MachineRate(rate, 1, sv, defaults, (2.1, "2.1 spheres per particle"))
+        n, how = known.bed_spheres(bed)
+        self.assertAlmostEqual(n, 2.1 * 0.2 * 0.2 * 0.1 * 0.6 / (np.pi / 6 * 1e-6), places=6)
+        self.assertIn("multisphere: x 2.1 spheres per particle", how)
+        self.assertFalse(known.clumps_uncounted)
+        unknown = estimate.MachineRate(rate, 1, sv, defaults, (None, "a mass-based mix"))
+        n, how = unknown.bed_spheres(bed)
+        self.assertAlmostEqual(n, 0.2 * 0.2 * 0.1 * 0.6 / (np.pi / 6 * 1e-6), places=6)
+        self.assertIn("clumps counted once, so low by their extra spheres (a mass-based mix)", how)
+        self.assertTrue(unknown.clumps_uncounted)
 
 
 if __name__ == "__main__":

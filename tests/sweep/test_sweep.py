@@ -771,6 +771,27 @@ def case_dem_tiled_bed(a, work):
           "a changed fill_height (not a preparation key) was not an error")
 
 
+def case_spheres_per_particle(a, work):
+    """A multisphere soil's spheres per particle from its distribution, its weights evaluated by
+    LIGGGHTS: the shipped loose sand (20 % clumps by number, half boxes of 8 spheres, half hulls
+    of 5: 0.8 + 0.1 x 8 + 0.1 x 5 = 2.1; its lab bed held 67 348 spheres in 32 067 particles,
+    2.100), a trial variant that sets 30 % clumps first (2.65), clayey loam's 5 % trial (1.275),
+    a sphere soil 1.0."""
+    if not (Path(a.build_dir) / "bin" / "liggghts-wheel").exists():
+        raise Skip("liggghts-wheel not built")
+    repo = Path(a.sweep).resolve().parents[1]
+    sys.path[:0] = [str(repo / "scripts"), str(repo / "postprocess")]   # as wheel-sweep
+    from wheelsim_sweep import estimate as E
+    liggghts = Path(a.build_dir).resolve() / "bin" / "liggghts-wheel"
+    for soil, want in (("inputs/soils/loose_sand.in", 2.1),
+                       ("soil_lab/trials/upland_sand_clump030.in", 2.65),
+                       ("soil_lab/trials/clayey_loam_clump005.in", 1.275),
+                       ("inputs/soils/dry_sand.in", 1.0)):
+        got, how = E.spheres_per_particle(liggghts, repo / soil, repo / "inputs")
+        print(f"{soil}: {got} ({how})")
+        check(got is not None and abs(got - want) < 1e-9, f"{soil}: {got} ({how}), expected {want}")
+
+
 def case_estimate_example(a, work):
     """--estimate on inputs/sweeps/dem_small_slips.toml with an empty output directory and no
     rate cache prints every field: the rate and its source (the default, saying no rate was

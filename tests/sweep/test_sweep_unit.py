@@ -456,6 +456,40 @@ def case_estimate_arithmetic(a, work):
     check(bi.dt is None, "a .vars without bed_dt gave a dt")
 
 
+def case_particle_mix(a, work):
+    """A soil's particle distribution read from its deck text: `&` continuations and comments,
+    the distribution soil_distribution names among two, sphere templates 1 and multisphere ones
+    their nspheres, weights as written; a template not found, a multisphere template without
+    nspheres, no distribution, a pair missing: a reason, not a number."""
+    from wheelsim_sweep import estimate as E
+    text = """variable soil_distribution string soil_pdd   # the soil's
+fix soil_pt1 all particletemplate/sphere 15485863 atom_type 3 density constant 2000 radius constant 0.005
+fix soil_pt_box all particletemplate/multisphere 67867967 atom_type 4 &
+    density constant 2000 nspheres 8 ntry 200000 spheres &
+    0 0 0 0.003  # a comment with nspheres 99
+fix soil_pt_hull all particletemplate/multisphere 67867979 atom_type 5 density constant 2000 nspheres 5 ntry 1 spheres
+fix other all particledistribution/discrete 1 1 soil_pt1 1.0
+fix soil_pdd all particledistribution/discrete/numberbased 32452867 3 &
+    soil_pt1 ${soil_n1} soil_pt_box 0.1 soil_pt_hull $(0.5*v_x)   # boxes and hulls
+"""
+    got = E.particle_mix(text)
+    check(got == (True, [("soil_pt1", "${soil_n1}", 1), ("soil_pt_box", "0.1", 8),
+                         ("soil_pt_hull", "$(0.5*v_x)", 5)]), f"the mix: {got}")
+    # without soil_distribution the last distribution is the soil's
+    got = E.particle_mix(text.replace("variable soil_distribution string soil_pdd", ""))
+    check(got[1][0][0] == "soil_pt1" and len(got[1]) == 3, f"the last distribution: {got}")
+    check(E.particle_mix(text.replace("string soil_pdd", "string other")) ==
+          (False, [("soil_pt1", "1.0", 1)]), "the named mass-based distribution")
+    for broken, why in ((text.replace("soil_pt_hull $(0.5*v_x)", "soil_pt_cone 0.2"),
+                         "template soil_pt_cone not found"),
+                        (text.replace("nspheres 5 ", ""), "template soil_pt_hull: no nspheres"),
+                        ("variable x equal 1\n", "no particledistribution/discrete"),
+                        (text.replace("numberbased 32452867 3", "numberbased 32452867 4"),
+                         "4 templates announced, 3 given")):
+        got = E.particle_mix(broken)
+        check(isinstance(got, str) and why in got, f"{why!r}: got {got!r}")
+
+
 def case_estimate_active(a, work):
     """The active domain in the estimate (scripts/wheelsim_sweep/active_domain.py): the share of a
     bed inside the sphere of radius R + D against closed forms (a whole sphere, a half sphere at
