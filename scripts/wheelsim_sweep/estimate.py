@@ -370,12 +370,20 @@ class BedInfo:
 
 
 class SoilQuery:
-    """soil_vars once per soil file."""
+    """soil_vars once per soil file (and spheres_per_particle once per multisphere soil)."""
 
     def __init__(self, liggghts, inputs_dir):
         self.liggghts = liggghts
         self.inputs_dir = inputs_dir
         self._cache = {}
+        self._mix = {}
+
+    def spheres_per_particle(self, soil_file):
+        """spheres_per_particle of `soil_file` (after a call of this query on it)."""
+        key = str(soil_file)
+        if key not in self._mix:
+            self._mix[key] = spheres_per_particle(self.liggghts, soil_file, self.inputs_dir)
+        return self._mix[key]
 
     def __call__(self, soil_file):
         key = str(soil_file)
@@ -424,6 +432,7 @@ def bed_info(soil, restart, query, soilbin, hold_s=0.0):
         vol, how = mean_grain_volume(sv)
         n = (float(v["bulk_density"]) * float(v["bin_length"]) * float(v["bin_width"])
              * float(v["bed_depth"]) / (sv["soil_density"] * vol))
+        n, how = _in_spheres(n, how, sv, query, soil_file)
         return BedInfo(soil.label, n, f"bed .vars bulk density / mean grain ({how}; estimate)",
                        dt, "bed_dt (.vars)", True, box=box)
     if soil.recipe is None:
@@ -434,7 +443,7 @@ def bed_info(soil, restart, query, soilbin, hold_s=0.0):
     vol, how = mean_grain_volume(sv)
     dims = [_recipe_num(r, defaults, k) for k in ("bin_length", "bin_width", "fill_height",
                                                   "fill_solid_fraction")]
-    n = math.prod(dims) / vol
+    n, how = _in_spheres(math.prod(dims) / vol, how, sv, query, soil.dem_soil_file)
     # (the settled bed's depth is not known before it settles: the fill height stands for it)
     info = BedInfo(soil.label, n, f"recipe: bin x fill solid fraction / mean grain ({how})",
                    sv["soil_dt"], "soil_dt (soil file)", False, soil_name=sv["soil_name"],
@@ -449,6 +458,19 @@ def bed_info(soil, restart, query, soilbin, hold_s=0.0):
     info.prep_steps = 1 + math.ceil(sum(math.ceil(t / dt - 1e-9) * info.prep_weights.get(k, 1.0)
                                         for k, t in info.prep_parts.items()) - 1e-9)
     return info
+
+
+def _in_spheres(particles, how, sv, query, soil_file):
+    """(spheres, how) of a bed of `particles` grains: a multisphere soil's particles times its
+    spheres per particle (the query's spheres_per_particle; LIGGGHTS' cost goes by spheres), said
+    in `how`, or left as they are with the reason the ratio is not known."""
+    if not sv.get("soil_multisphere"):
+        return particles, how
+    ratio, why = (query.spheres_per_particle(soil_file) if hasattr(query, "spheres_per_particle")
+                  else (None, "not asked"))
+    if ratio is None:
+        return particles, f"{how}; multisphere: clumps counted once, so low ({why})"
+    return particles * ratio, f"{how}; multisphere: x {why}"
 
 
 def tile_weights(recipe, defaults, sv):

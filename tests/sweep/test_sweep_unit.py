@@ -286,6 +286,25 @@ def case_tiled_recipe(a, work):
                recipe={k: v for k, v in soil.recipe.items() if k != "tile_length"})
     bw = E.bed_info(whole, work / "none" / "x.restart", lambda f: sv, soilbin)
     check(bw.prep_steps == 30001 and not bw.prep_weights, f"whole bed steps {bw.prep_steps}")
+    # a multisphere soil's bed is counted in spheres: its particles times the query's spheres
+    # per particle (2.1: loose sand's mix), or its particles with the reason when not known
+    class Query:
+        def __init__(self, mix):
+            self.mix = mix
+
+        def __call__(self, soil_file):
+            return {**sv, "soil_multisphere": 1.0}
+
+        def spheres_per_particle(self, soil_file):
+            return self.mix
+    bm = E.bed_info(whole, work / "none" / "x.restart", Query((2.1, "2.1 spheres per particle")),
+                    soilbin)
+    _close(bm.particles, 2.1 * bw.particles, "multisphere bed in spheres")
+    check("multisphere: x 2.1 spheres per particle" in bm.particles_source, bm.particles_source)
+    bu = E.bed_info(whole, work / "none" / "x.restart", Query((None, "a mass-based mix")), soilbin)
+    _close(bu.particles, bw.particles, "multisphere bed, ratio unknown")
+    check("clumps counted once, so low (a mass-based mix)" in bu.particles_source,
+          bu.particles_source)
 
 
 # ---- the DEM cost estimate (scripts/wheelsim_sweep/estimate.py, rate.py) ------------------------
