@@ -179,19 +179,12 @@ def soil_vars(liggghts, soil_file, inputs_dir):
     files = [Path(soil_file)] + deck_includes(soil_file, {"inputs_dir": str(inputs_dir)})
     text = "".join(f.read_text(errors="replace") for f in files)
     names = list(_SCALARS) + sorted(set(_VAR_NAME_RE.findall(text)))
-    with tempfile.TemporaryDirectory(prefix="wheel-sweep-soil-") as tmp:
-        deck = Path(tmp) / "in.soil_vars"
-        deck.write_text("variable soil_vars_only equal 1\n"
-                        f"include {soil_file}\n"
-                        + "".join(f'print "wheel_sweep_var {n} ${{{n}}}"\n' for n in names))
-        try:
-            r = subprocess.run([str(liggghts), "-in", str(deck), "-log", "none", "-echo", "none",
-                                "-var", "inputs_dir", str(inputs_dir)], cwd=tmp,
-                               capture_output=True, text=True, stdin=subprocess.DEVNULL,
-                               timeout=SOIL_QUERY_TIMEOUT_S)
-        except (OSError, subprocess.SubprocessError) as e:
-            raise EstimateError(f"soil file {soil_file}: LIGGGHTS ({liggghts}) could not be asked "
-                                f"for its variables: {e}")
+    try:
+        r = _ask_soil(liggghts, soil_file, inputs_dir,
+                      [f"wheel_sweep_var {n} ${{{n}}}" for n in names])
+    except (OSError, subprocess.SubprocessError) as e:
+        raise EstimateError(f"soil file {soil_file}: LIGGGHTS ({liggghts}) could not be asked "
+                            f"for its variables: {e}")
     out = {}
     for line in r.stdout.splitlines():
         f = line.split()
@@ -257,19 +250,11 @@ def spheres_per_particle(liggghts, soil_file, inputs_dir):
         return 1.0, "single spheres"
     if not numberbased:
         return None, "a mass-based distribution of clumps (their volumes are not known here)"
-    with tempfile.TemporaryDirectory(prefix="wheel-sweep-mix-") as tmp:
-        deck = Path(tmp) / "in.soil_mix"
-        deck.write_text("variable soil_vars_only equal 1\n"
-                        f"include {soil_file}\n"
-                        + "".join(f'print "wheel_sweep_w {i} {w}"\n'
-                                  for i, (_, w, _) in enumerate(pairs)))
-        try:
-            r = subprocess.run([str(liggghts), "-in", str(deck), "-log", "none", "-echo", "none",
-                                "-var", "inputs_dir", str(inputs_dir)], cwd=tmp,
-                               capture_output=True, text=True, stdin=subprocess.DEVNULL,
-                               timeout=SOIL_QUERY_TIMEOUT_S)
-        except (OSError, subprocess.SubprocessError) as e:
-            return None, f"LIGGGHTS could not be asked for the weights: {e}"
+    try:
+        r = _ask_soil(liggghts, soil_file, inputs_dir,
+                      [f"wheel_sweep_w {i} {w}" for i, (_, w, _) in enumerate(pairs)])
+    except (OSError, subprocess.SubprocessError) as e:
+        return None, f"LIGGGHTS could not be asked for the weights: {e}"
     weights = {}
     for line in r.stdout.splitlines():
         f = line.split()
@@ -285,6 +270,21 @@ def spheres_per_particle(liggghts, soil_file, inputs_dir):
     clumps = ", ".join(f"{tid} {weights[i] / total:.3g} x {k}" for i, (tid, _, k)
                        in enumerate(pairs) if k > 1)
     return ratio, f"{ratio:.3g} spheres per particle (number fractions: {clumps} spheres)"
+
+
+def _ask_soil(liggghts, soil_file, inputs_dir, prints):
+    """LIGGGHTS' CompletedProcess of a deck that includes the soil file's variables stage
+    (soil_vars_only = 1) and then prints each of `prints` (its variables substituted); serial,
+    within SOIL_QUERY_TIMEOUT_S. Raises what subprocess.run raises."""
+    with tempfile.TemporaryDirectory(prefix="wheel-sweep-soil-") as tmp:
+        deck = Path(tmp) / "in.soil_query"
+        deck.write_text("variable soil_vars_only equal 1\n"
+                        f"include {soil_file}\n"
+                        + "".join(f'print "{line}"\n' for line in prints))
+        return subprocess.run([str(liggghts), "-in", str(deck), "-log", "none", "-echo", "none",
+                               "-var", "inputs_dir", str(inputs_dir)], cwd=tmp,
+                              capture_output=True, text=True, stdin=subprocess.DEVNULL,
+                              timeout=SOIL_QUERY_TIMEOUT_S)
 
 
 def mean_grain_volume(sv):
