@@ -49,13 +49,13 @@ def plot_pressure_sinkage(path, soil_name, plates, fit=None):
     widths = sorted({float(q[0]) for q in plates})
     beds = sorted({q[3] for q in plates if len(q) > 3})
     markers = ".xo+^"
+    many = len(beds) > 1   # replicate beds: a marker per bed, the bed in the legend
     for q in plates:
         b, z, p = q[:3]
         bed = q[3] if len(q) > 3 else None
         z = np.asarray(z, float)
         p = np.asarray(p, float)
         color = f"C{widths.index(float(b))}"
-        many = len(beds) > 1
         ax.plot(z * 1e3, p / 1e3, markers[beds.index(bed) % len(markers)] if many else ".",
                 ms=3, color=color, alpha=0.6 if many else 1.0,
                 label=f"plate b = {b * 1e3:g} mm (DEM" + (f", bed {bed})" if many else ")"))
