@@ -84,6 +84,9 @@ def run_options(a):
     (plan.check_options, and the command line's own): bad input is refused before anything is
     created or started. Returns (tests, options, bed_vars)."""
     tests = _list(a.tests, "--tests")
+    for option, n in (("--np", a.np), ("--bed-np", a.bed_np)):
+        if n is not None and n < 1:
+            raise plan.LabInputError(f"{option} must be >= 1, got {n}")
     options = dict(normal_stresses_Pa=_numbers(a.normal_stresses, "--normal-stresses",
                                                "numbers in Pa"),
                    plate_widths_m=_numbers(a.plate_widths, "--plate-widths", "two widths in m"),
@@ -144,7 +147,7 @@ def _run(a):
     lab = runner.Lab(REPO, build, out, np=a.np, quiet=a.quiet, archive=a.archive,
                      checkpoints=a.checkpoints, bed_hold_s=a.bed_hold,
                      stall_s=mpi_launch.stall_seconds(a.stall_timeout),
-                     accept=accept)  # checks the build
+                     accept=accept, bed_np=a.bed_np)  # checks the build
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as e:
@@ -158,7 +161,8 @@ def _run(a):
     if a.estimate:
         try:
             machine = estimate.MachineRate.of_this_machine(
-                lab.liggghts, a.np, soil.file, REPO / "inputs", REPO / "inputs" / "in.soilbin")
+                lab.liggghts, a.np, soil.file, REPO / "inputs", REPO / "inputs" / "in.soilbin",
+                bed_np=lab.bed_np)
         except sweep_estimate.EstimateError as e:
             machine = None
             lab.say(f"estimate: this machine's rate not available ({e}): what the lab has no "
@@ -179,7 +183,9 @@ def _run(a):
         "invocations": _invocations(out / "soil.toml") + [_provenance(a.np)]}))
     lab.say(f"soil '{soil.name}' ({soil.file}): d {soil.dmin_m:g}..{soil.dmax_m:g} m, dt "
             f"{soil.dt_s:.4g} s; tests {', '.join(p.tests)} ({a.preset}); {len(p.beds)} beds, "
-            f"{len(p.runs)} runs on {a.np} rank(s) into {out}")
+            f"{len(p.runs)} runs on {a.np} rank(s)"
+            + (f" (beds prepared on {lab.bed_np})" if lab.bed_np != a.np else "")
+            + f" into {out}")
     lab.run_plan(p)
     if accept:
         kept = {f for files in lab.accepted.values() for f in files}  # resolved paths
@@ -430,6 +436,10 @@ def main(argv=None):
                    help=f"comma-separated, from {', '.join(plan.TEST_NAMES)} (default: all)")
     r.add_argument("--out", metavar="DIR", help="output directory (default: runs/soil_lab/SOIL)")
     r.add_argument("--np", type=int, default=1, help="MPI ranks per LIGGGHTS run (default 1)")
+    r.add_argument("--bed-np", type=int, metavar="N",
+                   help="MPI ranks that prepare a bed (default --np): part of the bed's recipe, "
+                        "so a lab resumed on more ranks keeps its runs by preparing its beds as "
+                        "before")
     r.add_argument("--preset", choices=plan.PRESETS, default="standard",
                    help="test sizes: standard (docs/soil-lab.md) or quick (CI smoke)")
     r.add_argument("--normal-stresses", metavar="S1,S2,S3",
@@ -557,8 +567,6 @@ def main(argv=None):
     c.add_argument("--png", metavar="FILE", help="plot tau(j) of every source, a panel per "
                                                   "stress, and p(z), a panel per plate width")
     a = ap.parse_args(argv)
-    if getattr(a, "np", 1) < 1:
-        ap.error(f"--np must be >= 1, got {a.np}")
     try:
         if a.command == "run":
             return _run(a)

@@ -68,8 +68,9 @@ class MachineRate:
     soil's particles are counted in spheres: `mix` is wheel-sweep's spheres_per_particle (ratio,
     how), the ratio None when the distribution does not tell it."""
 
-    def __init__(self, rate, np_, sv, defaults, mix=(1.0, "single spheres")):
+    def __init__(self, rate, np_, sv, defaults, mix=(1.0, "single spheres"), bed_np=None):
         self.rate, self.np, self.sv, self.defaults = rate, np_, sv, defaults
+        self.bed_np = bed_np or np_  # the ranks that prepare a bed (--bed-np)
         self.mix = mix
 
     @property
@@ -79,7 +80,7 @@ class MachineRate:
         return bool(self.sv.get("soil_multisphere")) and self.mix[0] is None
 
     @classmethod
-    def of_this_machine(cls, liggghts, np_, soil_file, inputs_dir, soilbin):
+    def of_this_machine(cls, liggghts, np_, soil_file, inputs_dir, soilbin, bed_np=None):
         """The cached rate (or wheel-sweep's defaults, said in `source`); an EstimateError (from
         wheel-sweep) when LIGGGHTS or the soil cannot be asked."""
         key = sweep_rate.machine_key(sweep_rate.liggghts_version(liggghts))
@@ -87,12 +88,13 @@ class MachineRate:
         sv = sweep_estimate.soil_vars(liggghts, soil_file, inputs_dir)
         mix = (sweep_estimate.spheres_per_particle(liggghts, soil_file, inputs_dir)
                if sv.get("soil_multisphere") else (1.0, "single spheres"))
-        return cls(rate, np_, sv, sweep_estimate.soilbin_defaults(soilbin), mix)
+        return cls(rate, np_, sv, sweep_estimate.soilbin_defaults(soilbin), mix, bed_np)
 
     def pace(self, spheres, bed=False):
         """Steps per second of a run (or a bed's preparation) on `spheres` spheres."""
         per_rank = self.rate.bed_rate_per_rank if bed else self.rate.rate_per_rank
-        return (per_rank * self.np * sweep_estimate.efficiency(self.np, self.rate.efficiency_np2)
+        n = self.bed_np if bed else self.np
+        return (per_rank * n * sweep_estimate.efficiency(n, self.rate.efficiency_np2)
                 / spheres)
 
     def _recipe(self, bed):
@@ -212,7 +214,9 @@ def lab_estimate(plan, out, archive=None, machine=None):
     if machine_used:
         r = machine.rate
         lines.append(f"estimate: this machine's rate: {r.rate_per_rank:.3g} particle-steps/s per "
-                     f"rank (beds {r.bed_rate_per_rank:.3g}), {machine.np} rank(s), np-2 "
+                     f"rank (beds {r.bed_rate_per_rank:.3g}), {machine.np} rank(s)"
+                     + (f" (beds {machine.bed_np})" if machine.bed_np != machine.np else "")
+                     + f", np-2 "
                      f"efficiency {r.efficiency_np2:.2f}: {r.source}")
     lines.append(f"estimate: {_int(total_steps)} steps to run, ~{total_wall / 3600:.1f} h of wall "
                  "time at the measured paces" + (" and this machine's rate" if machine_used

@@ -96,7 +96,7 @@ def resolve_soil_file(soil, inputs_dir):
 class Lab:
     def __init__(self, repo, build_dir, out_dir, np=1, quiet=False, archive=None,
                  checkpoints=DEFAULT_CHECKPOINTS, bed_hold_s=bed_hold.DEFAULT_HOLD_S,
-                 stall_s=60.0 * mpi_launch.DEFAULT_STALL_MIN, accept=None):
+                 stall_s=60.0 * mpi_launch.DEFAULT_STALL_MIN, accept=None, bed_np=None):
         self.repo = Path(repo)
         self.build = Path(build_dir)
         self.out = Path(out_dir)
@@ -104,6 +104,10 @@ class Lab:
         # (docs/soil-lab.md, "Stopping and resuming")
         self.archive = Path(archive).resolve() if archive is not None else None
         self.np = np
+        # --bed-np: the ranks that prepare a bed. They are part of the bed's recipe (another
+        # decomposition pours other grains), so a lab resumed on more ranks keeps its finished
+        # and parked runs only when its beds are poured as before (docs/soil-lab.md "--bed-np")
+        self.bed_np = bed_np or np
         self.checkpoints = checkpoints  # restart files per plate or shear run (0: none)
         self.bed_hold_s = bed_hold_s  # [s] the bed-hold check's length (0: no check)
         # [s] a LIGGGHTS run whose log stays unchanged this long is killed (0: never); not part
@@ -127,17 +131,15 @@ class Lab:
         if not self.quiet:
             print(f"soil-lab: {msg}", flush=True)
 
-    def _mpirun(self):
-        return mpi_launch.mpirun(self.np)
-
-    def _liggghts(self, deck, variables, log, cwd, while_running=None):
-        """Runs `deck` with LIGGGHTS; `while_running()` is called every few seconds meanwhile.
+    def _liggghts(self, deck, variables, log, cwd, while_running=None, np=None):
+        """Runs `deck` with LIGGGHTS on `np` ranks (default the lab's --np); `while_running()` is
+        called every few seconds meanwhile.
         A run whose log has not grown for stall_s is killed: LabRunError naming the deck and the
         log (the stall guard, mpi_launch.wait_watching)."""
         # mpirun dies with this process and each rank with mpirun (SIGKILL, also when the lab is
         # killed: docs/soil-lab.md "Stopping and resuming"), so no run outlives the lab; a stalled
         # run is ended the same way: mpirun SIGKILLed, its ranks die with it.
-        cmd = self._mpirun() + list(mpi_launch.rank_death_prefix()) + [
+        cmd = mpi_launch.mpirun(np or self.np) + list(mpi_launch.rank_death_prefix()) + [
             str(self.liggghts), "-in", str(deck), "-log", "none", "-var", "inputs_dir",
             str(self.inputs)]
         for k, v in variables.items():
@@ -368,9 +370,10 @@ class Lab:
             # soil_preparing_bed: a soil file may prepare its bed with other contact settings
             # (docs/soils.md "Preparing the bed with other contact settings"); not in the key
             text = self._liggghts(deck, {**variables, "soil_preparing_bed": 1},
-                                  d / "soilbin.log", d)
+                                  d / "soilbin.log", d, np=self.bed_np)
             result = dict(re.findall(r"^soilbin: (\w+) = (\S+)$", text, re.M))
-            done = {"result": result, "wall_s": round(time.monotonic() - t0, 1), "np": self.np}
+            done = {"result": result, "wall_s": round(time.monotonic() - t0, 1),
+                    "np": self.bed_np}
             self._finish(d, key, **done)
             self.say(f"bed '{bed.name}': {result.get('spheres')} particles, bed depth "
                      f"{float(result.get('bed_depth', 'nan')):.4g} m, bulk density "

@@ -93,6 +93,8 @@ class RunChecksFirst(unittest.TestCase):
             ("--tests", ""): "--tests: expected a comma-separated list, got ''",
             ("--tests", "plate,sheer"): "--tests: unknown test 'sheer' (did you mean 'shear'?)",
             ("--checkpoints", "-1"): "--checkpoints: expected a number >= 0",
+            ("--np", "0"): "--np must be >= 1, got 0",
+            ("--bed-np", "0"): "--bed-np must be >= 1, got 0",
             ("--shear-replicates", "0"): "--shear-replicates 0: expected a whole number in 1..5",
             ("--tests", "plate", "--shear-replicates", "2"):
                 "--shear-replicates repeats the shear boxes: add shear to --tests",

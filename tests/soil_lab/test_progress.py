@@ -166,6 +166,12 @@ class Estimate(unittest.TestCase):
             self.assertIn("test rate", lines[2])
             self.assertTrue(lines[3].endswith("at the measured paces and this machine's rate; "
                                               "nothing was run"), lines[3])
+            # --bed-np 1: the bed on one rank (5e5 / 4584 spheres: 27.5 s), the run on two
+            one_rank_beds = estimate.MachineRate(rate, 2, sv, defaults, bed_np=1)
+            lines = estimate.lab_estimate(lab, Path(tmp), None, one_rank_beds)
+            self.assertIn("<= 3 000 steps, <= 27.5 s at this machine's rate", lines[0])
+            self.assertIn("~2 min at 349 steps/s", lines[1])
+            self.assertIn("2 rank(s) (beds 1), np-2 efficiency 0.80", lines[2])
             # once the bed is prepared its own sphere count prices the run
             (Path(tmp) / "beds" / "plate").mkdir(parents=True)
             (Path(tmp) / "beds" / "plate" / "done.json").write_text(

@@ -129,7 +129,8 @@ class LabWithBed(unittest.TestCase):
             f.unlink()
         restart = beds / "bed.restart"
 
-        def fake_liggghts(deck, variables, log, cwd, while_running=None):
+        def fake_liggghts(deck, variables, log, cwd, while_running=None, np=None):
+            self.bed_ranks = np or self.lab.np  # the ranks the bed was poured on
             restart.write_bytes(restart_bytes)
             return f"soilbin: restart = {restart}\nsoilbin: spheres = 10\n"
         spec = mock.Mock(length_m=0.2, width_m=0.2, fill_height_m=0.1, extra_vars={})
@@ -141,7 +142,8 @@ class LabWithBed(unittest.TestCase):
         """Lab.run of a repose-like run with the LIGGGHTS call faked; True if it ran."""
         ran = []
 
-        def fake_liggghts(deck, variables, log, cwd, while_running=None):
+        def fake_liggghts(deck, variables, log, cwd, while_running=None, np=None):
+            self.run_ranks = np or self.lab.np  # the ranks the test ran on
             ran.append(deck)
             return "Loop time of 1.0 on 1 procs for 100 steps with 10 atoms\n"
         run = mock.Mock(test="repose", deck="in.lab_repose", meshes={}, variables={"x": "1"},
@@ -180,6 +182,27 @@ class BedIdentity(LabWithBed):
         self.assertTrue(self.run_on(other))
         self.assertTrue(any("does not match" in m and f"changed: {self.soil}, bed recipe" in m
                             for m in self.messages), self.messages)
+
+
+    def test_a_lab_resumed_on_more_ranks_keeps_its_runs_with_bed_np(self):
+        # --np 2 --bed-np 1 pours the bed as before and the archived run is kept; --np 2 alone
+        # pours it on two ranks: another recipe, the run goes again (docs/soil-lab.md "Resuming
+        # on more ranks")
+        first = self.prepare_bed(b"bed")
+        self.assertEqual(self.bed_ranks, 1)
+        self.assertTrue(self.run_on(first))
+        for bed_np, kept in ((1, True), (None, False)):  # (the second re-archives the run)
+            shutil.rmtree(self.root / "out")  # a new machine
+            self.lab.np, self.lab.bed_np = 2, bed_np or 2
+            self.messages.clear()
+            again = self.prepare_bed(b"bed")
+            self.assertEqual(self.bed_ranks, bed_np or 2)
+            self.assertEqual(again.recipe == first.recipe, kept)
+            self.assertEqual(self.run_on(again), not kept, f"--bed-np {bed_np}")
+            if not kept:
+                self.assertEqual(self.run_ranks, 2)
+                self.assertTrue(any("changed: bed recipe" in m for m in self.messages),
+                                self.messages)
 
 
 class AcceptChange(LabWithBed):
@@ -252,7 +275,7 @@ class AcceptChange(LabWithBed):
         restart = self.root / "out" / "beds" / "b" / "bed.restart"
         prepared = []
 
-        def fake_liggghts(deck, variables, log, cwd, while_running=None):
+        def fake_liggghts(deck, variables, log, cwd, while_running=None, np=None):
             prepared.append(deck)
             restart.write_bytes(b"bed")
             return f"soilbin: restart = {restart}\nsoilbin: spheres = 10\n"
