@@ -102,9 +102,11 @@ class Checkpoints:
         tmp.write_text(json.dumps(state, indent=1) + "\n")
         os.replace(tmp, self.dir / STATE)
 
-    def prepare(self, bed_restart):
+    def prepare(self, bed_restart, np=None):
         """Before an attempt: the deck variables that resume from the newest complete checkpoint
-        of a run with the same inputs ({} for a fresh start, the checkpoints and the CSV cleared)."""
+        of a run with the same inputs ({} for a fresh start, the checkpoints and the CSV cleared).
+        `np`, the attempt's ranks, goes into its record (the estimate rescales its pace by it)."""
+        ranks = {"np": np} if np else {}
         state = self._state()
         c = self.newest_complete() if state and state.get("key") == self.key else None
         now = time.time()
@@ -113,7 +115,7 @@ class Checkpoints:
             self.dir.mkdir(parents=True)
             self.csv.unlink(missing_ok=True)
             self._write_state({"key": self.key, "attempts": [{"start_unix": now,
-                                                               "wall_before_s": 0.0}]})
+                                                               "wall_before_s": 0.0, **ranks}]})
             return {}
         start, step, path = c
         for s, k, f in self.files():
@@ -132,7 +134,7 @@ class Checkpoints:
         writer = writer[-1] if writer else state["attempts"][-1]
         self.wall_before_s = writer["wall_before_s"] + max(0.0, written - writer["start_unix"])
         state["attempts"].append({"start_unix": now, "wall_before_s": self.wall_before_s,
-                                  "resumed_at_step": step})
+                                  "resumed_at_step": step, **ranks})
         self._write_state(state)
         self.start_step, self.resumed_step = start, step
         # resume_setup_run 0: the deck declares its tools before the first run, so that they take

@@ -167,7 +167,7 @@ def _run(a):
             machine = None
             lab.say(f"estimate: this machine's rate not available ({e}): what the lab has no "
                     "pace of is not priced")
-        for line in estimate.lab_estimate(p, out, a.archive, machine):
+        for line in estimate.lab_estimate(p, out, a.archive, machine, a.np):
             lab.say(line)
         return 0
     # The soil file as the checkout names it (inputs/soils/x.in), so results do not carry the

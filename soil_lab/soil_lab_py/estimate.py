@@ -41,8 +41,9 @@ def _finished(run, out, archive):
 
 
 def _parked_pace(kept):
-    """(steps done at the parked checkpoint, steps per second of its last attempt or None) of a
-    parked run (ARCHIVE/<run>/parked/), None when nothing is parked."""
+    """(steps done at the parked checkpoint, steps per second of its last attempt or None, the
+    ranks of that attempt or None when its record predates them) of a parked run
+    (ARCHIVE/<run>/parked/), None when nothing is parked."""
     record = step_archive.parked(kept)
     if record is None:
         return None
@@ -53,9 +54,20 @@ def _parked_pace(kept):
         last = state["attempts"][-1]
         steps = record["step"] - last.get("resumed_at_step", record["start_step"])
         wall = restart["mtime_unix"] - last["start_unix"]
-        return done, (steps / wall if steps > 0 and wall > 0 else None)
+        return done, (steps / wall if steps > 0 and wall > 0 else None), last.get("np")
     except (TypeError, KeyError, IndexError):
-        return done, None
+        return done, None, None
+
+
+def rescaled(pace, ranks_then, ranks_now, efficiency_np2):
+    """(steps per second, how) of a pace measured on `ranks_then` ranks, at `ranks_now` (the
+    ranks' throughput with wheel-sweep's efficiency model); unchanged when either is unknown or
+    they are the same."""
+    if not ranks_then or not ranks_now or ranks_then == ranks_now:
+        return pace, ""
+    speed = (ranks_now * sweep_estimate.efficiency(ranks_now, efficiency_np2)
+             / (ranks_then * sweep_estimate.efficiency(ranks_then, efficiency_np2)))
+    return pace * speed, f"measured on {ranks_then} rank(s), x {speed:.2f} for {ranks_now}"
 
 
 class MachineRate:
@@ -135,21 +147,29 @@ def _bed_spheres(out, name):
         return None
 
 
-def lab_estimate(plan, out, archive=None, machine=None):
+def lab_estimate(plan, out, archive=None, machine=None, np_=None):
     """The estimate's lines (without the 'soil-lab: ' prefix). machine: a MachineRate for what
-    this lab has no pace of (None: left unpriced)."""
+    this lab has no pace of (None: left unpriced). np_: the ranks the lab will run on (default
+    the machine's); a pace measured on other ranks is rescaled to them (`rescaled`)."""
     lines, total_steps, total_wall, unknown = [], 0, 0.0, 0
     machine_used = False
-    paces = {}   # bed -> steps/s of the lab's finished and parked runs on it
-    parked = {}
+    np_ = np_ or (machine.np if machine is not None else None)
+    e2 = (machine.rate.efficiency_np2 if machine is not None
+          else sweep_rate.DEFAULT["efficiency_np2"])
+    paces = {}   # bed -> [(steps/s, how)] of the lab's finished and parked runs on it, at np_
+    parked = {}  # run -> (steps done, (steps/s, how) or None)
     for run in plan.runs:
         found = _finished(run, out, archive)
         if found and found[1].get("wall_s") and found[1].get("steps"):
-            paces.setdefault(run.bed, []).append(found[1]["steps"] / found[1]["wall_s"])
+            paces.setdefault(run.bed, []).append(rescaled(
+                found[1]["steps"] / found[1]["wall_s"], found[1].get("np"), np_, e2))
         elif not found and archive is not None:
-            parked[run.name] = _parked_pace(Path(archive) / run.name)
-            if parked[run.name] and parked[run.name][1]:
-                paces.setdefault(run.bed, []).append(parked[run.name][1])
+            kept = _parked_pace(Path(archive) / run.name)
+            if kept is not None:
+                done, pace, ranks = kept
+                parked[run.name] = done, (rescaled(pace, ranks, np_, e2) if pace else None)
+                if pace:
+                    paces.setdefault(run.bed, []).append(parked[run.name][1])
     # each bed's spheres for the machine's rate, read or estimated once: (spheres, as the run
     # lines name them)
     counts = {}
@@ -187,15 +207,18 @@ def lab_estimate(plan, out, archive=None, machine=None):
             lines.append(f"{head}: to run (length not known beforehand)")
             unknown += 1
             continue
-        left, pace, how = steps, None, ""
+        left, pace, how, at = steps, None, "", ""
         if parked.get(run.name) is not None:
-            done, pace = parked[run.name]
+            done, own = parked[run.name]
             left = max(0, steps - done)
             how = f"parked with {_int(done)} of {_int(steps)} steps done"
+            if own is not None:
+                pace, at = own[0], (f" ({own[1]})" if own[1] else "")
         if pace is None and paces.get(run.bed):
-            pace = sum(paces[run.bed]) / len(paces[run.bed])
+            pace = sum(p for p, _ in paces[run.bed]) / len(paces[run.bed])
+            scaled = sorted({h for _, h in paces[run.bed] if h})
+            at = f" ({'; '.join(scaled)})" if scaled else ""
         text = f"{head}: {_int(left)} steps to run" + (f" ({how})" if how else "")
-        at = ""
         if pace is None and run.bed in counts:
             spheres, count = counts[run.bed]
             pace = machine.pace(spheres)

@@ -467,7 +467,7 @@ class Lab:
         if run.test in CHECKPOINTED_TESTS:
             csv = d / outputs["out_csv"]
             ckpt = Checkpoints(d / "checkpoints", csv, dt_s, key[0])
-            resume = ckpt.prepare(restart)
+            resume = ckpt.prepare(restart, np=self.np)
             variables = {**variables, "lab_decks": str(DECKS),
                          "checkpoint_count": self.checkpoints, "checkpoint_dir": str(ckpt.dir),
                          **resume}

@@ -64,8 +64,11 @@ class CheckpointsTest(unittest.TestCase):
     def test_resuming_cuts_the_csv_back_to_the_checkpoint(self):
         self.killed_attempt(last_row_step=5000, checkpoint_steps=[2200, 4400])
         c = self.ck()
-        variables = c.prepare(self.bed)
+        variables = c.prepare(self.bed, np=2)
         path = c.dir / f"lab-{START}-4400.restart"
+        # the attempt's ranks are kept with it (the estimate rescales its pace by them)
+        last = json.loads((c.dir / "state.json").read_text())["attempts"][-1]
+        self.assertEqual((last["resumed_at_step"], last["np"]), (4400, 2))
         self.assertEqual(variables, {"restart_file": str(path), "start_step": START,
                                      "resume_setup_run": 0})
         self.assertTrue(c.resuming)

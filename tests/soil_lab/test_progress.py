@@ -121,6 +121,24 @@ class Estimate(unittest.TestCase):
             (arch / "shear_s5000").mkdir()
             (arch / "shear_s5000" / "done.json").write_text('{"steps": 5, "wall_s": 1.0}')
             lines = estimate.lab_estimate(lab, out, arch)
+            # an attempt without its ranks (before 2026-12-07) is not rescaled on two ranks
+            self.assertEqual(estimate.lab_estimate(lab, out, arch, np_=2), lines)
+            # measured on one rank, priced on two: x 2 x 0.85 (the default 2-rank efficiency)
+            (kept / "checkpoints" / "state.json.xz").write_bytes(lzma.compress(json.dumps(
+                {"attempts": [{"start_unix": 1000.0, "wall_before_s": 0.0, "np": 1}]}).encode()))
+            two = estimate.lab_estimate(lab, out, arch, np_=2)
+            self.assertEqual(two[1], "estimate: [1/3] plate_b0.1: 22 500 steps to run (parked "
+                             "with 20 000 of 42 500 steps done), ~11 min at 34 steps/s (measured "
+                             "on 1 rank(s), x 1.70 for 2)")
+            self.assertEqual(two[2], "estimate: [2/3] plate_b0.16: 42 500 steps to run, ~21 min "
+                             "at 34 steps/s (measured on 1 rank(s), x 1.70 for 2)")
+            # a finished run's done.json names its ranks: 2 ranks priced on one
+            (arch / "plate_b0.1" / "done.json").write_text('{"steps": 340, "wall_s": 10.0, '
+                                                             '"np": 2}')
+            one = estimate.lab_estimate(lab, out, arch, np_=1)
+            self.assertEqual(one[2], "estimate: [2/3] plate_b0.16: 42 500 steps to run, ~35 min "
+                             "at 20 steps/s (measured on 2 rank(s), x 0.59 for 1)")
+            (arch / "plate_b0.1" / "done.json").unlink()
         self.assertEqual(lines, [
             "estimate: bed 'shear': to prepare here (its cost is not estimated)",
             "estimate: [1/3] plate_b0.1: 22 500 steps to run (parked with 20 000 of 42 500 steps "
