@@ -102,6 +102,11 @@ class Checkpoints:
         tmp.write_text(json.dumps(state, indent=1) + "\n")
         os.replace(tmp, self.dir / STATE)
 
+    def resumable(self):
+        """True when an attempt would resume (prepare: a complete checkpoint of these inputs)."""
+        state = self._state()
+        return bool(state) and state.get("key") == self.key and self.newest_complete() is not None
+
     def prepare(self, bed_restart, np=None):
         """Before an attempt: the deck variables that resume from the newest complete checkpoint
         of a run with the same inputs ({} for a fresh start, the checkpoints and the CSV cleared).

@@ -138,9 +138,9 @@ class MachineRate:
         return math.ceil(sum(parts.values()) / self.sv["soil_dt"] - 1e-9)
 
 
-def _bed_spheres(out, name):
-    """Spheres of a bed prepared here (its done.json), None if not known."""
-    done = _json(Path(out) / "beds" / name / "done.json") or {}
+def _bed_spheres(record):
+    """Spheres of a bed by its done.json (`record`, a path), None if not known."""
+    done = _json(record) or {}
     try:
         return int(float(done["result"]["spheres"]))
     except (KeyError, TypeError, ValueError):
@@ -174,9 +174,15 @@ def lab_estimate(plan, out, archive=None, machine=None, np_=None):
     # lines name them)
     counts = {}
     for name, bed in plan.beds.items():
-        prepared = (Path(out) / "beds" / name / "done.json").is_file()
+        record = Path(out) / "beds" / name / "done.json"
+        prepared = record.is_file()
+        # a bed whose record the archive keeps is poured only when a run must start from it
+        # (runner.LazyBed): not when each of its runs finished or was parked
+        archived = archive is not None and (Path(archive) / "beds" / name / "done.json").is_file()
+        if not prepared and archived:
+            record = Path(archive) / "beds" / name / "done.json"
         if machine is not None and bed is not None:
-            spheres = _bed_spheres(out, name) if prepared else None
+            spheres = _bed_spheres(record) if prepared or archived else None
             if spheres is not None:
                 counts[name] = spheres, f"its bed's {_int(spheres)} spheres"
             else:
@@ -184,6 +190,11 @@ def lab_estimate(plan, out, archive=None, machine=None, np_=None):
                 counts[name] = spheres, f"~{_int(int(round(spheres, -2)))} spheres estimated" + (
                     ", clumps counted once: low" if machine.clumps_uncounted else "")
         if prepared:
+            continue
+        if archived and all(r.name in parked or _finished(r, out, archive)
+                            for r in plan.runs if r.bed == name):
+            lines.append(f"estimate: bed '{name}': not poured (its record in the archive, every "
+                         "run on it finished or parked)")
             continue
         if machine is None or bed is None:
             lines.append(f"estimate: bed '{name}': to prepare here (its cost is not estimated)")

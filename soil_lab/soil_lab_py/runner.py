@@ -18,6 +18,7 @@ import hashlib
 import json
 import os
 import re
+import shutil
 import subprocess
 import time
 from pathlib import Path
@@ -57,6 +58,35 @@ class Bed(NamedTuple):
     restart: str
     restart_sha256: str
     recipe: dict  #: {"inputs", "included_sha256", "np"}: the bed's StepKey and the ranks that made it
+
+    def prepared(self):
+        return self
+
+
+class LazyBed:
+    """A bed of the plan not prepared here whose record the archive holds (ARCHIVE/beds/<bed>/,
+    restored into OUT/beds/<bed>/: done.json, the bed-hold record, the restart's .vars): the
+    runs on it name it by that record's recipe and restart path, so a finished run is kept and a
+    parked one resumes (from its checkpoint and the .vars) without pouring the bed again;
+    `prepared()` pours it the first time a run must start from it (docs/soil-lab.md "Beds
+    poured only when a run needs them")."""
+
+    def __init__(self, lab, soil, spec, record):
+        self._lab, self._soil, self._spec, self._bed = lab, soil, spec, None
+        self.restart = record["result"]["restart"]
+        self.restart_sha256 = record.get("restart_sha256")
+        self.recipe = _recipe(record)
+
+    def prepared(self):
+        if self._bed is None:
+            self._bed = self._lab.bed(self._soil, self._spec)
+        return self._bed
+
+
+def _recipe(done):
+    """A bed's recipe from its done.json (Lab.bed): what the runs on it name it by."""
+    return {"inputs": done["inputs"], "included_sha256": done.get("included_sha256"),
+            "np": done.get("np")}
 
 
 def _sha256(path):
@@ -268,7 +298,14 @@ class Lab:
         """Keeps the newest complete checkpoint of every unfinished plate and shear run (with its
         CSV, checkpoints/state.json and the shear's start record) in ARCHIVE/<run>/parked/,
         xz-compressed, so that the lab goes on from it on another machine; runs nothing, and may
-        run beside the lab that writes the checkpoints. Returns the exit status."""
+        run beside the lab that writes the checkpoints. The records of the beds prepared here go to
+        ARCHIVE/beds/ too (_keep_bed), so that the next lab resumes without pouring them. Returns
+        the exit status."""
+        for spec in plan.beds.values():
+            d, _, key = self._bed_key(plan.soil, spec)
+            done = self._done(d, key)
+            if done is not None and Path(done["result"]["restart"]).is_file():
+                self._keep_bed(d, spec.name, done["result"]["restart"])
         parked = same = 0
         for run in plan.runs:
             d = self.out / run.name
@@ -353,16 +390,72 @@ class Lab:
         stamp.write_text(key)
         return path
 
-    def bed(self, soil, bed):
-        """Prepares `bed` with inputs/in.soilbin (skipped if done); returns its Bed."""
+    def _bed_key(self, soil, bed):
+        """(folder, in.soilbin's variables, StepKey) of preparing `bed`."""
         d = self.out / "beds" / bed.name
-        d.mkdir(parents=True, exist_ok=True)
         variables = {"soil_file": soil.file, "bin_length": f"{bed.length_m:.6g}",
                      "bin_width": f"{bed.width_m:.6g}", "fill_height": f"{bed.fill_height_m:.6g}",
                      "out_dir": str(d), **bed.extra_vars}
-        deck = self.inputs / "in.soilbin"
-        key = self._key(variables, files=(soil.file, deck))
+        return d, variables, self._key(variables, files=(soil.file, self.inputs / "in.soilbin"))
+
+    def plan_bed(self, soil, bed):
+        """The plan's bed `bed`: prepared here already or now (a Bed), or, when this folder has
+        no preparation of it and the archive holds its record, a LazyBed (its record restored
+        here for the runs' keys and the report; poured only when a run must start from it)."""
+        d, _, key = self._bed_key(soil, bed)
         done = self._done(d, key)
+        if done is None and self.archive is not None and not (d / "done.json").exists():
+            kept = self.archive / "beds" / bed.name
+            if (kept / "done.json").is_file():
+                d.mkdir(parents=True, exist_ok=True)
+                for name, dest in self._bed_record_files(d, kept).items():
+                    if (kept / name).is_file():
+                        dest.parent.mkdir(parents=True, exist_ok=True)
+                        shutil.copy2(kept / name, dest)
+                done = self._done(d, key)
+                if done is None:
+                    self.say(f"bed '{bed.name}': the archived record does not match this lab's "
+                             f"inputs: prepared again")
+        if done is not None and not Path(done["result"]["restart"]).is_file():
+            self.say(f"bed '{bed.name}': its record restored from the archive "
+                     f"{self.archive}; poured only if a run must start from it")
+            return LazyBed(self, soil, bed, done)
+        return self.bed(soil, bed)
+
+    @staticmethod
+    def _bed_record_files(d, kept):
+        """{name in ARCHIVE/beds/<bed>/: its place in OUT/beds/<bed>/} of a bed's record; the
+        .vars beside the restart the record names (resume.in reads them with a checkpoint)."""
+        files = {"done.json": d / "done.json", "hold.json": d / "hold" / "done.json"}
+        try:
+            restart = json.loads((kept / "done.json").read_text())["result"]["restart"]
+            files["restart.vars"] = Path(f"{restart}.vars")
+        except (OSError, ValueError, KeyError, TypeError):
+            pass
+        return files
+
+    def _keep_bed(self, d, name, restart):
+        """Copies a prepared bed's record (done.json, its bed-hold record, the restart's .vars:
+        small text) to ARCHIVE/beds/<name>/, so that a lab on another machine need not pour it
+        again when no run must start from it (plan_bed)."""
+        kept = self.archive / "beds" / name
+        kept.mkdir(parents=True, exist_ok=True)
+        for src, dest in ((Path(f"{restart}.vars"), "restart.vars"),
+                          (d / "hold" / "done.json", "hold.json"), (d / "done.json", "done.json")):
+            if src.is_file():  # done.json last: a half-copied record is not taken
+                shutil.copy2(src, kept / dest)
+
+    def bed(self, soil, bed):
+        """Prepares `bed` with inputs/in.soilbin (skipped if done); returns its Bed."""
+        d, variables, key = self._bed_key(soil, bed)
+        d.mkdir(parents=True, exist_ok=True)
+        deck = self.inputs / "in.soilbin"
+        done = self._done(d, key)
+        if done is not None and not Path(done["result"]["restart"]).is_file():
+            # a record restored from the archive (plan_bed) and a run must start from the bed:
+            # pour it, and check it, again
+            done = None
+            (d / "hold" / "done.json").unlink(missing_ok=True)
         if done is None:
             self.say(f"bed '{bed.name}': preparing {bed.length_m:.3g} x {bed.width_m:.3g} m, "
                      f"{bed.fill_height_m:.3g} m deep")
@@ -373,7 +466,7 @@ class Lab:
                                   d / "soilbin.log", d, np=self.bed_np)
             result = dict(re.findall(r"^soilbin: (\w+) = (\S+)$", text, re.M))
             done = {"result": result, "wall_s": round(time.monotonic() - t0, 1),
-                    "np": self.bed_np}
+                    "np": self.bed_np, "restart_sha256": _sha256(result["restart"])}
             self._finish(d, key, **done)
             self.say(f"bed '{bed.name}': {result.get('spheres')} particles, bed depth "
                      f"{float(result.get('bed_depth', 'nan')):.4g} m, bulk density "
@@ -384,8 +477,10 @@ class Lab:
         if self.bed_hold_s > 0:
             self.bed_hold(soil, bed.name, restart, key,
                           settled=done["result"].get("settled", "1") != "0")
-        return Bed(restart, _sha256(restart),
-                   {"inputs": key.inputs, "included_sha256": key.included, "np": done.get("np")})
+        if self.archive is not None:
+            self._keep_bed(d, bed.name, restart)
+        return Bed(restart, _sha256(restart), _recipe(
+            {"inputs": key.inputs, "included_sha256": key.included, "np": done.get("np")}))
 
     def bed_hold(self, soil, name, restart, bed_key, settled=True):
         """The bed-hold check of bed `name` (skipped if done for this bed recipe; docs/soil-bins.md
@@ -423,28 +518,31 @@ class Lab:
         return r
 
     def run(self, soil, run, bed, progress=""):
-        """Runs one plate, shear or repose deck on `bed` (a Bed; skipped when done before, resumed
-        from its newest checkpoint when stopped); returns its wall time [s] (a skipped run's from
-        its done.json)."""
-        restart = bed.restart
+        """Runs one plate, shear or repose deck on `bed` (a Bed, or a LazyBed poured only if the
+        run must start from it; skipped when done before, resumed from its newest checkpoint when
+        stopped); returns its wall time [s] (a skipped run's from its done.json)."""
         d = self.out / run.name
         d.mkdir(parents=True, exist_ok=True)
         # a half-speed or half-step run uses its model's meshes
         base = run.meta.get("half_of", run.meta.get("half_dt_of", run.name))
         meshes = {var: str(self.mesh(f"{base}_{var}", args)) for var, args in run.meshes.items()}
         outputs = OUTPUTS[run.test]
-        variables = {"restart_file": restart, **meshes, **run.variables,
-                     **{k: str(d / v) for k, v in outputs.items()}}
         dt_s = run_dt_s(run, soil.dt_s)
         # a run at another step than the soil's (--dt-check) reads the soil through this file,
         # written below only when it runs
         soil_at_step = d / "soil_at_step.in" if dt_s != soil.dt_s else None
-        if soil_at_step:
-            variables["soil_file"] = str(soil_at_step)
         deck = DECKS / run.deck
-        # the bed by its recipe, not its restart's bytes (the module's docstring)
-        key = self._key(variables, run.meta, named={"bed recipe": bed.recipe},
-                        files=(deck, soil.file, *meshes.values()))
+
+        def inputs(b):
+            """(deck variables, StepKey) of the run on bed `b`."""
+            v = {"restart_file": b.restart, **meshes, **run.variables,
+                 **{k: str(d / f) for k, f in outputs.items()}}
+            if soil_at_step:
+                v["soil_file"] = str(soil_at_step)
+            # the bed by its recipe, not its restart's bytes (the module's docstring)
+            return v, self._key(v, run.meta, named={"bed recipe": b.recipe},
+                                files=(deck, soil.file, *meshes.values()))
+        variables, key = inputs(bed)
         restored = self.archive is not None and self._restore_step(d, run.name)
         done = self._done(d, key)
         if done is None and self.archive is not None and run.test in CHECKPOINTED_TESTS:
@@ -461,6 +559,16 @@ class Lab:
             if self.archive is not None:
                 self._keep_step(d, run.name)
             return done.get("wall_s")
+        # a run that resumes needs only its checkpoint and the bed's .vars; one that starts needs
+        # the bed (a LazyBed is poured now; as another preparation it may name another recipe)
+        resumes = (run.test in CHECKPOINTED_TESTS and Path(f"{bed.restart}.vars").is_file()
+                   and self._checkpoints(d, run, dt_s, key[0]).resumable())
+        if not resumes:
+            ready = bed.prepared()
+            if ready is not bed and (ready.restart, ready.recipe) != (bed.restart, bed.recipe):
+                variables, key = inputs(ready)
+            bed = ready
+        restart = bed.restart
         if soil_at_step:
             self._write_soil_at_step(soil_at_step, soil, dt_s)
         ckpt = None
@@ -538,7 +646,7 @@ class Lab:
 
     def run_plan(self, plan):
         self.out.mkdir(parents=True, exist_ok=True)
-        beds = {name: self.bed(plan.soil, bed) for name, bed in plan.beds.items()}
+        beds = {name: self.plan_bed(plan.soil, bed) for name, bed in plan.beds.items()}
         walls = []  # wall time of each run finished so far, in this lab or before (done.json)
         for i, run in enumerate(plan.runs):
             eta = ""

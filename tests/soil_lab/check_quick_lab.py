@@ -196,9 +196,19 @@ def main():
           f"{r.stdout[-500:]} {r.stderr[-500:]})")
     for f in names:
         (box / f).unlink()
+    # the box's bed lost too: --park kept its record (done.json, hold record, .vars), so the box
+    # resumes without it and the bed is poured only for the boxes that must start from it
+    check(sorted(f.name for f in (arch / "beds" / "shear").iterdir())
+          == ["done.json", "hold.json", "restart.vars"], "--park kept the shear bed's record")
+    shutil.rmtree(out / "beds" / "shear")
     r = lab(*command, "--archive", str(arch), env=env)
     print(r.stdout[-4000:], r.stderr[-2000:])
     check(r.returncode == 0, f"soil-lab run exit 0 (got {r.returncode}, {time.monotonic() - t0:.0f} s)")
+    resumed = r.stdout.find("shear_s3000: resuming from its checkpoint")
+    poured = r.stdout.find("bed 'shear': preparing")
+    check("bed 'shear': its record restored from the archive" in r.stdout and
+          0 <= resumed < poured, "the killed box resumed before its lost bed was poured again "
+          f"(for the next box; at {resumed} and {poured} in the log)")
     for f in ("soil.toml", "results.toml", "results.csv", "plate.png", "plate_holds.png",
               "shear_curves.png",
               "mohr_coulomb.png", "beds/plate/done.json", "plate_b0.02/plate.csv",

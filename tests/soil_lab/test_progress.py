@@ -8,6 +8,7 @@ finished run named, a bed to prepare named."""
 
 import json
 import lzma
+import shutil
 import tempfile
 import unittest
 from pathlib import Path
@@ -139,6 +140,13 @@ class Estimate(unittest.TestCase):
             self.assertEqual(one[2], "estimate: [2/3] plate_b0.16: 42 500 steps to run, ~35 min "
                              "at 20 steps/s (measured on 2 rank(s), x 0.59 for 1)")
             (arch / "plate_b0.1" / "done.json").unlink()
+            # the shear bed's record in the archive, its one box finished: it is not poured
+            (arch / "beds" / "shear").mkdir(parents=True)
+            (arch / "beds" / "shear" / "done.json").write_text('{"result": {"spheres": "10"}}')
+            self.assertEqual(estimate.lab_estimate(lab, out, arch)[0],
+                             "estimate: bed 'shear': not poured (its record in the archive, "
+                             "every run on it finished or parked)")
+            shutil.rmtree(arch / "beds")
         self.assertEqual(lines, [
             "estimate: bed 'shear': to prepare here (its cost is not estimated)",
             "estimate: [1/3] plate_b0.1: 22 500 steps to run (parked with 20 000 of 42 500 steps "

@@ -122,33 +122,42 @@ class LabWithBed(unittest.TestCase):
     def tearDown(self):
         self.tmp.cleanup()
 
-    def prepare_bed(self, restart_bytes):
-        """A bed 'prepared' by a fake LIGGGHTS that writes `restart_bytes` (the same recipe)."""
+    def prepare_bed(self, restart_bytes, how="bed"):
+        """A bed 'prepared' by a fake LIGGGHTS that writes `restart_bytes` (the same recipe) and
+        its .vars, through Lab.bed (or Lab.plan_bed: how="plan_bed"); self.pours counts the
+        preparations."""
         beds = self.root / "out" / "beds" / "b"
         for f in beds.glob("*"):
-            f.unlink()
+            if f.is_file():
+                f.unlink()
         restart = beds / "bed.restart"
 
         def fake_liggghts(deck, variables, log, cwd, while_running=None, np=None):
             self.bed_ranks = np or self.lab.np  # the ranks the bed was poured on
+            self.pours = getattr(self, "pours", 0) + 1
             restart.write_bytes(restart_bytes)
+            Path(f"{restart}.vars").write_text("variable bed_depth equal 0.1\n")
             return f"soilbin: restart = {restart}\nsoilbin: spheres = 10\n"
-        spec = mock.Mock(length_m=0.2, width_m=0.2, fill_height_m=0.1, extra_vars={})
-        spec.name = "b"
+        self.bed_spec = mock.Mock(length_m=0.2, width_m=0.2, fill_height_m=0.1, extra_vars={})
+        self.bed_spec.name = "b"
+        self.fake_bed_liggghts = fake_liggghts
         with mock.patch.object(self.lab, "_liggghts", side_effect=fake_liggghts):
-            return self.lab.bed(mock.Mock(file=str(self.soil)), spec)
+            return getattr(self.lab, how)(mock.Mock(file=str(self.soil)), self.bed_spec)
 
-    def run_on(self, bed):
-        """Lab.run of a repose-like run with the LIGGGHTS call faked; True if it ran."""
+    def run_on(self, bed, name="repose"):
+        """Lab.run of a repose-like run with the LIGGGHTS call faked (a bed poured meanwhile by
+        the bed's fake); True if it ran."""
         ran = []
 
         def fake_liggghts(deck, variables, log, cwd, while_running=None, np=None):
+            if Path(deck).name == "in.soilbin":
+                return self.fake_bed_liggghts(deck, variables, log, cwd, while_running, np)
             self.run_ranks = np or self.lab.np  # the ranks the test ran on
             ran.append(deck)
             return "Loop time of 1.0 on 1 procs for 100 steps with 10 atoms\n"
         run = mock.Mock(test="repose", deck="in.lab_repose", meshes={}, variables={"x": "1"},
                         meta={})
-        run.name = "repose"
+        run.name = name
         soil = mock.Mock(file=str(self.soil), dt_s=1e-5)
         with mock.patch.object(self.lab, "_liggghts", side_effect=fake_liggghts):
             self.lab.run(soil, run, bed)
@@ -203,6 +212,87 @@ class BedIdentity(LabWithBed):
                 self.assertEqual(self.run_ranks, 2)
                 self.assertTrue(any("changed: bed recipe" in m for m in self.messages),
                                 self.messages)
+
+
+class LazyBeds(LabWithBed):
+    """A lab on a new machine pours a bed only when a run must start from it: the archive keeps
+    each bed's record (done.json, the hold record, the restart's .vars), which the runs' keys and
+    the report need (docs/soil-lab.md "Beds poured only when a run needs them")."""
+
+    def new_machine(self):
+        shutil.rmtree(self.root / "out")
+        self.pours = 0
+        return self.prepare_bed(b"bed again", how="plan_bed")
+
+    def test_finished_runs_need_no_bed(self):
+        first = self.prepare_bed(b"bed")
+        kept = self.root / "arch" / "beds" / "b"
+        self.assertEqual(sorted(f.name for f in kept.iterdir()), ["done.json", "restart.vars"])
+        self.assertEqual(json.loads((kept / "done.json").read_text())["restart_sha256"],
+                         first.restart_sha256)
+        self.assertTrue(self.run_on(first))
+        lazy = self.new_machine()
+        self.assertIsInstance(lazy, runner.LazyBed)
+        self.assertEqual((self.pours, lazy.recipe, lazy.restart, lazy.restart_sha256),
+                         (0, first.recipe, first.restart, first.restart_sha256))
+        self.assertFalse(self.run_on(lazy), "the archived run ran again")
+        self.assertEqual(self.pours, 0, "the bed was poured for a finished run")
+        # its record is here for the report, the restart is not
+        self.assertTrue((self.root / "out" / "beds" / "b" / "done.json").is_file())
+        self.assertFalse(Path(first.restart).exists())
+        self.assertTrue(any("poured only if a run must start from it" in m
+                            for m in self.messages), self.messages)
+
+    def test_a_run_that_must_start_pours_it_once(self):
+        first = self.prepare_bed(b"bed")
+        self.assertTrue(self.run_on(first))
+        lazy = self.new_machine()
+        self.assertTrue(self.run_on(lazy, name="repose_2"), "a new run did not run")
+        self.assertEqual(self.pours, 1)
+        self.assertEqual(Path(first.restart).read_bytes(), b"bed again")
+        self.assertTrue(self.run_on(lazy, name="repose_3"))
+        self.assertEqual(self.pours, 1, "poured twice")
+        # the record of the new preparation replaced the restored one (and is archived)
+        done = json.loads((self.root / "arch" / "beds" / "b" / "done.json").read_text())
+        self.assertEqual(done["restart_sha256"], runner._sha256(first.restart))
+        # the next invocation finds the bed prepared here
+        with mock.patch.object(self.lab, "_liggghts", side_effect=AssertionError("LIGGGHTS")):
+            again = self.lab.plan_bed(mock.Mock(file=str(self.soil)), self.bed_spec)
+        self.assertIsInstance(again, runner.Bed)
+
+    def test_a_stale_archived_record_is_not_taken(self):
+        self.prepare_bed(b"bed")
+        shutil.rmtree(self.root / "out")
+        self.soil.write_text("variable soil_mur index 0.2\n")  # another recipe
+        self.pours = 0
+        bed = self.prepare_bed(b"other", how="plan_bed")
+        self.assertIsInstance(bed, runner.Bed)
+        self.assertEqual(self.pours, 1)
+        self.assertTrue(any("archived record does not match" in m for m in self.messages))
+
+    def test_a_resuming_run_needs_only_the_vars(self):
+        first = self.prepare_bed(b"bed")
+        lazy = self.new_machine()
+        self.assertTrue(Path(f"{first.restart}.vars").is_file(), "the .vars restored")
+        # a plate with a checkpoint of these inputs resumes: no bed; without one it pours it
+        run = mock.Mock(test="plate", deck="in.lab_plate", meshes={}, variables={}, meta={})
+        run.name = "plate_b0.1"
+        soil = mock.Mock(file=str(self.soil), dt_s=1e-5)
+        for resumable, pours in ((True, 0), (False, 1)):
+            def prepare(ckpt, restart, np=None):
+                self.prepared_from = restart
+                return {}
+            with mock.patch.object(runner.Checkpoints, "resumable", return_value=resumable), \
+                    mock.patch.object(runner.Checkpoints, "prepare", prepare), \
+                    mock.patch.object(self.lab, "_liggghts", side_effect=(
+                        lambda deck, *a, **k: self.fake_bed_liggghts(deck, *a, **k)
+                        if Path(deck).name == "in.soilbin" else "")), \
+                    mock.patch.object(runner, "run_length", return_value=""), \
+                    mock.patch.object(runner, "RunProgress"):
+                self.lab.run(soil, run, lazy)
+            self.assertEqual((self.pours, self.prepared_from), (pours, first.restart))
+            shutil.rmtree(self.root / "out" / "plate_b0.1")
+            shutil.rmtree(self.root / "arch" / "plate_b0.1", ignore_errors=True)
 
 
 class AcceptChange(LabWithBed):
