@@ -136,7 +136,8 @@ class Lab:
         self.np = np
         # --bed-np: the ranks that prepare a bed. They are part of the bed's recipe (another
         # decomposition pours other grains), so a lab resumed on more ranks keeps its finished
-        # and parked runs only when its beds are poured as before (docs/soil-lab.md "--bed-np")
+        # and parked runs only when its beds are poured as before (docs/soil-lab.md "Resuming on
+        # more ranks")
         self.bed_np = bed_np or np
         self.checkpoints = checkpoints  # restart files per plate or shear run (0: none)
         self.bed_hold_s = bed_hold_s  # [s] the bed-hold check's length (0: no check)
