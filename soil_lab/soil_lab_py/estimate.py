@@ -158,8 +158,9 @@ def lab_estimate(plan, out, archive=None, machine=None, np_=None):
           else sweep_rate.DEFAULT["efficiency_np2"])
     paces = {}   # bed -> [(steps/s, how)] of the lab's finished and parked runs on it, at np_
     parked = {}  # run -> (steps done, (steps/s, how) or None)
+    finished = {}  # run -> (where, done.json) of the runs finished here or in the archive
     for run in plan.runs:
-        found = _finished(run, out, archive)
+        found = finished[run.name] = _finished(run, out, archive)
         if found and found[1].get("wall_s") and found[1].get("steps"):
             paces.setdefault(run.bed, []).append(rescaled(
                 found[1]["steps"] / found[1]["wall_s"], found[1].get("np"), np_, e2))
@@ -191,7 +192,7 @@ def lab_estimate(plan, out, archive=None, machine=None, np_=None):
                     ", clumps counted once: low" if machine.clumps_uncounted else "")
         if prepared:
             continue
-        if archived and all(r.name in parked or _finished(r, out, archive)
+        if archived and all(r.name in parked or finished[r.name]
                             for r in plan.runs if r.bed == name):
             lines.append(f"estimate: bed '{name}': not poured (its record in the archive, every "
                          "run on it finished or parked)")
@@ -209,7 +210,7 @@ def lab_estimate(plan, out, archive=None, machine=None, np_=None):
                      "check)")
     for i, run in enumerate(plan.runs, 1):
         head = f"estimate: [{i}/{len(plan.runs)}] {run.name}"
-        found = _finished(run, out, archive)
+        found = finished[run.name]
         if found:
             lines.append(f"{head}: finished before ({found[0]}; the lab compares its inputs)")
             continue

@@ -407,9 +407,13 @@ class Lab:
         done = self._done(d, key)
         if done is None and self.archive is not None and not (d / "done.json").exists():
             kept = self.archive / "beds" / bed.name
-            if (kept / "done.json").is_file():
+            try:
+                restart = json.loads((kept / "done.json").read_text())["result"]["restart"]
+            except (OSError, ValueError, KeyError, TypeError):
+                restart = None
+            if restart is not None:
                 d.mkdir(parents=True, exist_ok=True)
-                for name, dest in self._bed_record_files(d, kept).items():
+                for name, dest in self._bed_record_files(d, restart).items():
                     if (kept / name).is_file():
                         dest.parent.mkdir(parents=True, exist_ok=True)
                         shutil.copy2(kept / name, dest)
@@ -424,25 +428,20 @@ class Lab:
         return self.bed(soil, bed)
 
     @staticmethod
-    def _bed_record_files(d, kept):
-        """{name in ARCHIVE/beds/<bed>/: its place in OUT/beds/<bed>/} of a bed's record; the
-        .vars beside the restart the record names (resume.in reads them with a checkpoint)."""
-        files = {"done.json": d / "done.json", "hold.json": d / "hold" / "done.json"}
-        try:
-            restart = json.loads((kept / "done.json").read_text())["result"]["restart"]
-            files["restart.vars"] = Path(f"{restart}.vars")
-        except (OSError, ValueError, KeyError, TypeError):
-            pass
-        return files
+    def _bed_record_files(d, restart):
+        """{name in ARCHIVE/beds/<bed>/: its place in OUT/beds/<bed>/} of a bed's record, in the
+        order they are archived (done.json last): the .vars beside its restart (resume.in reads
+        them with a checkpoint), the bed-hold record, done.json."""
+        return {"restart.vars": Path(f"{restart}.vars"), "hold.json": d / "hold" / "done.json",
+                "done.json": d / "done.json"}
 
     def _keep_bed(self, d, name, restart):
-        """Copies a prepared bed's record (done.json, its bed-hold record, the restart's .vars:
-        small text) to ARCHIVE/beds/<name>/, so that a lab on another machine need not pour it
-        again when no run must start from it (plan_bed)."""
+        """Copies a prepared bed's record (_bed_record_files: small text) to ARCHIVE/beds/<name>/,
+        so that a lab on another machine need not pour it again when no run must start from it
+        (plan_bed)."""
         kept = self.archive / "beds" / name
         kept.mkdir(parents=True, exist_ok=True)
-        for src, dest in ((Path(f"{restart}.vars"), "restart.vars"),
-                          (d / "hold" / "done.json", "hold.json"), (d / "done.json", "done.json")):
+        for dest, src in self._bed_record_files(d, restart).items():
             if src.is_file():  # done.json last: a half-copied record is not taken
                 shutil.copy2(src, kept / dest)
 
@@ -480,8 +479,8 @@ class Lab:
                           settled=done["result"].get("settled", "1") != "0")
         if self.archive is not None:
             self._keep_bed(d, bed.name, restart)
-        return Bed(restart, _sha256(restart), _recipe(
-            {"inputs": key.inputs, "included_sha256": key.included, "np": done.get("np")}))
+        return Bed(restart, _sha256(restart),
+                   {"inputs": key.inputs, "included_sha256": key.included, "np": done.get("np")})
 
     def bed_hold(self, soil, name, restart, bed_key, settled=True):
         """The bed-hold check of bed `name` (skipped if done for this bed recipe; docs/soil-bins.md
