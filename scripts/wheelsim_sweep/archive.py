@@ -12,9 +12,10 @@ prepared again from its recipe, and an archived point whose bed hash differs fro
 place is named (docs/sweeps.md, "Keeping finished points").
 
 `wheel-sweep --park` keeps an unfinished DEM point's newest complete checkpoint pair with its
-partial run file in DIR/<WHEEL>/<SOIL>/<sSLIP>/parked/ (step_archive.park), and the next run
-copies it back into a point folder that has none, so that the point goes on from there on another
-machine (docs/sweeps.md, "Parking a stopped point").
+partial run file in DIR/<WHEEL>/<SOIL>/<sSLIP>/parked/ (step_archive.park), with the sha256 and
+the .vars of the bed it runs on in parked.json, and the next run copies it back into a point folder
+that has none, so that the point goes on from there on another machine without its bed being
+poured again (docs/sweeps.md, "Parking a stopped point").
 """
 import datetime
 import json
@@ -130,9 +131,10 @@ def _snapshot_h5(src, dest):
         raise OSError(f"{src}: its copy does not read back ({e})") from None
 
 
-def park(archive, point_dir, rel, part_file, bed_sha256, repo, tries=5):
+def park(archive, point_dir, rel, part_file, bed_sha256, repo, extra=None, tries=5):
     """Parks an unfinished point's newest complete checkpoint pair and partial run file in
-    archive/rel/parked/; returns (step, bytes written), (None, 0) without a checkpoint, or
+    archive/rel/parked/, its record naming the bed (bed_sha256 {restart name: sha256}) and holding
+    `extra` too (runner.Runner.park: the bed's .vars, the point's inputs); returns (step, bytes written), (None, 0) without a checkpoint, or
     (step, 0) when that step is parked there already. The point may be running: when a file of
     the pair is removed meanwhile (each side keeps its newest two), the newest pair is taken
     again, up to `tries` times."""
@@ -152,6 +154,7 @@ def park(archive, point_dir, rel, part_file, bed_sha256, repo, tries=5):
             record = {"step": step, "time_s": float(info.get("time", "nan")),
                       "inputs_hash": info.get("inputs_hash", ""),
                       "bed_sha256": bed_sha256, "git_commit": _git_commit(repo)}
+            record.update(extra or {})
             written = step_archive.park(point_dir, kept, files, record,
                                         snapshot={part_file: _snapshot_h5})
             return step, written

@@ -308,8 +308,13 @@ def mean_grain_volume(sv):
 def vars_file(path):
     """`variable KEY style VALUE` lines of a bed's .vars file (or in.soilbin's defaults) as a
     dict of strings."""
+    return vars_text(Path(path).read_text(errors="replace"))
+
+
+def vars_text(text):
+    """vars_file of a .vars file's text."""
     out = {}
-    for line in Path(path).read_text(errors="replace").splitlines():
+    for line in text.splitlines():
         f = line.split()
         if len(f) >= 4 and f[0] == "variable":
             out.setdefault(f[1], f[3])
@@ -405,21 +410,23 @@ def _recipe_num(recipe, defaults, key):
         raise EstimateError(f"recipe key {key} = {v!r}: expected a number")
 
 
-def bed_info(soil, restart, query, soilbin, hold_s=0.0):
+def bed_info(soil, restart, query, soilbin, hold_s=0.0, parked_vars=None):
     """BedInfo of a sweep soil: `restart` is where its bed is (or will be), `query` a SoilQuery,
     `soilbin` inputs/in.soilbin (the recipe keys' defaults), `hold_s` [s] the bed-hold check run
-    after a bed is prepared (wheel-sweep --bed-hold; counted in a bed to prepare)."""
+    after a bed is prepared (wheel-sweep --bed-hold; counted in a bed to prepare). parked_vars:
+    the text of the bed's .vars when the bed is not here and need not be poured (its points resume
+    from parked checkpoints, runner.Runner.parked_beds): a prepared bed, known by its .vars."""
     restart = Path(restart)
     vf = Path(f"{restart}.vars")
-    if restart.is_file() and vf.is_file():
-        v = vars_file(vf)
+    if parked_vars is not None or (restart.is_file() and vf.is_file()):
+        v = vars_text(parked_vars) if parked_vars is not None else vars_file(vf)
         dt = float(v["bed_dt"]) if "bed_dt" in v else None
         box = None
         try:
             box = tuple(float(v[k]) for k in ("bin_length", "bin_width", "bed_depth"))
         except (KeyError, ValueError):
             pass
-        got = bed_log_spheres(restart)
+        got = bed_log_spheres(restart) if restart.is_file() else None
         if got is not None:
             return BedInfo(soil.label, got[0], f"bed log {got[1]}", dt, "bed_dt (.vars)", True,
                            box=box)

@@ -154,6 +154,9 @@ class Runner:
         self.archive = Path(archive_dir).resolve() if archive_dir is not None else None
         self.restored = []  # reldirs of the points restored from the archive by this run
         self.unparked = {}  # reldir: parked record, the points whose checkpoint the archive gave
+        # soil label: {"sha256", "vars", "points"}: recipe beds not poured, their points to run
+        # resuming from checkpoints parked on them (parked_beds)
+        self.parked_bed = {}
         self.beds_only = beds_only  # DEM: prepare the points' beds, run no point (cli --beds-only)
         # DEM cost check before running (cli.py): {"rate": callable -> estimate.Rate, "cores",
         # "budget_h" (None: no budget), "yes"}; None: no estimate line
@@ -320,6 +323,9 @@ class Runner:
                 cmd += ["--soil-file", str(p.soil.dem_soil_file)]
             if resume:
                 cmd.append("--resume")
+                parked = self.parked_bed.get(p.soil.label)
+                if parked is not None and not self.bed_restart(p.soil).is_file():
+                    cmd += ["--bed-sha256", parked["sha256"]]
             if self.sweep.checkpoint_every_s is not None:
                 cmd += ["--checkpoint-every-seconds",
                         f"{self.sweep.checkpoint_every_s:.6f}".rstrip("0").rstrip(".")]
@@ -596,16 +602,19 @@ class Runner:
         be estimable); raises estimate.EstimateError."""
         query = estimate.SoilQuery(self.build / "bin" / "liggghts-wheel", self.repo / "inputs")
         soilbin = self.repo / "inputs" / "in.soilbin"
+        done = {p.index for p in self.sweep.points if self.finished(p)[0]} if not self.force \
+            else set()
+        parked = self.parked_beds([(p, "") for p in self.sweep.points if p.index not in done])
         infos = {s.label: estimate.bed_info(s, self.bed_restart(s), query, soilbin,
-                                            self.bed_hold_s)
+                                            self.bed_hold_s,
+                                            parked_vars=parked.get(s.label, {}).get("vars"))
                  for s in self.sweep.soils}
         for s in self.sweep.soils:  # a prepared recipe bed whose bed-hold check is still to run
             info = infos[s.label]
             if (info.prepared and s.recipe is not None and self.bed_hold_s > 0
+                    and s.label not in parked  # (checked where it was poured)
                     and self.bed_hold_record(s, self.bed_restart(s)) is None):
                 estimate.add_bed_hold(info, self.bed_hold_s)
-        done = {p.index for p in self.sweep.points if self.finished(p)[0]} if not self.force \
-            else set()
         return estimate.estimate(self.sweep.points, infos, rate(), self.sweep.np,
                                  self.sweep.bed_np, self.jobs, cores,
                                  finished=lambda p: p.index in done,
@@ -667,6 +676,16 @@ class Runner:
             if soil.recipe is None or id(soil) not in used:
                 continue
             restart = self.bed_restart(soil)
+            parked = self.parked_bed.get(soil.label)
+            if parked is not None:
+                if not self.dry_run:  # wheel-cosim reads the bed's depth, step and soil from it
+                    restart.parent.mkdir(parents=True, exist_ok=True)
+                    _write_atomic(Path(f"{restart}.vars"), parked["vars"])
+                self.say(f"bed {soil.label}: {'would not pour' if self.dry_run else 'not poured'}"
+                         f": its {parked['points']} point(s) to run resume from checkpoints "
+                         f"parked on it (sha256 {parked['sha256'][:12]}..., its .vars from the "
+                         "archive); it is poured when a point must start from it")
+                continue
             bdir = restart.parent
             recipe_file = bdir / f"{restart.name}.recipe.json"
             recipe = self.portable(soil.recipe)  # recorded and compared with portable paths
@@ -854,6 +873,7 @@ class Runner:
         skipped = n - len(todo)
         self.say(f"wheel-sweep: {sw.path.name}: terrain {sw.terrain}, {shape} = {n} point(s); "
                  f"output {self.out}")
+        self.parked_bed = self.parked_beds(todo)
         if self.dry_run:
             return self._dry_run(todo)
 
@@ -868,6 +888,11 @@ class Runner:
             self._sync_archive()
             if sw.terrain == "dem":
                 self.unparked = self._unpark(todo)
+                # a bed left unpoured needs each of its points to resume from a checkpoint here
+                for label in [k for k in self.parked_bed
+                              if any(p.soil.label == k and archive.newest_checkpoint(
+                                  self.point_dir(p)) is None for p, _ in todo)]:
+                    del self.parked_bed[label]
         if sw.path != (self.out / "sweep.toml").resolve():
             shutil.copyfile(sw.path, self.out / "sweep.toml")
         for sig in (signal.SIGINT, signal.SIGTERM):
@@ -910,11 +935,59 @@ class Runner:
 
     # ---- --archive DIR (archive.py) -------------------------------------------------------------
     def _bed_sha(self, p):
-        """{bed restart file name: sha256} of a DEM point's bed; {} for SCM and flat points."""
+        """{bed restart file name: sha256} of a DEM point's bed (a bed not poured: the one its
+        checkpoint was parked on); {} for SCM and flat points."""
         if self.sweep.terrain != "dem":
             return {}
         bed = self.bed_restart(p.soil)
+        parked = self.parked_bed.get(p.soil.label)
+        if parked is not None and not bed.is_file():
+            return {bed.name: parked["sha256"]}
         return {bed.name: self.file_hash(bed)}
+
+    def _park_record(self, p):
+        """What a parked record holds beside the bed's sha256 (archive.park extra): the bed's
+        .vars and the point's inputs as the resume check compares them (inputs_hash,
+        included_hashes), so that another machine can resume the point without pouring its bed
+        (parked_beds)."""
+        extra = {"point_inputs_sha256": self.inputs_hash(p),
+                 "point_included_sha256": self.included_hashes(p)}
+        try:
+            extra["bed_vars"] = Path(f"{self.bed_restart(p.soil)}.vars").read_text()
+        except OSError:
+            pass
+        return extra
+
+    def parked_beds(self, todo):
+        """{soil label: {"sha256", "vars", "points"}} of the recipe beds not prepared here whose
+        every point to run (todo: [(point, why)]) has a checkpoint parked in the archive on that
+        bed, recorded with the bed's .vars and with the point's inputs as they are now: those
+        points resume from their checkpoints (wheel-cosim --bed-sha256), so the bed is not
+        poured. A point that must start from the bed (none parked, another bed, other inputs)
+        makes it be poured as before."""
+        if self.archive is None or self.sweep.terrain != "dem":
+            return {}
+        out = {}
+        for soil in self.sweep.soils:
+            points = [p for p, _ in todo if p.soil is soil]
+            restart = self.bed_restart(soil)
+            if soil.recipe is None or not points or restart.is_file():
+                continue
+            beds = set()
+            for p in points:
+                r = step_archive.parked(self.archive / p.reldir) or {}
+                sha = (r.get("bed_sha256") or {}).get(restart.name)
+                if (not r.get("bed_vars") or not re.fullmatch(r"[0-9a-f]{64}", sha or "")
+                        or r.get("point_inputs_sha256") != self.inputs_hash(p)
+                        or self.portable(r.get("point_included_sha256"))
+                        != self.included_hashes(p)):
+                    break
+                beds.add((sha, r["bed_vars"]))
+            else:
+                if len(beds) == 1:
+                    sha, text = beds.pop()
+                    out[soil.label] = {"sha256": sha, "vars": text, "points": len(points)}
+        return out
 
     def _archive_point(self, p):
         try:
@@ -949,13 +1022,17 @@ class Runner:
                      "nothing to park")
             return 0
         parked = same = 0
+        # a sweep running on a bed it did not pour: the bed its points' checkpoints name
+        self.parked_bed = self.parked_beds([(p, "") for p in self.sweep.points
+                                            if not (self.point_dir(p) / DONE_FILE).exists()])
         for p in self.sweep.points:
             d = self.point_dir(p)
             if (d / DONE_FILE).exists():
                 continue
             try:
                 step, written = archive.park(self.archive, d, p.reldir, PART_FILE,
-                                             self._bed_sha(p), self.repo)
+                                             self._bed_sha(p), self.repo,
+                                             extra=self._park_record(p))
             except (OSError, ValueError, KeyError) as e:
                 self.say(f"wheel-sweep: error: could not park {p.reldir}: {e}")
                 return 1
@@ -992,7 +1069,7 @@ class Runner:
         for p in self.sweep.points:
             record = self.unparked.get(p.reldir)
             if record is None or record.get("bed_sha256") == self._bed_sha(p):
-                continue
+                continue  # (a bed not poured: the one its checkpoint was parked on)
             shutil.rmtree(self.point_dir(p) / archive.CHECKPOINTS, ignore_errors=True)
             self.say(f"wheel-sweep: warning: {p.reldir}: its parked checkpoint ran on another "
                      f"preparation of its bed (sha256 {record.get('bed_sha256')} then, "

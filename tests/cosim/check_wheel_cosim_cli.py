@@ -62,6 +62,13 @@ def main():
         expect(["--rig", str(t / "rig.toml"), *files, "--mesh", str(t / "wheel.stl")], 2,
                r"--rig: wheel-rig: .*rig\.toml:2: unknown key 'wheel\.mas'; did you mean "
                r"'wheel\.mass'\?")
+        # --bed-sha256 (a resume without the bed restart, docs/coupled-runs.md)
+        rig = ["--rig", str(t / "rig.toml"), "--deck", str(t / "deck.in"), "--work", str(t / "work")]
+        expect([*rig, "--bed", str(t / "gone.restart"), "--resume", "--bed-sha256", "xyz"], 2,
+               r"--bed-sha256: expected a sha256 \(64 lowercase hex digits\), got 'xyz'")
+        expect([*rig, "--bed", str(t / "gone.restart"), "--bed-sha256", "0" * 64], 2,
+               r"--bed-sha256: only with --resume")
+        expect([*rig, "--bed", str(t / "gone.restart")], 2, r"--bed: bed restart '.*gone\.restart' not found")
         if (t / "work").exists():
             print("FAIL the rejected runs made their work directory")
             failures.append(["work directory"])

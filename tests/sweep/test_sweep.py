@@ -1409,6 +1409,107 @@ def case_dem_park(a, work):
           "a checkpoint parked on another bed was not refused")
 
 
+def case_dem_park_unpoured(a, work):
+    """A parked point resumes on a new machine without its bed being poured: test_small at 20 %
+    on a ci bin recipe (0.20 x 0.10 m, fill 0.025 m: the bed of tests/wheel_cosim), 0.05 s of
+    test phase, checkpoints every 300 steps, 1 rank, --archive ARCH (--bed-hold 0); SIGKILLed after a
+    checkpoint and parked (parked.json records the bed's sha256 and .vars and the point's
+    inputs). Into a new output directory: --dry-run and --estimate pour nothing ("would not
+    pour", no bed to prepare); the run says "not poured", resumes at the parked step through
+    wheel-cosim --bed-sha256, finishes, and no restart is written; the archived point names the
+    bed it ran on. A point that must start from the bed (a second slip) or changed inputs (a
+    longer test phase) make it be poured (--dry-run). wheel-cosim --bed-sha256 refuses a run
+    from scratch without the restart, and a restart of another sha256. ~1.5 min."""
+    repo = dem_repo(a)
+    cfg, arch = work / "sweep.toml", work / "archive"
+    out1, out2 = work / "out1", work / "out2"
+
+    def write(slips="[0.2]", duration=0.05):
+        cfg.write_text(f"""terrain = "dem"
+base = "{repo}/inputs/rigs/ci_small_wheel.toml"
+wheels = ["test_small"]
+soils = [{{ soil = "ci", bin_length = 0.20, bin_width = 0.10, fill_height = 0.025 }}]
+slips = {slips}
+[override.run]
+duration = {duration}
+release_gap = 0.002
+[dem]
+np = 1
+bed_np = 1
+deck = "{repo}/inputs/examples/in.wheel_coupled"
+liggghts_args = ["-var", "output_every", "0"]
+checkpoint_every_steps = 300
+""")
+
+    write()
+    rel = Path("test_small") / "ci" / "s0.200"
+    bed = "beds/ci/soilbin_ci.restart"
+    kill_after_checkpoint([a.sweep, str(cfg), "--build-dir", a.build_dir, "--archive", str(arch),
+                           "--out-dir", str(out1), *NO_BED_HOLD],  # (not what is tested)
+                          out1 / rel / "cosim" / "checkpoints")
+    check((out1 / bed).is_file(), "the first machine did not pour its bed")
+    r = run_sweep(a, cfg, "--out-dir", str(out1), "--archive", str(arch), "--park", timeout=120)
+    check(r.returncode == 0 and f"parked {rel} at step" in r.stdout, "--park failed")
+    record = json.loads((arch / rel / "parked" / "parked.json").read_text())
+    sha = hashlib.sha256((out1 / bed).read_bytes()).hexdigest()
+    check(record.get("bed_sha256") == {"soilbin_ci.restart": sha}
+          and record.get("bed_vars") == (out1 / f"{bed}.vars").read_text()
+          and record.get("point_inputs_sha256") and record.get("point_included_sha256"),
+          f"parked.json lacks the bed's sha256 and .vars or the point's inputs: {sorted(record)}")
+    # a new machine: nothing of out1
+    r = run_sweep(a, cfg, "--out-dir", str(out2), "--archive", str(arch), "--dry-run", timeout=120)
+    check(r.returncode == 0 and "bed ci: would not pour: its 1 point(s) to run resume from "
+          "checkpoints parked on it" in r.stdout and "would prepare" not in r.stdout,
+          "--dry-run would pour the bed of a parked point")
+    r = run_sweep(a, cfg, "--out-dir", str(out2), "--archive", str(arch), "--estimate",
+                  timeout=120)
+    check(r.returncode == 0 and "estimate: bed ci" not in r.stdout,
+          "--estimate prices the pour of a parked point's bed (or its bed-hold check)")
+    r = run_sweep(a, cfg, "--out-dir", str(out2), "--archive", str(arch), timeout=600)
+    check(r.returncode == 0 and "bed ci: not poured" in r.stdout
+          and "resuming from its checkpoint" in r.stdout and "preparing" not in r.stdout,
+          "the parked point did not resume without its bed")
+    check(not (out2 / bed).exists() and not (out2 / "beds" / "ci" / "soilbin.log").exists(),
+          "a bed was poured on the new machine")
+    check(json.loads((out2 / rel / "done.json").read_text())["exit_status"] == 0,
+          "the resumed point did not finish")
+    with h5py.File(out2 / rel / "run.h5", "r") as f:
+        got = int(f["parameters/resume/1/step"][()])
+    check(got == record["step"], f"resumed at step {got}, parked {record['step']}")
+    archived = json.loads((arch / rel / "archived.json").read_text())
+    check(archived["bed_sha256"] == {"soilbin_ci.restart": sha},
+          f"the archived point names bed {archived['bed_sha256']}, it ran on {sha}")
+    # parked again from out1 (still stopped): a point that must start, or changed inputs, pour it
+    shutil.rmtree(arch / rel)
+    r = run_sweep(a, cfg, "--out-dir", str(out1), "--archive", str(arch), "--park", timeout=120)
+    check(r.returncode == 0 and f"parked {rel} at step" in r.stdout, "--park failed")
+    out3 = work / "out3"
+    for slips, duration, why in (("[0.2, 0.3]", 0.05, "a point that must start from it"),
+                                 ("[0.2]", 0.06, "changed inputs")):
+        write(slips, duration)
+        r = run_sweep(a, cfg, "--out-dir", str(out3), "--archive", str(arch), "--dry-run",
+                      timeout=120)
+        check(r.returncode == 0 and "bed ci: would prepare" in r.stdout
+              and "would not pour" not in r.stdout, f"{why}: the bed would not be poured")
+    # wheel-cosim itself: no restart and nothing to resume; a restart of another sha256
+    write()
+    cosim = Path(a.sweep).resolve().parent / "wheel-cosim"
+    base = [str(cosim), "--rig", str(out1 / rel / "rig.toml"), "--deck",
+            str(repo / "inputs" / "examples" / "in.wheel_coupled"), "--work", str(work / "w"),
+            "--mesh", str(Path(a.build_dir) / "meshes" / "test_small.stl"), "--resume"]
+    vars_only = work / "vars_only" / "soilbin_ci.restart"
+    vars_only.parent.mkdir()
+    shutil.copy(out1 / f"{bed}.vars", f"{vars_only}.vars")
+    r = subprocess.run(base + ["--bed", str(vars_only), "--bed-sha256", sha],
+                       capture_output=True, text=True, timeout=120)
+    check(r.returncode == 2 and "no checkpoint" in r.stderr and "is not here to start from"
+          in r.stderr, f"a run from scratch without the restart was not refused: {r.stderr}")
+    r = subprocess.run(base + ["--bed", str(out1 / bed), "--bed-sha256", "0" * 64],
+                       capture_output=True, text=True, timeout=120)
+    check(r.returncode == 2 and "is another bed" in r.stderr,
+          f"a restart of another sha256 was not refused: {r.stderr}")
+
+
 def case_point_archive(a, work):
     """--archive DIR: each finished point's done.json, run.h5, rig.toml and run.log are kept in
     DIR with an archived.json record; a fresh output directory run with the same archive gets them
