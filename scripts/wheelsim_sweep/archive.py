@@ -134,8 +134,9 @@ def _snapshot_h5(src, dest):
 def park(archive, point_dir, rel, part_file, bed_sha256, repo, extra=None, tries=5):
     """Parks an unfinished point's newest complete checkpoint pair and partial run file in
     archive/rel/parked/, its record naming the bed (bed_sha256 {restart name: sha256}) and holding
-    `extra` too (runner.Runner.park: the bed's .vars, the point's inputs); returns (step, bytes written), (None, 0) without a checkpoint, or
-    (step, 0) when that step is parked there already. The point may be running: when a file of
+    `extra` too (runner.Runner.park: the bed's .vars, the point's inputs); returns (step, bytes
+    written), (None, 0) without a checkpoint, or (step, 0) when that step is parked there
+    already. The point may be running: when a file of
     the pair is removed meanwhile (each side keeps its newest two), the newest pair is taken
     again, up to `tries` times."""
     point_dir = Path(point_dir)
