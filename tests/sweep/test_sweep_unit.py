@@ -5,7 +5,7 @@
 
 CASE: toml_roundtrip, cli, soil_names, tiled_recipe, estimate_arithmetic, estimate_active,
 rate_cache, budget, slip_control, accept_change, included_at_start, terrain_switch,
-resumed_wall (see
+resumed_wall, parked_beds (see
 each function and tests/sweep/CMakeLists.txt).
 Exit 0 pass, 1 fail, 77 skip (a prerequisite missing).
 """
@@ -1335,6 +1335,78 @@ def case_park_progress(a, work):
     check(archive.steps_done(work / "new", work / "arch", "w") == 999, "steps done when parked")
     check(archive.steps_done(work / "new", work / "arch", "other") == 0
           and archive.steps_done(work / "new") == 0, "no checkpoint: 0")
+
+
+def case_parked_beds(a, work):
+    """Which recipe beds a run leaves unpoured (runner.Runner.parked_beds; docs/sweeps.md
+    "Parking a stopped point"): two points of one recipe soil, each parked in the archive on the
+    same bed with its .vars and its inputs as they are now: the bed is not poured (--dry-run:
+    "would not pour"); not when the restart is here, without --archive, when one point to run
+    has no parked record, a record from before the bed's .vars was kept, one parked on another
+    bed, or one whose inputs or included files changed since it was parked; a finished point
+    (not to run) does not count."""
+    from wheelsim_sweep import config, runner
+    repo = Path(a.sweep).resolve().parents[1]
+    build = work / "build"
+    _stand_in_rig(build, otherwise="exit 0\n")
+    (work / "wheel.stl").write_text("solid w\nendsolid w\n")
+    inc = work / "deck_extra.in"
+    inc.write_text("# v1\n")
+    (work / "in.deck").write_text(f"# not run\ninclude {inc}\n")
+    (work / "rig.toml").write_text('[run]\ndt = 1e-4\nduration = 0.5\n[motor]\nomega = 1.0\n'
+                                   '[terrain]\ntype = "dem"\n')
+    cfg = work / "sweep.toml"
+    cfg.write_text('terrain = "dem"\nbase = "rig.toml"\nwheels = ["wheel.stl"]\n'
+                   'soils = [{ soil = "ci", bin_length = 0.3 }]\nslips = [0.1, 0.2]\n'
+                   '[dem]\nnp = 1\ndeck = "in.deck"\n')
+    out, arch = work / "out", work / "archive"
+    sw = config.load(cfg, repo, build)
+    r = runner.Runner(sw, out, repo, build, 1, archive_dir=arch)
+    soil = sw.points[0].soil
+    restart = r.bed_restart(soil)
+    sha, bed_vars = "ab" * 32, "variable bed_depth index 0.05\n"
+    todo = [(p, "unfinished") for p in sw.points]
+
+    def park(p, **change):
+        rec = {"step": 10, "files": [], "bed_sha256": {restart.name: sha}, "bed_vars": bed_vars,
+               "point_inputs_sha256": r.inputs_hash(p),
+               "point_included_sha256": r.included_hashes(p)}
+        rec.update(change)
+        rec = {k: v for k, v in rec.items() if v is not None}
+        d = arch / p.reldir / "parked"
+        d.mkdir(parents=True, exist_ok=True)
+        (d / "parked.json").write_text(json.dumps(rec))
+
+    for p in sw.points:
+        park(p)
+    got = r.parked_beds(todo)
+    check(got == {soil.label: {"sha256": sha, "vars": bed_vars, "points": 2}},
+          f"both points parked on one bed: {got}")
+    res = _run(a, str(cfg), "--out-dir", str(out), "--build-dir", str(build), "--archive",
+               str(arch), "--dry-run")
+    check(res.returncode == 0 and f"bed {soil.label}: would not pour: its 2 point(s) to run "
+          "resume from checkpoints parked on it" in res.stdout and "would prepare" not in res.stdout,
+          f"--dry-run: {res.stdout[-600:]}")
+    check(runner.Runner(sw, out, repo, build, 1).parked_beds(todo) == {}, "without --archive")
+    restart.parent.mkdir(parents=True)
+    restart.write_text("x")
+    check(r.parked_beds(todo) == {}, "the restart is here: it is used, not stood in for")
+    restart.unlink()
+    cases = (("a record from before bed_vars", {"bed_vars": None}),
+             ("another bed", {"bed_sha256": {restart.name: "cd" * 32}}),
+             ("no sha256", {"bed_sha256": {restart.name: "missing"}}),
+             ("inputs changed", {"point_inputs_sha256": "stale"}),
+             ("an included file changed", {"point_included_sha256": {str(inc): "stale"}}))
+    for what, change in cases:
+        park(sw.points[1], **change)
+        check(r.parked_beds(todo) == {}, f"{what}: the bed would not be poured")
+        check(r.parked_beds(todo[:1]) != {}, f"{what}: the other point alone (the second one "
+              "finished) leaves it unpoured")
+    shutil.rmtree(arch / sw.points[1].reldir)
+    check(r.parked_beds(todo) == {}, "a point to run with nothing parked: the bed is poured")
+    park(sw.points[1])
+    inc.write_text("# v2\n")
+    check(r.parked_beds(todo) == {}, "an included file edited since both were parked")
 
 
 def main():
