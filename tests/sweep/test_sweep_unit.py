@@ -1175,6 +1175,22 @@ def case_moved_tree(a, work):
     check(back == list(paths), f"local: {back}")
 
 
+def _dem_project(a, work):
+    """A DEM sweep's files in `work` (nothing runs): a stand-in wheel-rig that passes --check,
+    wheel.stl, in.deck including deck_extra.in ("# v1"), rig.toml. Returns (the checkout, the
+    build dir, deck_extra.in)."""
+    repo = Path(a.sweep).resolve().parents[1]
+    build = work / "build"
+    _stand_in_rig(build, otherwise="exit 0\n")
+    (work / "wheel.stl").write_text("solid w\nendsolid w\n")
+    inc = work / "deck_extra.in"
+    inc.write_text("# v1\n")
+    (work / "in.deck").write_text(f"# not run\ninclude {inc}\n")
+    (work / "rig.toml").write_text('[run]\ndt = 1e-4\nduration = 0.5\n[motor]\nomega = 1.0\n'
+                                   '[terrain]\ntype = "dem"\n')
+    return repo, build, inc
+
+
 def case_included_at_start(a, work):
     """A DEM point records the included files' hashes, and its inputs hash (the soil file's among
     them), as they were when it started, and an edit while the driver runs is seen (file_hash
@@ -1186,15 +1202,7 @@ def case_included_at_start(a, work):
     what that point ran with.)"""
     import hashlib
     from wheelsim_sweep import config, runner
-    repo = Path(a.sweep).resolve().parents[1]
-    build = work / "build"
-    _stand_in_rig(build, otherwise="exit 0\n")
-    (work / "wheel.stl").write_text("solid w\nendsolid w\n")
-    inc = work / "deck_extra.in"
-    inc.write_text("# v1\n")
-    (work / "in.deck").write_text(f"# not run\ninclude {inc}\n")
-    (work / "rig.toml").write_text('[run]\ndt = 1e-4\nduration = 0.5\n[motor]\nomega = 1.0\n'
-                                   '[terrain]\ntype = "dem"\n')
+    repo, build, inc = _dem_project(a, work)
     cfg = work / "sweep.toml"
     soil = work / "my_soil.in"
     soil.write_text((repo / "inputs" / "soils" / "ci.in").read_text())
@@ -1346,15 +1354,7 @@ def case_parked_beds(a, work):
     bed, or one whose inputs or included files changed since it was parked; a finished point
     (not to run) does not count."""
     from wheelsim_sweep import config, runner
-    repo = Path(a.sweep).resolve().parents[1]
-    build = work / "build"
-    _stand_in_rig(build, otherwise="exit 0\n")
-    (work / "wheel.stl").write_text("solid w\nendsolid w\n")
-    inc = work / "deck_extra.in"
-    inc.write_text("# v1\n")
-    (work / "in.deck").write_text(f"# not run\ninclude {inc}\n")
-    (work / "rig.toml").write_text('[run]\ndt = 1e-4\nduration = 0.5\n[motor]\nomega = 1.0\n'
-                                   '[terrain]\ntype = "dem"\n')
+    repo, build, inc = _dem_project(a, work)
     cfg = work / "sweep.toml"
     cfg.write_text('terrain = "dem"\nbase = "rig.toml"\nwheels = ["wheel.stl"]\n'
                    'soils = [{ soil = "ci", bin_length = 0.3 }]\nslips = [0.1, 0.2]\n'
