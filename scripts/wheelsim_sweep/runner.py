@@ -323,8 +323,8 @@ class Runner:
                 cmd += ["--soil-file", str(p.soil.dem_soil_file)]
             if resume:
                 cmd.append("--resume")
-                parked = self.parked_bed.get(p.soil.label)
-                if parked is not None and not self.bed_restart(p.soil).is_file():
+                parked = self._unpoured(p.soil)
+                if parked is not None:
                     cmd += ["--bed-sha256", parked["sha256"]]
             if self.sweep.checkpoint_every_s is not None:
                 cmd += ["--checkpoint-every-seconds",
@@ -889,10 +889,10 @@ class Runner:
             if sw.terrain == "dem":
                 self.unparked = self._unpark(todo)
                 # a bed left unpoured needs each of its points to resume from a checkpoint here
-                for label in [k for k in self.parked_bed
-                              if any(p.soil.label == k and archive.newest_checkpoint(
-                                  self.point_dir(p)) is None for p, _ in todo)]:
-                    del self.parked_bed[label]
+                self.parked_bed = {
+                    k: v for k, v in self.parked_bed.items()
+                    if all(p.soil.label != k or archive.newest_checkpoint(self.point_dir(p))
+                           is not None for p, _ in todo)}
         if sw.path != (self.out / "sweep.toml").resolve():
             shutil.copyfile(sw.path, self.out / "sweep.toml")
         for sig in (signal.SIGINT, signal.SIGTERM):
@@ -940,10 +940,14 @@ class Runner:
         if self.sweep.terrain != "dem":
             return {}
         bed = self.bed_restart(p.soil)
-        parked = self.parked_bed.get(p.soil.label)
-        if parked is not None and not bed.is_file():
-            return {bed.name: parked["sha256"]}
-        return {bed.name: self.file_hash(bed)}
+        parked = self._unpoured(p.soil)
+        return {bed.name: parked["sha256"] if parked is not None else self.file_hash(bed)}
+
+    def _unpoured(self, soil):
+        """The parked_bed entry of a soil whose bed this run left unpoured and that is still not
+        here (a point that must start from it pours it on a later run), else None."""
+        parked = self.parked_bed.get(soil.label)
+        return parked if parked is not None and not self.bed_restart(soil).is_file() else None
 
     def _park_record(self, p):
         """What a parked record holds beside the bed's sha256 (archive.park extra): the bed's
