@@ -9,7 +9,11 @@ result (a comment, a new variable nothing uses yet), this writes the file's new 
 records instead, and appends to each record what was accepted, from what to what, when and why
 (`accepted_changes`), so that the run's provenance says so. Only records that would otherwise be
 valid are touched: a point whose inputs hash, run file or another included file also changed is
-left as it is (and named). Nothing runs.
+left as it is (and named). With --archive DIR the archive's records are the ones that outlive the
+output directory: its finished points are first restored into the output directory (as a run
+would), an accepted point's archived done.json is rewritten with it, and a parked point's record
+(parked.json `point_included_sha256`, which decides whether its bed must be poured to resume it:
+runner.Runner.parked_beds) is accepted the same way. Nothing runs.
 """
 
 import json
@@ -18,6 +22,9 @@ from pathlib import Path
 
 from wheelsim_post import accepted_change
 
+from wheelsim_post import step_archive
+
+from . import archive
 from .runner import DONE_FILE, RUN_FILE, _write_atomic
 
 
@@ -25,14 +32,14 @@ def _error(msg):
     print(f"wheel-sweep: error: {msg}", file=sys.stderr)
 
 
-def _accept(record, now, files, reason, stamp, r):
-    """Updates `record` (a dict with included_sha256) for the accepted `files` whose recorded
-    hash differs from `now` (Runner r's portable paths: the record's are made so); returns
-    (accepted [(key, old, new)], others [keys still differing])."""
-    recorded = record.get("included_sha256")
+def _accept(record, now, files, reason, stamp, r, key="included_sha256"):
+    """Updates `record` (a dict whose `key` holds {file: sha256}) for the accepted `files` whose
+    recorded hash differs from `now` (Runner r's portable paths: the record's are made so);
+    returns (accepted [(file, old, new)], others [files still differing])."""
+    recorded = record.get(key)
     if not isinstance(recorded, dict):
         return [], []
-    recorded = record["included_sha256"] = r.portable(recorded)
+    recorded = record[key] = r.portable(recorded)
     accepted, others = [], []
     for k in sorted(set(recorded) | set(now)):
         if recorded.get(k) == now.get(k):
@@ -47,6 +54,31 @@ def _accept(record, now, files, reason, stamp, r):
         accepted_change.append(record, [accepted_change.entry(r.local(k), old, new, reason, stamp)
                                         for k, old, new in accepted])
     return accepted, others
+
+
+def _accept_parked(r, p, now, files, reason, stamp):
+    """Accepts the change in the archive's parked record of point p (`point_included_sha256`),
+    when its inputs hash is the current one; returns 1 if the record was rewritten, else 0."""
+    kept = r.archive / p.reldir
+    record = step_archive.parked(kept)
+    if record is None or "point_included_sha256" not in record:
+        return 0  # nothing parked, or parked before the record held the point's inputs
+    if record.get("point_inputs_sha256") != r.inputs_hash(p):
+        r.say(f"    {r.describe(p)} (parked): left as is: its inputs changed, so its bed is "
+              "poured to resume it")
+        return 0
+    accepted, others = _accept(record, now, files, reason, stamp, r, key="point_included_sha256")
+    if others:
+        if accepted:
+            r.say(f"    {r.describe(p)} (parked): left as is: {r.local(others[0])} changed too")
+        return 0
+    if not accepted:
+        return 0
+    f = kept / step_archive.PARKED / step_archive.PARKED_RECORD
+    _write_atomic(f, json.dumps(record, indent=1) + "\n")
+    r.say(f"    {r.describe(p)} (parked at step {record.get('step')}): accepted "
+          f"{', '.join(r.local(k) for k, _, _ in accepted)} ({f})")
+    return 1
 
 
 def accept_changes(r, files, reason):
@@ -76,19 +108,28 @@ def accept_changes(r, files, reason):
     if lock is None:
         return 2
     stamp = accepted_change.utc_now()
-    n_points = n_beds = 0
+    if r.archive is not None:
+        restored = archive.restore(r.archive, r.out, [p.reldir for p in sw.points])
+        if restored:
+            r.say(f"wheel-sweep: restored {len(restored)} finished point(s) from the archive "
+                  f"{r.archive}")
+    n_points = n_beds = n_parked = 0
     for p in sw.points:
         d = r.point_dir(p)
         try:
             done = json.loads((d / DONE_FILE).read_text())
-        except (OSError, ValueError):
-            continue  # not run, unfinished or unreadable: it runs anyway
+        except (OSError, ValueError):  # not run, unfinished or unreadable: it runs anyway
+            if (d / DONE_FILE).exists() or r.archive is None:
+                continue
+            n_parked += _accept_parked(r, p, point_now[p.index], files, reason, stamp)
+            continue
         if done.get("exit_status") != 0 or not (d / RUN_FILE).is_file():
             continue
         if done.get("inputs_sha256") not in r.inputs_hashes(p):
             r.say(f"    {r.describe(p)}: left as is: its inputs changed (not only included "
                   "files), so it re-runs")
             continue
+        archived = r.archive is not None and step_archive.holds(r.archive / p.reldir, d)
         accepted, others = _accept(done, point_now[p.index], files, reason, stamp, r)
         if others:
             if accepted:
@@ -96,7 +137,10 @@ def accept_changes(r, files, reason):
                       "re-runs")
             continue
         if accepted:
-            _write_atomic(d / DONE_FILE, json.dumps(done, indent=2) + "\n")
+            text = json.dumps(done, indent=2) + "\n"
+            _write_atomic(d / DONE_FILE, text)
+            if archived:  # the archive's copy stays the same bytes (step_archive.holds)
+                _write_atomic(r.archive / p.reldir / DONE_FILE, text)
             n_points += 1
             r.say(f"    {r.describe(p)}: accepted {', '.join(r.local(k) for k, _, _ in accepted)} "
                   f"({p.reldir}/{DONE_FILE})")
@@ -123,6 +167,7 @@ def accept_changes(r, files, reason):
             n_beds += 1
             r.say(f"    bed {soil.label}: accepted "
                   f"{', '.join(r.local(k) for k, _, _ in accepted)} ({f})")
+    parked = f", {n_parked} parked point(s)" if r.archive is not None else ""
     r.say(f"wheel-sweep: accepted the change of {len(files)} file(s) in {n_points} finished "
-          f"point(s) and {n_beds} bed(s) (reason: {reason})")
+          f"point(s){parked} and {n_beds} bed(s) (reason: {reason})")
     return 0

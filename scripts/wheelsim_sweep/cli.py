@@ -61,7 +61,8 @@ def main(argv=None):
                     help="DEM: an edit of FILE, a file the deck, soil file or in.soilbin "
                          "include, changes no result: record its new hash in the finished "
                          "points and beds (with --reason, kept in their records) instead of "
-                         "re-running them; runs nothing (repeatable)")
+                         "re-running them, and with --archive in the archive's finished and "
+                         "parked points too; runs nothing (repeatable)")
     ap.add_argument("--reason", metavar="TEXT",
                     help="why the --accept-change edit changes no result (required with it)")
     ap.add_argument("--bed-hold", type=float, default=bed_hold.DEFAULT_HOLD_S, metavar="S",
@@ -121,8 +122,6 @@ def main(argv=None):
         ap.error("the following arguments are required: config")
     if a.beds_only and (a.dry_run or a.estimate):
         ap.error("--beds-only prepares beds: not with --dry-run or --estimate")
-    if a.archive is not None and a.accept_change:
-        ap.error("--accept-change changes the records in the output directory: not with --archive")
     if a.accept_change:
         if not (a.reason or "").strip():
             ap.error("--accept-change needs --reason TEXT: why the edit changes no result")

@@ -1352,7 +1352,9 @@ def case_parked_beds(a, work):
     "would not pour"); not when the restart is here, without --archive, when one point to run
     has no parked record, a record from before the bed's .vars was kept, one parked on another
     bed, or one whose inputs or included files changed since it was parked; a finished point
-    (not to run) does not count."""
+    (not to run) does not count. `--accept-change FILE --archive DIR` of the edited include
+    accepts it in the parked record (the bed is again left unpoured) and in a finished point
+    found only in the archive (restored, then accepted in both copies)."""
     from wheelsim_sweep import config, runner
     repo, build, inc = _dem_project(a, work)
     cfg = work / "sweep.toml"
@@ -1405,8 +1407,34 @@ def case_parked_beds(a, work):
     shutil.rmtree(arch / sw.points[1].reldir)
     check(r.parked_beds(todo) == {}, "a point to run with nothing parked: the bed is poured")
     park(sw.points[1])
+    v1 = r.included_hashes(sw.points[1])
+    time.sleep(0.01)
     inc.write_text("# v2\n")
     check(r.parked_beds(todo) == {}, "an included file edited since both were parked")
+    # --accept-change with --archive: the second point finished, only in the archive (a new
+    # machine): it is restored, and its done.json accepted here and there; the first point's
+    # parked record is accepted, so its bed is again left unpoured
+    kept = arch / sw.points[1].reldir
+    shutil.rmtree(kept)
+    kept.mkdir(parents=True)
+    (kept / "run.h5").write_text("")
+    (kept / "done.json").write_text(json.dumps(
+        {"exit_status": 0, "status": "done", "inputs_sha256": r.inputs_hash(sw.points[1]),
+         "included_sha256": v1}, indent=2) + "\n")
+    res = _run(a, str(cfg), "--out-dir", str(out), "--build-dir", str(build), "--archive",
+               str(arch), "--accept-change", str(inc), "--reason", "a comment")
+    check(res.returncode == 0 and "restored 1 finished point(s)" in res.stdout
+          and "in 1 finished point(s), 1 parked point(s) and 0 bed(s)" in res.stdout,
+          f"--accept-change --archive: {res.stdout[-600:]} {res.stderr[-300:]}")
+    check(r.parked_beds(todo[:1]) == {soil.label: {"sha256": sha, "vars": bed_vars, "points": 1}},
+          "after accepting: the parked point's bed is left unpoured")
+    rec = json.loads((arch / sw.points[0].reldir / "parked" / "parked.json").read_text())
+    check([n["reason"] for n in rec.get("accepted_changes", [])] == ["a comment"],
+          f"parked record's accepted_changes: {rec}")
+    done = r.point_dir(sw.points[1]) / "done.json"
+    check(done.read_bytes() == (kept / "done.json").read_bytes()
+          and json.loads(done.read_text())["included_sha256"] == r.included_hashes(sw.points[1]),
+          "the finished point: accepted in the output directory and the archive alike")
 
 
 def main():
