@@ -29,7 +29,7 @@ from wheelsim_post.deck_files import deck_includes
 
 from .checkpoints import STATE, Checkpoints
 from .plan import OUTPUTS, LabInputError, SoilInfo, run_dt_s
-from .progress import RunProgress, run_length, run_progress
+from .progress import RunProgress, run_length, run_progress, run_steps
 
 DECKS = Path(__file__).resolve().parent.parent / "decks"
 # Tests whose decks write checkpoints (lab_start.in, lab_checkpoints.in, lab_run.in); the repose
@@ -121,6 +121,16 @@ def resolve_soil_file(soil, inputs_dir):
         raise LabInputError(f"unknown soil '{soil}': no {shipped} (shipped soils: "
                             f"{', '.join(names)}; or give the path of your own soil file)")
     return str(shipped.resolve())
+
+
+def lab_eta(walls_s, runs_left):
+    """", ~X min left" of a lab with `runs_left` runs to go (the one starting counted less the
+    share of it its checkpoint holds), each at the mean wall time of the runs finished so far
+    (`walls_s`; runs skipped as done before at their recorded cost, not at 0 s); "" before any
+    has finished."""
+    if not walls_s:
+        return ""
+    return f", ~{sum(walls_s) / len(walls_s) * runs_left / 60:.1f} min left"
 
 
 class Lab:
@@ -520,7 +530,11 @@ class Lab:
     def run(self, soil, run, bed, progress=""):
         """Runs one plate, shear or repose deck on `bed` (a Bed, or a LazyBed poured only if the
         run must start from it; skipped when done before, resumed from its newest checkpoint when
-        stopped); returns its wall time [s] (a skipped run's from its done.json)."""
+        stopped); returns its wall time [s] (a skipped run's from its done.json). `progress`: the
+        prefix of its lines, or a function of the share of this run done before (a resumed run's
+        steps up to its checkpoint over its steps) that returns it (run_plan: the lab's ETA)."""
+        prefix_at = progress if callable(progress) else (lambda done=0.0: progress)
+        progress = prefix_at()
         d = self.out / run.name
         d.mkdir(parents=True, exist_ok=True)
         # a half-speed or half-step run uses its model's meshes
@@ -582,8 +596,13 @@ class Lab:
             if run.test == "shear":
                 variables.update(self._shear_start(d, ckpt))
             if ckpt.resuming:
+                done_steps, steps = ckpt.resumed_step - ckpt.start_step, run_steps(run, dt_s)
+                share = f"{done_steps} steps done"
+                if steps:
+                    progress = prefix_at(min(done_steps / steps, 1.0))
+                    share = f"{done_steps} of {steps} steps done, {100 * done_steps / steps:.0f} %"
                 self.say(f"{progress}{run.name}: resuming from its checkpoint at step "
-                         f"{ckpt.resumed_step} ({ckpt.resumed_step - ckpt.start_step} steps done)")
+                         f"{ckpt.resumed_step} ({share})")
         if not (ckpt and ckpt.resuming):
             length = run_length(run, dt_s)
             self.say(f"{progress}{run.name}: running" + (f" ({length})" if length else ""))
@@ -649,11 +668,9 @@ class Lab:
         beds = {name: self.plan_bed(plan.soil, bed) for name, bed in plan.beds.items()}
         walls = []  # wall time of each run finished so far, in this lab or before (done.json)
         for i, run in enumerate(plan.runs):
-            eta = ""
-            if walls:  # runs skipped as done before count at their own cost, not at 0 s
-                per = sum(walls) / len(walls)
-                eta = f", ~{per * (len(plan.runs) - i) / 60:.1f} min left"
-            wall_s = self.run(plan.soil, run, beds[run.bed],
-                              progress=f"[{i + 1}/{len(plan.runs)}{eta}] ")
+            def prefix(done=0.0, i=i):
+                """The run's line prefix; `done`: the share of it done before (resumed)."""
+                return f"[{i + 1}/{len(plan.runs)}{lab_eta(walls, len(plan.runs) - i - done)}] "
+            wall_s = self.run(plan.soil, run, beds[run.bed], progress=prefix)
             if wall_s:
                 walls.append(float(wall_s))
