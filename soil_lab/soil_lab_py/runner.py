@@ -533,7 +533,7 @@ class Lab:
         stopped); returns its wall time [s] (a skipped run's from its done.json). `progress`: the
         prefix of its lines, or a function of the share of this run done before (a resumed run's
         steps up to its checkpoint over its steps) that returns it (run_plan: the lab's ETA)."""
-        prefix_at = progress if callable(progress) else (lambda done=0.0: progress)
+        prefix_at = progress if callable(progress) else (lambda done=0.0, text=progress: text)
         progress = prefix_at()
         d = self.out / run.name
         d.mkdir(parents=True, exist_ok=True)
