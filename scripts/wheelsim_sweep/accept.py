@@ -20,9 +20,7 @@ import json
 import sys
 from pathlib import Path
 
-from wheelsim_post import accepted_change
-
-from wheelsim_post import step_archive
+from wheelsim_post import accepted_change, step_archive
 
 from . import archive
 from .runner import DONE_FILE, RUN_FILE, _write_atomic
