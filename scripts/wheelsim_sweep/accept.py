@@ -22,7 +22,6 @@ from pathlib import Path
 
 from wheelsim_post import accepted_change, step_archive
 
-from . import archive
 from .runner import DONE_FILE, RUN_FILE, _write_atomic
 
 
@@ -107,10 +106,7 @@ def accept_changes(r, files, reason):
         return 2
     stamp = accepted_change.utc_now()
     if r.archive is not None:
-        restored = archive.restore(r.archive, r.out, [p.reldir for p in sw.points])
-        if restored:
-            r.say(f"wheel-sweep: restored {len(restored)} finished point(s) from the archive "
-                  f"{r.archive}")
+        r.restore_archived(sw.points)
     n_points = n_beds = n_parked = 0
     for p in sw.points:
         d = r.point_dir(p)

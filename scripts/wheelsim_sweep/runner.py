@@ -999,14 +999,20 @@ class Runner:
         except OSError as e:
             self.say(f"wheel-sweep: warning: could not archive {p.reldir} in {self.archive}: {e}")
 
+    def restore_archived(self, points):
+        """Copies those of `points` finished in the archive whose output folder has no done.json
+        into the output directory (said); returns their reldirs."""
+        restored = archive.restore(self.archive, self.out, [p.reldir for p in points])
+        if restored:
+            self.say(f"wheel-sweep: restored {len(restored)} finished point(s) from the "
+                     f"archive {self.archive}")
+        return restored
+
     def _sync_archive(self):
         """Copies the points finished only in the archive into the output directory, and
         archives the finished points the archive lacks."""
         done = [p for p in self.sweep.points if self.status.get(p.index) == "done"]
-        self.restored = archive.restore(self.archive, self.out, [p.reldir for p in done])
-        if self.restored:
-            self.say(f"wheel-sweep: restored {len(self.restored)} finished point(s) from the "
-                     f"archive {self.archive}")
+        self.restored = self.restore_archived(done)
         added = 0
         for p in done:
             if p.reldir not in self.restored and not step_archive.holds(

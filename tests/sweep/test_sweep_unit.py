@@ -975,18 +975,12 @@ def case_accept_change(a, work):
     import fcntl
     import hashlib
     from wheelsim_sweep import config, runner
-    repo = Path(a.sweep).resolve().parents[1]
-    build = work / "build"
-    _stand_in_rig(build, otherwise="exit 0\n")
-    (work / "wheel.stl").write_text("solid w\nendsolid w\n")
-    deck_inc, soil_inc, other = work / "deck_extra.in", work / "soil_extra.in", work / "other.in"
-    for f in (deck_inc, soil_inc, other):
+    repo, build, deck_inc = _dem_project(a, work)
+    soil_inc, other = work / "soil_extra.in", work / "other.in"
+    for f in (soil_inc, other):
         f.write_text("# v1\n")
-    (work / "in.deck").write_text(f"# not run\ninclude {deck_inc}\n")
     (work / "sand.in").write_text((repo / "inputs" / "soils" / "ci.in").read_text()
                                   + f"include {soil_inc}\n")
-    (work / "rig.toml").write_text('[run]\ndt = 1e-4\nduration = 0.5\n[motor]\nomega = 1.0\n'
-                                   '[terrain]\ntype = "dem"\n')
     cfg = work / "sweep.toml"
     cfg.write_text('terrain = "dem"\nbase = "rig.toml"\nwheels = ["wheel.stl"]\n'
                    'soils = [{ soil = "sand.in", bin_length = 0.3 }]\nslips = [0.1, 0.2]\n'
