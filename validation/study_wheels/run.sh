@@ -34,7 +34,9 @@
 # whether it converges; epsdt — wheel 1 at 20 % on the epsdt recipe of the sand (a capped rolling
 # spring; sweep_epsdt.toml, its own bed; ~1.5 h with the bed), epsdt_dt — the same at half the step
 # (sweep_epsdt_dt.toml; ~2.6 h): whether the wheel converges in the step on a rolling spring as the
-# lab's plate does. Resumable: a re-run skips
+# lab's plate does; scm_epsdt — the SCM half on that recipe's lab fit (dsc_epsdt.toml, sheared at the
+# lug tips; sweep_scm_epsdt.toml; ~2 min), compared with the epsdt DEM points in comparison_epsdt.md.
+# Resumable: a re-run skips
 # finished points. Writes here results.csv (DEM), results_<part>.csv (the others), comparison.md
 # and comparison.png (the case), comparison_active_domain.md (the check) and
 # provenance[_<part>].toml (git hash, command, machine, wall time); finished DEM points are kept in points/ (committed) and restored on the
@@ -64,7 +66,7 @@ while (($#)); do
   esac
 done
 # the parts besides dem: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
-parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide allowance wheel_mu speed dt dt4 epsdt epsdt_dt)
+parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide allowance wheel_mu speed dt dt4 epsdt epsdt_dt scm_epsdt)
 for part in ${only//,/ }; do
   [[ " dem ${parts[*]} " == *" $part "* ]] || {
     echo "run.sh: --only: unknown part '$part' (expected dem ${parts[*]})" >&2; exit 2; }
@@ -150,6 +152,11 @@ if [[ -f $here/results.csv ]]; then
   [[ -f $here/results_epsdt_dt.csv ]] && extra+=(--epsdt-dt "$here/results_epsdt_dt.csv")
   "$python" "$here/compare.py" "$here/results.csv" "${extra[@]}" \
     --md "$here/comparison.md" --png "$here/comparison.png" || status=1
+fi
+if [[ -f $here/results_epsdt.csv && -f $here/results_scm_epsdt.csv ]]; then
+  # the case on the epsdt recipe: its DEM points against SCM on the recipe's own lab fit
+  "$python" "$here/compare.py" "$here/results_epsdt.csv" --scm "$here/results_scm_epsdt.csv" \
+    --label sweep_epsdt.toml --md "$here/comparison_epsdt.md" --png "$here/comparison_epsdt.png" || status=1
 fi
 if [[ -f $here/results_active_domain.csv ]]; then
   extra=()
