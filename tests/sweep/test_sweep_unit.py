@@ -1412,9 +1412,21 @@ def case_parked_beds(a, work):
     shutil.rmtree(kept)
     kept.mkdir(parents=True)
     (kept / "run.h5").write_text("")
-    (kept / "done.json").write_text(json.dumps(
-        {"exit_status": 0, "status": "done", "inputs_sha256": r.inputs_hash(sw.points[1]),
-         "included_sha256": v1}, indent=2) + "\n")
+    # first archived with other inputs: a run would re-run it, so it is not restored (nor
+    # touched); the parked record is accepted by this run, so it is put back after it
+    parked = arch / sw.points[0].reldir / "parked" / "parked.json"
+    parked_bytes = parked.read_bytes()
+    record = {"exit_status": 0, "status": "done", "inputs_sha256": "0" * 64, "included_sha256": v1}
+    (kept / "done.json").write_text(json.dumps(record, indent=2) + "\n")
+    res = _run(a, str(cfg), "--out-dir", str(out), "--build-dir", str(build), "--archive",
+               str(arch), "--accept-change", str(inc), "--reason", "other inputs")
+    check(res.returncode == 0 and "restored" not in res.stdout
+          and not (r.point_dir(sw.points[1]) / "done.json").exists()
+          and json.loads((kept / "done.json").read_text()) == record,
+          f"an archived point with other inputs: restored or touched: {res.stdout[-600:]}")
+    parked.write_bytes(parked_bytes)
+    record["inputs_sha256"] = r.inputs_hash(sw.points[1])
+    (kept / "done.json").write_text(json.dumps(record, indent=2) + "\n")
     res = _run(a, str(cfg), "--out-dir", str(out), "--build-dir", str(build), "--archive",
                str(arch), "--accept-change", str(inc), "--reason", "a comment")
     check(res.returncode == 0 and "restored 1 finished point(s)" in res.stdout
