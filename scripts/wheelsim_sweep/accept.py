@@ -78,17 +78,6 @@ def _accept_parked(r, p, now, files, reason, stamp):
     return 1
 
 
-def _archived_current(r, p):
-    """Whether the archive holds point p finished with its current inputs hash (the included
-    files are what --accept-change judges): one a run would restore; one whose inputs changed
-    re-runs anyway, so copying it into the output directory would serve nothing."""
-    try:
-        done = json.loads((r.archive / p.reldir / DONE_FILE).read_text())
-    except (OSError, ValueError):
-        return False
-    return done.get("exit_status") == 0 and done.get("inputs_sha256") in r.inputs_hashes(p)
-
-
 def accept_changes(r, files, reason):
     """Runner r (its sweep, output dir and hashing); files: the paths given; reason: the user's
     text. Returns the exit status: 0 (also when nothing needed accepting), 2 for a file that no
@@ -117,7 +106,9 @@ def accept_changes(r, files, reason):
         return 2
     stamp = accepted_change.utc_now()
     if r.archive is not None:  # as a run would: only points the archive holds finished with
-        r.restore_archived([p for p in sw.points if _archived_current(r, p)])  # these inputs
+        # these inputs (one whose inputs changed re-runs anyway); the included files are judged below
+        r.restore_archived([p for p in sw.points
+                            if r.finished_in(r.archive / p.reldir, p, included=False)[0]])
     n_points = n_beds = n_parked = 0
     for p in sw.points:
         d = r.point_dir(p)

@@ -480,6 +480,11 @@ class Runner:
         if self.archive is not None and not (d / DONE_FILE).exists():
             if (self.archive / p.reldir / DONE_FILE).is_file():
                 d = self.archive / p.reldir
+        return self.finished_in(d, p)
+
+    def finished_in(self, d, p, included=True):
+        """`finished` for the record in folder d (the output's or the archive's); included=False
+        leaves out the included files' hashes (what --accept-change judges itself)."""
         try:
             done = json.loads((d / DONE_FILE).read_text())
         except FileNotFoundError:
@@ -490,7 +495,7 @@ class Runner:
             return False, f"failed before (exit {done.get('exit_status')})"
         if done.get("inputs_sha256") not in self.inputs_hashes(p):
             return False, "inputs changed since it finished"
-        recorded = done.get("included_sha256")
+        recorded = done.get("included_sha256") if included else None
         if recorded is not None:
             recorded = self.portable(recorded)
             now = self.included_hashes(p)
