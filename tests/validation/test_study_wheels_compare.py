@@ -134,6 +134,15 @@ def main():
     check(heads == ["## The wheel pressed in, at each time step (cdt)",
                     "## The wheel pressed in, at each time step (epsdt)"],
           f"a press-in table per rolling model: {heads}")
+    # the coarser grain at the case's step: against the case's point (grain alone) and against
+    # the same grain at its own step (the step on that grain)
+    r = run_script(SCRIPT, dem, "--goal-wide", dt2, "--goal-wide-dt", dt4, "--md", md)
+    text = md.read_text() if r.returncode == 0 and md.is_file() else ""
+    check("## Grain size at one time step: 16-40 mm (sweep.toml) against 21-52 mm" in text
+          and "## The time step on 21-52 mm grains: 5.7e-5 s (sweep_goal_wide.toml)" in text,
+          f"the grain-at-one-step sections (exit {r.returncode})")
+    check("| wheel1 s 0.2 | drawbar pull [kN] | -0.6 ± 0.05 | -0.4 ± 0.05 | -50.00 % |" in text,
+          "the step row on the coarser grain: sweep_goal_wide.toml's point against its 4.4e-5 s one")
     # a skid point: TE = (DP / F_T)(1 - s) needs the driving convention, the table's
     # slip_driving (-1 at skid slip -0.5: v = 2 omega R_eff), not its signed slip (-0.5)
     skid = work / "skid.csv"

@@ -10,7 +10,8 @@ into traction force and motion resistance.
 
     compare.py RESULTS.csv [--scm RESULTS_SCM.csv ...] [--full-domain RESULTS_FULL.csv]
                [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--goal RESULTS_GOAL.csv]
-               [--goal-wide RESULTS_GOAL_WIDE.csv] [--allowance RESULTS_ALLOWANCE.csv]
+               [--goal-wide RESULTS_GOAL_WIDE.csv] [--goal-wide-dt RESULTS_GOAL_WIDE_DT.csv]
+               [--allowance RESULTS_ALLOWANCE.csv]
                [--wheel-mu RESULTS_WHEEL_MU.csv] [--speed RESULTS_SPEED.csv] [--dt RESULTS_DT.csv]
                [--dt4 RESULTS_DT4.csv] [--label CONFIG]
                [--md OUT.md] [--png OUT.png]
@@ -309,6 +310,8 @@ def main():
     ap.add_argument("--goal", help="issue 12's goal point's results table (21-52 mm grains)")
     ap.add_argument("--goal-wide", help="the goal point with sweep.toml's 0.3 m sinkage allowance "
                     "(sweep_goal_wide.toml): the like-for-like coarser grain")
+    ap.add_argument("--goal-wide-dt", help="--goal-wide's point at sweep.toml's time step "
+                    "(sweep_goal_wide_dt.toml): the grain size at one step")
     ap.add_argument("--allowance", help="a point with the active domain's sinkage allowance "
                     "raised from sweep.toml's 0.3 m (sweep_allowance.toml)")
     ap.add_argument("--wheel-mu", help="a point with the wheel-sand friction raised from 0.5 to "
@@ -370,6 +373,9 @@ def main():
             (a.goal_wide, "Grain size, like for like: 16-40 mm ({}) against 21-52 mm "
              "(sweep_goal_wide.toml: the same 0.3 m sinkage allowance, time step x 1.3)",
              "21-52 mm grains"),
+            (a.goal_wide_dt, "Grain size at one time step: 16-40 mm ({}) against 21-52 mm "
+             "(sweep_goal_wide_dt.toml: the same 0.3 m sinkage allowance and 4.4e-5 s step)",
+             "21-52 mm grains, dt 4.4e-5 s"),
             (a.goal, "Issue 12's goal: 16-40 mm ({}) against 21-52 mm (sweep_goal.toml, time step "
              "x 1.3, the active domain at its default distance: not like for like since "
              "sweep.toml sets the 0.3 m allowance)", "21-52 mm grains"),
@@ -389,6 +395,11 @@ def main():
         if table:
             lines += ["## " + heading.format(a.label), ""]
             lines += point_table(dem, read(table), name, ref=a.label)[0] + [""]
+    if a.goal_wide and a.goal_wide_dt:
+        lines += ["## The time step on 21-52 mm grains: 5.7e-5 s (sweep_goal_wide.toml) against "
+                  "4.4e-5 s (sweep_goal_wide_dt.toml: same bed, grains and ranks)", ""]
+        lines += point_table(read(a.goal_wide), read(a.goal_wide_dt), "dt 4.4e-5 s",
+                             ref="sweep_goal_wide.toml")[0] + [""]
     if a.epsdt and a.epsdt_dt:
         lines += ["## The time step on epsdt: 4.4e-5 s (sweep_epsdt.toml) against 2.2e-5 s "
                   "(sweep_epsdt_dt.toml: same bed, grains and ranks)", ""]
