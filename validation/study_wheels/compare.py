@@ -397,7 +397,8 @@ def main():
             lines += point_table(dem, read(table), name, ref=a.label)[0] + [""]
     if a.goal_wide and a.goal_wide_dt:
         lines += ["## The time step on 21-52 mm grains: 5.7e-5 s (sweep_goal_wide.toml) against "
-                  "4.4e-5 s (sweep_goal_wide_dt.toml: same bed, grains and ranks)", ""]
+                  "4.4e-5 s (sweep_goal_wide_dt.toml: the same bed recipe, grains and ranks; its bed poured "
+                  "again on a later build, 2 spheres fewer)", ""]
         lines += point_table(read(a.goal_wide), read(a.goal_wide_dt), "dt 4.4e-5 s",
                              ref="sweep_goal_wide.toml")[0] + [""]
     if a.epsdt and a.epsdt_dt:
