@@ -143,6 +143,18 @@ def main():
           f"the grain-at-one-step sections (exit {r.returncode})")
     check("| wheel1 s 0.2 | drawbar pull [kN] | -0.6 ± 0.05 | -0.4 ± 0.05 | -50.00 % |" in text,
           "the step row on the coarser grain: sweep_goal_wide.toml's point against its 4.4e-5 s one")
+    # with the point re-run on the re-poured bed: a bed-to-bed section, and the step read on one
+    # bed (the re-poured point against the 4.4e-5 s one), not across the two pours
+    r = run_script(SCRIPT, dem, "--goal-wide", dt2, "--goal-wide-dt", dt4,
+                   "--goal-wide-repour", allowance, "--md", md)
+    text = md.read_text() if r.returncode == 0 and md.is_file() else ""
+    check("## Bed to bed: 21-52 mm at 5.7e-5 s (sweep_goal_wide.toml) against the same point" in text
+          and "## The time step on 21-52 mm grains: 5.7e-5 s (sweep_goal_wide_repour.toml) "
+          "against 4.4e-5 s (sweep_goal_wide_dt.toml: the same bed, grains and ranks)" in text
+          and "sweep_goal_wide.toml) against 4.4e-5 s" not in text,
+          f"the bed-to-bed section and the step on one bed (exit {r.returncode})")
+    check("| wheel1 s 0.2 | drawbar pull [kN] | -0.6 ± 0.05 | -0.9 ± 0.05 | +33.33 % |" in text,
+          "the bed-to-bed row: sweep_goal_wide.toml's point against the re-poured one")
     # a skid point: TE = (DP / F_T)(1 - s) needs the driving convention, the table's
     # slip_driving (-1 at skid slip -0.5: v = 2 omega R_eff), not its signed slip (-0.5)
     skid = work / "skid.csv"

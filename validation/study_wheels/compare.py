@@ -11,6 +11,7 @@ into traction force and motion resistance.
     compare.py RESULTS.csv [--scm RESULTS_SCM.csv ...] [--full-domain RESULTS_FULL.csv]
                [--repeat RESULTS_REPEAT.csv] [--grain RESULTS_GRAIN.csv] [--goal RESULTS_GOAL.csv]
                [--goal-wide RESULTS_GOAL_WIDE.csv] [--goal-wide-dt RESULTS_GOAL_WIDE_DT.csv]
+               [--goal-wide-repour RESULTS_GOAL_WIDE_REPOUR.csv]
                [--allowance RESULTS_ALLOWANCE.csv]
                [--wheel-mu RESULTS_WHEEL_MU.csv] [--speed RESULTS_SPEED.csv] [--dt RESULTS_DT.csv]
                [--dt4 RESULTS_DT4.csv] [--label CONFIG]
@@ -312,6 +313,9 @@ def main():
                     "(sweep_goal_wide.toml): the like-for-like coarser grain")
     ap.add_argument("--goal-wide-dt", help="--goal-wide's point at sweep.toml's time step "
                     "(sweep_goal_wide_dt.toml): the grain size at one step")
+    ap.add_argument("--goal-wide-repour", help="--goal-wide's point again on its recipe poured "
+                    "again (sweep_goal_wide_repour.toml): bed-to-bed scatter, and the step on "
+                    "one bed with --goal-wide-dt")
     ap.add_argument("--allowance", help="a point with the active domain's sinkage allowance "
                     "raised from sweep.toml's 0.3 m (sweep_allowance.toml)")
     ap.add_argument("--wheel-mu", help="a point with the wheel-sand friction raised from 0.5 to "
@@ -395,12 +399,21 @@ def main():
         if table:
             lines += ["## " + heading.format(a.label), ""]
             lines += point_table(dem, read(table), name, ref=a.label)[0] + [""]
-    if a.goal_wide and a.goal_wide_dt:
-        lines += ["## The time step on 21-52 mm grains: 5.7e-5 s (sweep_goal_wide.toml) against "
-                  "4.4e-5 s (sweep_goal_wide_dt.toml: the same bed recipe, grains and ranks; its bed poured "
-                  "again on a later build, 2 spheres fewer)", ""]
-        lines += point_table(read(a.goal_wide), read(a.goal_wide_dt), "dt 4.4e-5 s",
+    if a.goal_wide and a.goal_wide_repour:
+        lines += ["## Bed to bed: 21-52 mm at 5.7e-5 s (sweep_goal_wide.toml) against the same "
+                  "point on the recipe poured again (sweep_goal_wide_repour.toml)", ""]
+        lines += point_table(read(a.goal_wide), read(a.goal_wide_repour), "poured again",
                              ref="sweep_goal_wide.toml")[0] + [""]
+    # the step on the coarser grain: on one bed when the re-poured point is in
+    ref = (a.goal_wide_repour, "sweep_goal_wide_repour.toml", "the same bed, grains and ranks") \
+        if a.goal_wide_repour else \
+        (a.goal_wide, "sweep_goal_wide.toml", "the same bed recipe, grains and ranks; its bed "
+         "poured again on a later build, 2 spheres fewer")
+    if ref[0] and a.goal_wide_dt:
+        lines += [f"## The time step on 21-52 mm grains: 5.7e-5 s ({ref[1]}) against 4.4e-5 s "
+                  f"(sweep_goal_wide_dt.toml: {ref[2]})", ""]
+        lines += point_table(read(ref[0]), read(a.goal_wide_dt), "dt 4.4e-5 s",
+                             ref=ref[1])[0] + [""]
     if a.epsdt and a.epsdt_dt:
         lines += ["## The time step on epsdt: 4.4e-5 s (sweep_epsdt.toml) against 2.2e-5 s "
                   "(sweep_epsdt_dt.toml: same bed, grains and ranks)", ""]

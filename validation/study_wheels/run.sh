@@ -24,7 +24,9 @@
 # goal point on another ranks' grid (sweep_goal_repeat.toml; ~25 min), compared in
 # comparison_goal_active_domain.md; goal_wide_dt — goal_wide's point at the case's 4.4e-5 s step
 # instead of 5.7e-5 (sweep_goal_wide_dt.toml, the same bed; ~41 min): the grain size at one step,
-# since on cdt the step moves the answer as a soil parameter would; allowance — wheel 1 at 50 % with the active domain's sinkage
+# since on cdt the step moves the answer as a soil parameter would; goal_wide_repour — goal_wide's
+# point again on its bed as poured now (sweep_goal_wide_repour.toml; ~27 min): bed-to-bed scatter,
+# and the step on one bed against goal_wide_dt; allowance — wheel 1 at 50 % with the active domain's sinkage
 # allowance at 0.45 m instead of 0.3 (sweep_allowance.toml, the same bed; ~1.5 h): what the
 # deepest points' active_domain_sinkage warning costs; wheel_mu — wheel 1 at 20 % with the
 # wheel-sand friction at the grains' 0.7869 instead of 0.5 (sweep_wheel_mu.toml, the same bed;
@@ -68,7 +70,7 @@ while (($#)); do
   esac
 done
 # the parts besides dem: sweep_<part>.toml into runs/validation/study_wheels_<part>, results_<part>.csv
-parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide goal_wide_dt allowance wheel_mu speed dt dt4 epsdt epsdt_dt scm_epsdt)
+parts=(scm scm_tips scm_deep scm_onset scm_onset_tips grain goal active_domain full_domain repeat goal_full goal_repeat goal_wide goal_wide_dt goal_wide_repour allowance wheel_mu speed dt dt4 epsdt epsdt_dt scm_epsdt)
 for part in ${only//,/ }; do
   [[ " dem ${parts[*]} " == *" $part "* ]] || {
     echo "run.sh: --only: unknown part '$part' (expected dem ${parts[*]})" >&2; exit 2; }
@@ -146,6 +148,7 @@ if [[ -f $here/results.csv ]]; then
   [[ -f $here/results_goal.csv ]] && extra+=(--goal "$here/results_goal.csv")
   [[ -f $here/results_goal_wide.csv ]] && extra+=(--goal-wide "$here/results_goal_wide.csv")
   [[ -f $here/results_goal_wide_dt.csv ]] && extra+=(--goal-wide-dt "$here/results_goal_wide_dt.csv")
+  [[ -f $here/results_goal_wide_repour.csv ]] && extra+=(--goal-wide-repour "$here/results_goal_wide_repour.csv")
   [[ -f $here/results_allowance.csv ]] && extra+=(--allowance "$here/results_allowance.csv")
   [[ -f $here/results_wheel_mu.csv ]] && extra+=(--wheel-mu "$here/results_wheel_mu.csv")
   [[ -f $here/results_speed.csv ]] && extra+=(--speed "$here/results_speed.csv")
