@@ -399,26 +399,25 @@ def main():
         if table:
             lines += ["## " + heading.format(a.label), ""]
             lines += point_table(dem, read(table), name, ref=a.label)[0] + [""]
-    if a.goal_wide and a.goal_wide_repour:
-        lines += ["## Bed to bed: 21-52 mm at 5.7e-5 s (sweep_goal_wide.toml) against the same "
-                  "point on the recipe poured again (sweep_goal_wide_repour.toml)", ""]
-        lines += point_table(read(a.goal_wide), read(a.goal_wide_repour), "poured again",
-                             ref="sweep_goal_wide.toml")[0] + [""]
-    # the step on the coarser grain: on one bed when the re-poured point is in
-    ref = (a.goal_wide_repour, "sweep_goal_wide_repour.toml", "the same bed, grains and ranks") \
-        if a.goal_wide_repour else \
-        (a.goal_wide, "sweep_goal_wide.toml", "the same bed recipe, grains and ranks; its bed "
-         "poured again on a later build, 2 spheres fewer")
-    if ref[0] and a.goal_wide_dt:
-        lines += [f"## The time step on 21-52 mm grains: 5.7e-5 s ({ref[1]}) against 4.4e-5 s "
-                  f"(sweep_goal_wide_dt.toml: {ref[2]})", ""]
-        lines += point_table(read(ref[0]), read(a.goal_wide_dt), "dt 4.4e-5 s",
-                             ref=ref[1])[0] + [""]
-    if a.epsdt and a.epsdt_dt:
-        lines += ["## The time step on epsdt: 4.4e-5 s (sweep_epsdt.toml) against 2.2e-5 s "
-                  "(sweep_epsdt_dt.toml: same bed, grains and ranks)", ""]
-        lines += point_table(read(a.epsdt), read(a.epsdt_dt), "epsdt, dt 2.2e-5 s",
-                             ref="sweep_epsdt.toml")[0] + [""]
+    # two points of the same side study against each other: (reference table, its config, the
+    # other table, heading after "## ", the other's column name)
+    one_bed = ((a.goal_wide_repour, "sweep_goal_wide_repour.toml", "the same bed, grains and ranks")
+               if a.goal_wide_repour else  # the step on the coarser grain: on one bed when it can
+               (a.goal_wide, "sweep_goal_wide.toml", "the same bed recipe, grains and ranks; its "
+                "bed poured again on a later build, 2 spheres fewer"))
+    for ref_table, ref_name, table, heading, name in (
+            (a.goal_wide, "sweep_goal_wide.toml", a.goal_wide_repour,
+             "Bed to bed: 21-52 mm at 5.7e-5 s (sweep_goal_wide.toml) against the same point on "
+             "the recipe poured again (sweep_goal_wide_repour.toml)", "poured again"),
+            (one_bed[0], one_bed[1], a.goal_wide_dt,
+             f"The time step on 21-52 mm grains: 5.7e-5 s ({one_bed[1]}) against 4.4e-5 s "
+             f"(sweep_goal_wide_dt.toml: {one_bed[2]})", "dt 4.4e-5 s"),
+            (a.epsdt, "sweep_epsdt.toml", a.epsdt_dt,
+             "The time step on epsdt: 4.4e-5 s (sweep_epsdt.toml) against 2.2e-5 s "
+             "(sweep_epsdt_dt.toml: same bed, grains and ranks)", "epsdt, dt 2.2e-5 s")):
+        if ref_table and table:
+            lines += ["## " + heading, ""]
+            lines += point_table(read(ref_table), read(table), name, ref=ref_name)[0] + [""]
     for steps, model in (([(a.dem, a.label), (a.dt, "dt 2.2e-5 s"), (a.dt4, "dt 1.1e-5 s")],
                           "cdt"),
                          ([(a.epsdt, "sweep_epsdt.toml"), (a.epsdt_dt, "epsdt, dt 2.2e-5 s")],

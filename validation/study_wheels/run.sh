@@ -144,18 +144,11 @@ if [[ -f $here/results.csv ]]; then
   [[ -f $here/results_scm.csv ]] && extra+=(--scm "$here/results_scm.csv")
   [[ -f $here/results_scm_tips.csv ]] && extra+=(--scm "$here/results_scm_tips.csv")
   [[ -f $here/results_scm_deep.csv ]] && extra+=(--scm "$here/results_scm_deep.csv")
-  [[ -f $here/results_grain.csv ]] && extra+=(--grain "$here/results_grain.csv")
-  [[ -f $here/results_goal.csv ]] && extra+=(--goal "$here/results_goal.csv")
-  [[ -f $here/results_goal_wide.csv ]] && extra+=(--goal-wide "$here/results_goal_wide.csv")
-  [[ -f $here/results_goal_wide_dt.csv ]] && extra+=(--goal-wide-dt "$here/results_goal_wide_dt.csv")
-  [[ -f $here/results_goal_wide_repour.csv ]] && extra+=(--goal-wide-repour "$here/results_goal_wide_repour.csv")
-  [[ -f $here/results_allowance.csv ]] && extra+=(--allowance "$here/results_allowance.csv")
-  [[ -f $here/results_wheel_mu.csv ]] && extra+=(--wheel-mu "$here/results_wheel_mu.csv")
-  [[ -f $here/results_speed.csv ]] && extra+=(--speed "$here/results_speed.csv")
-  [[ -f $here/results_dt.csv ]] && extra+=(--dt "$here/results_dt.csv")
-  [[ -f $here/results_dt4.csv ]] && extra+=(--dt4 "$here/results_dt4.csv")
-  [[ -f $here/results_epsdt.csv ]] && extra+=(--epsdt "$here/results_epsdt.csv")
-  [[ -f $here/results_epsdt_dt.csv ]] && extra+=(--epsdt-dt "$here/results_epsdt_dt.csv")
+  # each side study's table, if in, under compare.py's option of the part's name (_ -> -)
+  for p in grain goal goal_wide goal_wide_dt goal_wide_repour allowance wheel_mu speed dt dt4 \
+           epsdt epsdt_dt; do
+    [[ -f $here/results_$p.csv ]] && extra+=("--${p//_/-}" "$here/results_$p.csv")
+  done
   "$python" "$here/compare.py" "$here/results.csv" "${extra[@]}" \
     --md "$here/comparison.md" --png "$here/comparison.png" || status=1
 fi
